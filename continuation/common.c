@@ -1,0 +1,207 @@
+/* Status texts, message buffers, accuracy presets and convergence tests. */
+#include "slipcont/common.h"
+
+#include <ctype.h>
+#include <errno.h>
+#include <float.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+const char *sc_strerror(int status) {
+  switch (status) {
+#define SC_STATUS_CASE_(name, value, text)                                  \
+  case value:                                                               \
+    return text;
+    SC_STATUS_LIST(SC_STATUS_CASE_)
+#undef SC_STATUS_CASE_
+  default:
+    return "unknown status";
+  }
+}
+
+int sc_fail(sc_msg *msg, int status, const char *fmt, ...) {
+  if (msg) {
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg->text, sizeof msg->text, fmt, ap);
+    va_end(ap);
+  }
+  return status;
+}
+
+/* One row per settable field: its scene name, where it lives, whether it
+ * is a count, and its valid range (closed; tolerances must be > 0, which
+ * the lower bound DBL_MIN expresses). */
+typedef struct {
+  const char *name; /* scene name: the member name with '-' for '_' */
+  size_t offset;
+  int is_int;
+  double lo, hi;
+} field_info;
+
+#define FIELD_(member, name, is_int, lo, hi)                                \
+  { name, offsetof(sc_accuracy, member), is_int, lo, hi }
+
+static const field_info fields[] = {
+    FIELD_(event_rtol, "event-rtol", 0, 4 * DBL_EPSILON, 1e-2),
+    FIELD_(event_atol, "event-atol", 0, DBL_MIN, 1e-2),
+    FIELD_(newton_atol, "newton-atol", 0, DBL_MIN, 1e-1),
+    FIELD_(newton_rtol, "newton-rtol", 0, DBL_MIN, 1e-1),
+    FIELD_(newton_ftol, "newton-ftol", 0, DBL_MIN, 1e-1),
+    FIELD_(newton_maxiter, "newton-maxiter", 1, 1, 1000),
+    FIELD_(ode_atol, "ode-atol", 0, DBL_MIN, 1e-2),
+    FIELD_(ode_rtol, "ode-rtol", 0, 4 * DBL_EPSILON, 1e-2),
+    FIELD_(fd_step, "fd-step", 0, DBL_EPSILON, 1e-1),
+    FIELD_(period_rtol, "period-rtol", 0, DBL_EPSILON, 1e-1),
+    FIELD_(max_events, "max-events", 1, 2, 4096),
+};
+#define NFIELDS (sizeof fields / sizeof fields[0])
+
+size_t sc_accuracy_nfields(void) { return NFIELDS; }
+
+const char *sc_accuracy_field_name(size_t i) {
+  return i < NFIELDS ? fields[i].name : NULL;
+}
+
+double sc_accuracy_field_value(const sc_accuracy *acc, size_t i) {
+  if (i >= NFIELDS) return NAN;
+  const char *base = (const char *)acc + fields[i].offset;
+  return fields[i].is_int ? (double)*(const int *)base : *(const double *)base;
+}
+
+int sc_accuracy_preset(sc_accuracy *acc, const char *name, sc_msg *msg) {
+  /* default: events to 1e-14 relative, Newton to ~1e2 eps; fast trades
+   * event accuracy for fewer refinement steps; precise pushes every
+   * tolerance to a few ulps. */
+  sc_accuracy a = {
+      .event_rtol = 1e-14,
+      .event_atol = 1e-15,
+      .newton_atol = 1e-13,
+      .newton_rtol = 1e-13,
+      .newton_ftol = 1e-13,
+      .newton_maxiter = 30,
+      .ode_atol = 1e-10,
+      .ode_rtol = 1e-10,
+      .fd_step = 1e-6,
+      .period_rtol = 1e-6,
+      .max_events = 256,
+  };
+  if (!name || strcmp(name, "default") == 0) {
+    /* as above */
+  } else if (strcmp(name, "fast") == 0) {
+    a.event_rtol = 1e-9;
+    a.event_atol = 1e-10;
+    a.newton_atol = a.newton_rtol = a.newton_ftol = 1e-9;
+    a.ode_atol = a.ode_rtol = 1e-7;
+    a.period_rtol = 1e-5;
+    a.max_events = 128;
+  } else if (strcmp(name, "precise") == 0) {
+    a.event_rtol = 4 * DBL_EPSILON;
+    a.event_atol = 1e-16;
+    a.newton_atol = a.newton_rtol = a.newton_ftol = 1e-15;
+    a.newton_maxiter = 60;
+    a.ode_atol = a.ode_rtol = 1e-13;
+    a.period_rtol = 1e-8;
+    a.max_events = 1024;
+  } else {
+    return sc_fail(msg, SC_EINVAL,
+                   "sc_accuracy_preset: unknown preset '%s' (valid: %s)",
+                   name, SC_ACCURACY_PRESETS);
+  }
+  *acc = a;
+  return SC_OK;
+}
+
+static int check_field(const sc_accuracy *acc, size_t i, sc_msg *msg) {
+  double v = sc_accuracy_field_value(acc, i);
+  if (!(v >= fields[i].lo && v <= fields[i].hi))
+    return sc_fail(msg, SC_EINVAL,
+                   "sc_accuracy_check: %s = %.17g out of range (valid: "
+                   "[%.17g, %.17g])",
+                   sc_accuracy_field_name(i), v, fields[i].lo, fields[i].hi);
+  return SC_OK;
+}
+
+int sc_accuracy_check(const sc_accuracy *acc, sc_msg *msg) {
+  if (!acc) return sc_fail(msg, SC_EINVAL, "sc_accuracy_check: NULL");
+  for (size_t i = 0; i < NFIELDS; i++) {
+    int st = check_field(acc, i, msg);
+    if (st) return st;
+  }
+  return SC_OK;
+}
+
+int sc_accuracy_set(sc_accuracy *acc, const char *name, const char *value,
+                    sc_msg *msg) {
+  for (size_t i = 0; i < NFIELDS; i++) {
+    if (strcmp(fields[i].name, name) != 0) continue;
+    char *base = (char *)acc + fields[i].offset;
+    if (fields[i].is_int) {
+      long l;
+      if (sc_parse_long(value, (long)fields[i].lo, (long)fields[i].hi, &l))
+        return sc_fail(msg, SC_EINVAL,
+                       "%s = '%s' is not an integer in [%.0f, %.0f]", name,
+                       value, fields[i].lo, fields[i].hi);
+      *(int *)base = (int)l;
+    } else {
+      double d;
+      if (sc_parse_double(value, &d))
+        return sc_fail(msg, SC_EINVAL, "%s = '%s' is not a finite number",
+                       name, value);
+      if (!(d >= fields[i].lo && d <= fields[i].hi))
+        return sc_fail(msg, SC_EINVAL,
+                       "%s = %.17g out of range (valid: [%.3g, %.3g])", name,
+                       d, fields[i].lo, fields[i].hi);
+      *(double *)base = d;
+    }
+    return SC_OK;
+  }
+  char list[512] = "";
+  for (size_t i = 0; i < NFIELDS; i++) {
+    strncat(list, sc_accuracy_field_name(i), sizeof list - strlen(list) - 1);
+    if (i + 1 < NFIELDS) strncat(list, ", ", sizeof list - strlen(list) - 1);
+  }
+  return sc_fail(msg, SC_EINVAL, "unknown accuracy key '%s' (valid: %s)",
+                 name, list);
+}
+
+int sc_test_delta(double dx, double x, double epsabs, double epsrel) {
+  if (!(epsabs >= 0) || !(epsrel >= 0)) return SC_EINVAL;
+  if (!isfinite(dx) || !isfinite(x)) return SC_ENONFINITE;
+  return fabs(dx) <= epsabs + epsrel * fabs(x) ? SC_OK : SC_CONTINUE;
+}
+
+int sc_test_residual(double f, double epsabs) {
+  if (!(epsabs >= 0)) return SC_EINVAL;
+  if (!isfinite(f)) return SC_ENONFINITE;
+  return fabs(f) <= epsabs ? SC_OK : SC_CONTINUE;
+}
+
+static int only_blanks(const char *s) {
+  while (*s && isspace((unsigned char)*s)) s++;
+  return *s == '\0';
+}
+
+int sc_parse_double(const char *text, double *out) {
+  if (!text || only_blanks(text)) return SC_EINVAL;
+  char *end;
+  errno = 0;
+  double d = strtod(text, &end);
+  if (errno == ERANGE && fabs(d) > 1) return SC_EINVAL;
+  if (!only_blanks(end) || !isfinite(d)) return SC_EINVAL;
+  *out = d;
+  return SC_OK;
+}
+
+int sc_parse_long(const char *text, long lo, long hi, long *out) {
+  if (!text || only_blanks(text)) return SC_EINVAL;
+  char *end;
+  errno = 0;
+  long l = strtol(text, &end, 10);
+  if (errno || !only_blanks(end) || l < lo || l > hi) return SC_EINVAL;
+  *out = l;
+  return SC_OK;
+}

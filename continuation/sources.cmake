@@ -1,0 +1,1 @@
+list(APPEND SC_SOURCES continuation/common.c)

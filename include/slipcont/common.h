@@ -1,0 +1,153 @@
+/**
+ * @file common.h
+ * @brief Status codes, message buffers, the accuracy object and
+ *        convergence tests shared by every layer of slipcont.
+ *
+ * Nothing here allocates or keeps state; every function is thread safe.
+ */
+#ifndef SLIPCONT_COMMON_H
+#define SLIPCONT_COMMON_H
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/**
+ * The one list of status codes: name, value, text.  SC_OK is 0, errors
+ * are negative, outcomes (reasons an iteration returned that are not
+ * failures) are positive.
+ */
+#define SC_STATUS_LIST(X)                                                   \
+  X(SC_OK, 0, "success")                                                    \
+  X(SC_EINVAL, -1, "invalid argument")                                      \
+  X(SC_ENOMEM, -2, "out of memory")                                         \
+  X(SC_ENOCONV, -3, "iteration did not converge")                           \
+  X(SC_EUNDEF, -4, "map undefined (no return to a global stick phase)")     \
+  X(SC_EIO, -5, "input/output error")                                       \
+  X(SC_ESING, -6, "singular linear system")                                 \
+  X(SC_ENONFINITE, -7, "non-finite value")                                  \
+  X(SC_ECALLBACK, -8, "user callback failed")                               \
+  X(SC_ENEUTRAL, -9, "neutral orbit: the fixed point lies in a family")    \
+  X(SC_EINTERNAL, -10, "internal error")                                    \
+  X(SC_CONTINUE, 1, "continue")                                             \
+  X(SC_SPECIAL, 2, "special point reached")                                 \
+  X(SC_END, 3, "end of the computation reached")
+
+/** Status codes; see SC_STATUS_LIST. */
+typedef enum {
+#define SC_STATUS_ENUM_(name, value, text) name = value,
+  SC_STATUS_LIST(SC_STATUS_ENUM_)
+#undef SC_STATUS_ENUM_
+} sc_status;
+
+/**
+ * @brief Text for a status code ("unknown status" for others).
+ * @return a static string; never NULL.
+ */
+const char *sc_strerror(int status);
+
+/** Length of a message buffer, terminating NUL included. */
+#define SC_MSG_LEN 512
+
+/**
+ * A caller-owned message buffer.  Functions that can fail take an
+ * `sc_msg *` (which may be NULL) and, on failure, write one line of the
+ * form `function: what (value; valid range)` into it.
+ */
+typedef struct {
+  char text[SC_MSG_LEN];
+} sc_msg;
+
+/**
+ * @brief Write a formatted message into @p msg (no-op if NULL).
+ * @return @p status, so that `return sc_fail(msg, SC_EINVAL, ...)` reads.
+ */
+int sc_fail(sc_msg *msg, int status, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+
+/**
+ * The accuracy object threaded through every computation.  Every field
+ * can be set from a scene's `[accuracy]` section; see docs/scenes.md.
+ * Tolerances are absolute/relative pairs tested as
+ * |err| <= atol + rtol |x|.
+ */
+typedef struct {
+  double event_rtol;   /**< event times: relative tolerance (default 1e-14) */
+  double event_atol;   /**< event times: absolute tolerance (default 1e-15) */
+  double newton_atol;  /**< Newton corrector/shooting: absolute step tol */
+  double newton_rtol;  /**< Newton corrector/shooting: relative step tol */
+  double newton_ftol;  /**< Newton corrector/shooting: residual tol */
+  int newton_maxiter;  /**< Newton iterations before SC_ENOCONV */
+  double ode_atol;     /**< numerical flows: absolute tolerance */
+  double ode_rtol;     /**< numerical flows: relative tolerance */
+  double fd_step;      /**< finite-difference relative step (cross-checks) */
+  double period_rtol;  /**< period detection: tolerance / attractor size */
+  int max_events;      /**< slip phases per iterate before f is undefined */
+} sc_accuracy;
+
+/** Names accepted by sc_accuracy_preset(). */
+#define SC_ACCURACY_PRESETS "fast, default, precise"
+
+/**
+ * @brief Fill @p acc with a named preset: "fast", "default", "precise".
+ * @return SC_OK, or SC_EINVAL for an unknown name (message says which).
+ */
+int sc_accuracy_preset(sc_accuracy *acc, const char *name, sc_msg *msg);
+
+/**
+ * @brief Check every field: finite, positive tolerances, counts >= 1.
+ * @return SC_OK or SC_EINVAL naming the first bad field.
+ */
+int sc_accuracy_check(const sc_accuracy *acc, sc_msg *msg);
+
+/**
+ * @brief Set one field by name (the names of the struct members with '_'
+ * written as '-': "event-rtol", "newton-maxiter", ...), from text.
+ * @return SC_OK, or SC_EINVAL for an unknown name, a malformed number,
+ *         NaN or an out-of-range value.
+ */
+int sc_accuracy_set(sc_accuracy *acc, const char *name, const char *value,
+                    sc_msg *msg);
+
+/** Number of settable fields; sc_accuracy_field_name(i) lists them. */
+size_t sc_accuracy_nfields(void);
+/** Name of field @p i (0 <= i < sc_accuracy_nfields()), or NULL. */
+const char *sc_accuracy_field_name(size_t i);
+/** Current value of field @p i as a double (counts converted). */
+double sc_accuracy_field_value(const sc_accuracy *acc, size_t i);
+
+/**
+ * @brief Convergence test |dx| <= epsabs + epsrel |x|.
+ * @return SC_OK if converged, SC_CONTINUE if not, SC_EINVAL for NaN or
+ *         negative tolerances, SC_ENONFINITE if dx or x is not finite.
+ */
+int sc_test_delta(double dx, double x, double epsabs, double epsrel);
+
+/**
+ * @brief Residual test |f| <= epsabs.
+ * @return SC_OK, SC_CONTINUE, SC_EINVAL (bad tolerance) or SC_ENONFINITE.
+ */
+int sc_test_residual(double f, double epsabs);
+
+/**
+ * @brief Parse a finite double from the whole of @p text (surrounding
+ * blanks allowed).
+ * @return SC_OK, or SC_EINVAL for empty, trailing garbage, NaN or inf.
+ */
+int sc_parse_double(const char *text, double *out);
+
+/**
+ * @brief Parse a decimal integer in [lo, hi] from the whole of @p text.
+ * @return SC_OK or SC_EINVAL.
+ */
+int sc_parse_long(const char *text, long lo, long hi, long *out);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,1 @@
+set(SC_CLI_SOURCES src/cli/main.c)

@@ -1,0 +1,1 @@
+sc_add_test(test_common)
