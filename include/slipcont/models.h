@@ -33,12 +33,29 @@ typedef struct {
   const char *doc;   /**< one line */
 } sc_param_info;
 
+/** Most values one string option may take. */
+#define SC_MAXVALUES 6
+
 /** One string option of a model. */
 typedef struct {
-  const char *name;   /**< "driver" */
-  const char *values; /**< the allowed values joined by '|', first is default */
-  const char *doc;    /**< one line */
+  const char *name;                  /**< "driver" */
+  const char *values[SC_MAXVALUES];  /**< allowed values, NULL-terminated;
+                                          the first is the default */
+  const char *doc;                   /**< one line */
 } sc_option_info;
+
+/**
+ * @brief Check @p value against the range of @p pi.
+ * @return SC_OK, or SC_EINVAL with `name = value out of range (valid:
+ *         (lo, hi])` in @p msg (NaN and infinities are out of range).
+ */
+int sc_param_check(const sc_param_info *pi, double value, sc_msg *msg);
+
+/**
+ * @brief Write the valid values of @p oi joined by '|' into @p buf.
+ * @return @p buf.
+ */
+char *sc_option_values_text(const sc_option_info *oi, char *buf, size_t len);
 
 /** What to compute in sc_map_eval(); combine with |. */
 enum {

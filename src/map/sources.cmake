@@ -1,1 +1,1 @@
-# sources of src/map
+list(APPEND SC_SOURCES src/map/map.c)

@@ -1,1 +1,1 @@
-# sources of src/models
+list(APPEND SC_SOURCES src/models/smooth_maps.c src/models/bk2.c)

@@ -1,0 +1,302 @@
+/* Model instances: parameters, options, accuracy, and the iterates of
+ * their one-dimensional map with chain-rule derivatives. */
+#include "slipcont/map.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+struct sc_map {
+  const sc_model_type *type;
+  double p[SC_MAXPARAM];
+  int opt[SC_MAXOPTION];
+  sc_accuracy acc;
+  void *inst;             /* type->inst_size bytes, owned */
+  unsigned long nevals;   /* evaluations of one iterate */
+};
+
+static const sc_model_type *const builtin[] = {&sc_model_bk2,
+                                               &sc_model_logistic,
+                                               &sc_model_cubic};
+
+size_t sc_model_count(void) { return sizeof builtin / sizeof builtin[0]; }
+
+const sc_model_type *sc_model_get(size_t i) {
+  return i < sc_model_count() ? builtin[i] : NULL;
+}
+
+const sc_model_type *sc_model_find(const char *name) {
+  for (size_t i = 0; name && i < sc_model_count(); i++)
+    if (strcmp(builtin[i]->name, name) == 0) return builtin[i];
+  return NULL;
+}
+
+static int setup(sc_map *m, sc_msg *msg) {
+  return m->type->setup ? m->type->setup(m->inst, m->p, m->opt, &m->acc, msg)
+                        : SC_OK;
+}
+
+int sc_map_alloc_type(const sc_model_type *type, const sc_accuracy *acc,
+                      sc_map **out, sc_msg *msg) {
+  *out = NULL;
+  if (!type || type->nparam > SC_MAXPARAM || type->noption > SC_MAXOPTION ||
+      !type->eval)
+    return sc_fail(msg, SC_EINVAL, "sc_map_alloc: malformed model table");
+  sc_map *m = calloc(1, sizeof *m);
+  if (!m) goto fail;
+  m->type = type;
+  m->inst = calloc(1, type->inst_size ? type->inst_size : 1);
+  if (!m->inst) goto fail;
+  for (size_t i = 0; i < type->nparam; i++) m->p[i] = type->params[i].def;
+  if (acc) {
+    int st = sc_accuracy_check(acc, msg);
+    if (st) {
+      sc_map_free(m);
+      return st;
+    }
+    m->acc = *acc;
+  } else {
+    sc_accuracy_preset(&m->acc, "default", NULL);
+  }
+  int st = setup(m, msg);
+  if (st) {
+    sc_map_free(m);
+    return st;
+  }
+  *out = m;
+  return SC_OK;
+fail:
+  sc_map_free(m);
+  return sc_fail(msg, SC_ENOMEM, "sc_map_alloc: out of memory");
+}
+
+int sc_map_alloc(const char *model, const sc_accuracy *acc, sc_map **out,
+                 sc_msg *msg) {
+  const sc_model_type *t = sc_model_find(model);
+  if (!t) {
+    *out = NULL;
+    return sc_fail(msg, SC_EINVAL,
+                   "sc_map_alloc: unknown model '%s' (valid: bk2, logistic, "
+                   "cubic)",
+                   model ? model : "(null)");
+  }
+  return sc_map_alloc_type(t, acc, out, msg);
+}
+
+int sc_map_clone(const sc_map *m, sc_map **out, sc_msg *msg) {
+  int st = sc_map_alloc_type(m->type, &m->acc, out, msg);
+  if (st) return st;
+  memcpy((*out)->p, m->p, sizeof m->p);
+  memcpy((*out)->opt, m->opt, sizeof m->opt);
+  st = setup(*out, msg);
+  if (st) {
+    sc_map_free(*out);
+    *out = NULL;
+  }
+  return st;
+}
+
+void sc_map_free(sc_map *m) {
+  if (!m) return;
+  if (m->inst && m->type->release) m->type->release(m->inst);
+  free(m->inst);
+  free(m);
+}
+
+const sc_model_type *sc_map_type(const sc_map *m) { return m->type; }
+size_t sc_map_nparam(const sc_map *m) { return m->type->nparam; }
+const sc_accuracy *sc_map_accuracy(const sc_map *m) { return &m->acc; }
+unsigned long sc_map_nevals(const sc_map *m) { return m->nevals; }
+
+int sc_map_param_index(const sc_map *m, const char *name) {
+  for (size_t i = 0; name && i < m->type->nparam; i++)
+    if (strcmp(m->type->params[i].name, name) == 0) return (int)i;
+  return -1;
+}
+
+double sc_map_get_param(const sc_map *m, size_t i) {
+  return i < m->type->nparam ? m->p[i] : NAN;
+}
+
+int sc_param_check(const sc_param_info *pi, double value, sc_msg *msg) {
+  int ok = isfinite(value) &&
+           (pi->lo_open ? value > pi->lo : value >= pi->lo) &&
+           (pi->hi_open ? value < pi->hi : value <= pi->hi);
+  if (ok) return SC_OK;
+  char hi[32];
+  if (isinf(pi->hi)) snprintf(hi, sizeof hi, "inf");
+  else snprintf(hi, sizeof hi, "%.17g", pi->hi);
+  return sc_fail(msg, SC_EINVAL, "%s = %.17g out of range (valid: %c%.17g, %s%c)",
+                 pi->name, value, pi->lo_open ? '(' : '[', pi->lo, hi,
+                 pi->hi_open ? ')' : ']');
+}
+
+int sc_map_set_param(sc_map *m, size_t i, double value, sc_msg *msg) {
+  if (i >= m->type->nparam)
+    return sc_fail(msg, SC_EINVAL, "sc_map_set_param: index %zu (model %s has %zu)",
+                   i, m->type->name, m->type->nparam);
+  int st = sc_param_check(&m->type->params[i], value, msg);
+  if (st) return st;
+  double old = m->p[i];
+  m->p[i] = value;
+  st = setup(m, msg);
+  if (st) {
+    m->p[i] = old;
+    setup(m, NULL);
+  }
+  return st;
+}
+
+int sc_map_set_param_by_name(sc_map *m, const char *name, double value,
+                             sc_msg *msg) {
+  int i = sc_map_param_index(m, name);
+  if (i < 0) {
+    char list[256] = "";
+    for (size_t k = 0; k < m->type->nparam; k++) {
+      if (k) strncat(list, ", ", sizeof list - strlen(list) - 1);
+      strncat(list, m->type->params[k].name, sizeof list - strlen(list) - 1);
+    }
+    return sc_fail(msg, SC_EINVAL,
+                   "unknown parameter '%s' for model %s (valid: %s)",
+                   name ? name : "(null)", m->type->name, list);
+  }
+  return sc_map_set_param(m, (size_t)i, value, msg);
+}
+
+char *sc_option_values_text(const sc_option_info *oi, char *buf, size_t len) {
+  buf[0] = '\0';
+  for (int k = 0; k < SC_MAXVALUES && oi->values[k]; k++) {
+    if (k) strncat(buf, "|", len - strlen(buf) - 1);
+    strncat(buf, oi->values[k], len - strlen(buf) - 1);
+  }
+  return buf;
+}
+
+static int option_index(const sc_map *m, const char *name) {
+  for (size_t i = 0; name && i < m->type->noption; i++)
+    if (strcmp(m->type->options[i].name, name) == 0) return (int)i;
+  return -1;
+}
+
+int sc_map_set_option(sc_map *m, const char *name, const char *value,
+                      sc_msg *msg) {
+  int i = option_index(m, name);
+  if (i < 0)
+    return sc_fail(msg, SC_EINVAL, "unknown option '%s' for model %s",
+                   name ? name : "(null)", m->type->name);
+  const sc_option_info *oi = &m->type->options[i];
+  int v = -1;
+  for (int k = 0; value && k < SC_MAXVALUES && oi->values[k]; k++)
+    if (strcmp(oi->values[k], value) == 0) v = k;
+  if (v < 0) {
+    char list[128];
+    return sc_fail(msg, SC_EINVAL, "%s = '%s' is not valid (valid: %s)", name,
+                   value ? value : "(null)",
+                   sc_option_values_text(oi, list, sizeof list));
+  }
+  int old = m->opt[i];
+  m->opt[i] = v;
+  int st = setup(m, msg);
+  if (st) {
+    m->opt[i] = old;
+    setup(m, NULL);
+  }
+  return st;
+}
+
+const char *sc_map_get_option(const sc_map *m, const char *name) {
+  int i = option_index(m, name);
+  if (i < 0) return NULL;
+  return m->type->options[i].values[m->opt[i]];
+}
+
+int sc_map_set_accuracy(sc_map *m, const sc_accuracy *acc, sc_msg *msg) {
+  int st = sc_accuracy_check(acc, msg);
+  if (st) return st;
+  m->acc = *acc;
+  return setup(m, msg);
+}
+
+int sc_map_eval(sc_map *m, double d, unsigned flags, sc_map_value *out,
+                sc_msg *msg) {
+  if (!isfinite(d))
+    return sc_fail(msg, SC_EINVAL, "sc_map_eval: %s = %g is not finite",
+                   m->type->state_name, d);
+  memset(out, 0, sizeof *out);
+  out->gsp_gap = out->graze_margin = out->dstar_dist = HUGE_VAL;
+  m->nevals++;
+  int st = m->type->eval(m->inst, d, flags, out, msg);
+  if (st) return st;
+  if (!isfinite(out->f))
+    return sc_fail(msg, SC_ENONFINITE, "sc_map_eval: f(%.17g) is not finite",
+                   d);
+  return SC_OK;
+}
+
+/* Append @p s to the itinerary text, cutting with "..." when full. */
+static void itin_append(char *dst, const char *s) {
+  size_t n = strlen(dst), k = strlen(s);
+  if (n + k + 1 <= SC_ITIN_LEN) {
+    memcpy(dst + n, s, k + 1);
+  } else if (n + 4 <= SC_ITIN_LEN && strcmp(dst + n - 3, "...") != 0) {
+    strcpy(dst + SC_ITIN_LEN - 4, "...");
+  }
+}
+
+int sc_map_iterate(sc_map *m, double d, int n, unsigned flags,
+                   sc_map_value *out, sc_msg *msg) {
+  if (n < 1)
+    return sc_fail(msg, SC_EINVAL, "sc_map_iterate: n = %d (valid: n >= 1)",
+                   n);
+  sc_map_value one;
+  size_t np = m->type->nparam;
+  double x = d;
+  memset(out, 0, sizeof *out);
+  out->dfdd = 1;
+  out->neutral = 1;
+  out->gsp_gap = out->graze_margin = out->dstar_dist = HUGE_VAL;
+  for (int k = 0; k < n; k++) {
+    int st = sc_map_eval(m, x, flags, &one, msg);
+    if (st) {
+      if (n > 1 && msg) {
+        char tail[SC_MSG_LEN];
+        snprintf(tail, sizeof tail, "%s", msg->text);
+        sc_fail(msg, st, "iterate %d of %d from %.17g: %s", k + 1, n, d, tail);
+      }
+      return st;
+    }
+    if (flags & SC_EVAL_DERIV) {
+      /* Chain rule: F_k = f(F_{k-1}, p). */
+      for (size_t i = 0; i < np; i++)
+        out->dfdp[i] = one.dfdd * out->dfdp[i] + one.dfdp[i];
+      out->dfdd *= one.dfdd;
+    }
+    if (flags & SC_EVAL_ITINERARY) {
+      if (k) itin_append(out->itinerary, "|");
+      itin_append(out->itinerary, one.itinerary);
+    }
+    out->neutral = out->neutral && one.neutral;
+    out->nphases += one.nphases;
+    out->gsp_gap = fmin(out->gsp_gap, one.gsp_gap);
+    out->graze_margin = fmin(out->graze_margin, one.graze_margin);
+    out->dstar_dist = fmin(out->dstar_dist, one.dstar_dist);
+    x = one.f;
+  }
+  out->f = x;
+  if (out->neutral && (flags & SC_EVAL_DERIV)) out->dfdd = 1;
+  return SC_OK;
+}
+
+int sc_map_trajectory(sc_map *m, double d, int iterations, double dtau,
+                      sc_traj_fn fn, void *ctx, sc_msg *msg) {
+  if (!m->type->trajectory)
+    return sc_fail(msg, SC_EINVAL,
+                   "sc_map_trajectory: model %s has no continuous motion",
+                   m->type->name);
+  if (!(dtau > 0) || !isfinite(dtau) || iterations < 1 || !isfinite(d))
+    return sc_fail(msg, SC_EINVAL,
+                   "sc_map_trajectory: dtau = %g, iterations = %d, d = %g "
+                   "(valid: dtau > 0, iterations >= 1, d finite)",
+                   dtau, iterations, d);
+  return m->type->trajectory(m->inst, d, iterations, dtau, fn, ctx, msg);
+}
