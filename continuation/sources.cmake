@@ -1,1 +1,5 @@
-list(APPEND SC_SOURCES continuation/common.c)
+list(APPEND SC_SOURCES
+  continuation/common.c
+  continuation/linsolve.c
+  continuation/linsolve_dense.c
+  continuation/linsolve_klu.c)

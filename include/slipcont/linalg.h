@@ -1,0 +1,165 @@
+/**
+ * @file linalg.h
+ * @brief Square linear systems A x = b through one interface with
+ *        interchangeable backends: dense LAPACK LU and sparse KLU.
+ *
+ * A solver object is created for one sparsity pattern in compressed
+ * sparse column (CSC) form; each factorization then takes the values in
+ * pattern order.  The dense backend scatters them into a full matrix, the
+ * sparse backend analyses the pattern once and refactors with the pivot
+ * order of its first factorization on later calls (falling back to a
+ * fresh pivoting factorization when that loses accuracy).  Matrices built
+ * entry by entry convert from triplets with sc_csc_from_triplets().
+ *
+ * Backends are constant tables, like GSL's solver types:
+ * `sc_linsolve_alloc(sc_linsolve_klu, ...)`.
+ *
+ * Thread safety: a solver object must not be used by two threads at once;
+ * distinct objects share nothing.  All memory is taken by
+ * sc_linsolve_alloc(): factor and solve never allocate beyond what the
+ * backend library itself (KLU) does for its factors.
+ */
+#ifndef SLIPCONT_LINALG_H
+#define SLIPCONT_LINALG_H
+
+#include "slipcont/common.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** A backend: an opaque constant table. */
+typedef struct sc_linsolve_type sc_linsolve_type;
+
+/** Dense LU with partial pivoting (LAPACK dgetrf/dgetrs/dgecon). */
+extern const sc_linsolve_type *const sc_linsolve_dense;
+/** Sparse LU (SuiteSparse KLU): analyse once, refactor many times. */
+extern const sc_linsolve_type *const sc_linsolve_klu;
+
+/** @brief Backend by name ("dense", "klu"), or NULL. */
+const sc_linsolve_type *sc_linsolve_type_find(const char *name);
+/** @brief Name of a backend ("dense", "klu"). */
+const char *sc_linsolve_type_name(const sc_linsolve_type *type);
+
+/** A solver object for one pattern (opaque). */
+typedef struct sc_linsolve sc_linsolve;
+
+/**
+ * @brief Create a solver for n x n matrices with the CSC pattern
+ * (@p colptr, @p rowind).
+ * @param type    sc_linsolve_dense or sc_linsolve_klu.
+ * @param n       order, n >= 1.
+ * @param colptr  n + 1 column pointers, colptr[0] = 0, nondecreasing;
+ *                nnz = colptr[n].
+ * @param rowind  nnz row indices in [0, n), strictly increasing within
+ *                each column (sorted, no duplicates).
+ * The pattern is copied; the caller keeps ownership of its arrays.
+ * @return SC_OK; SC_EINVAL for a malformed pattern (the message names the
+ *         first bad column); SC_ESING if the pattern is structurally
+ *         singular (KLU); SC_ENOMEM.
+ */
+int sc_linsolve_alloc(const sc_linsolve_type *type, int n, const int *colptr,
+                      const int *rowind, sc_linsolve **out, sc_msg *msg);
+
+/**
+ * @brief Create a solver for full n x n matrices: the pattern holds every
+ * entry, so the values of sc_linsolve_factor() are the matrix in
+ * column-major order, a[i + n j] = A(i, j).
+ * @return as sc_linsolve_alloc().
+ */
+int sc_linsolve_alloc_full(const sc_linsolve_type *type, int n,
+                           sc_linsolve **out, sc_msg *msg);
+
+/** @brief Release @p s; NULL is accepted. */
+void sc_linsolve_free(sc_linsolve *s);
+
+/**
+ * @brief Factor the matrix whose nonzero values, in pattern order, are
+ * @p val (nnz entries; read only, not kept).
+ *
+ * The first call makes a full factorization with pivoting; with KLU later
+ * calls refactor with the same pivot sequence and fall back to a full
+ * factorization when the refactored pivots are singular or their ratio
+ * min |U_kk| / max |U_kk| drops to DBL_EPSILON.
+ * @return SC_OK; SC_ENONFINITE if a value is NaN or infinite; SC_ESING if
+ *         the matrix is numerically singular (an exact zero pivot, or a
+ *         pivot ratio min |U_kk| / max |U_kk| <= DBL_EPSILON), with the
+ *         pivot and the ratio in the message; SC_ENOMEM.  After a failure
+ *         the object holds no factorization.
+ */
+int sc_linsolve_factor(sc_linsolve *s, const double *val, sc_msg *msg);
+
+/**
+ * @brief Solve A x = b with the current factorization; @p b (n entries)
+ * is overwritten by x.
+ * @return SC_OK; SC_EINVAL if there is no valid factorization;
+ *         SC_ENONFINITE if the solution is not finite.
+ */
+int sc_linsolve_solve(sc_linsolve *s, double *b, sc_msg *msg);
+
+/**
+ * @brief Determinant of the factored matrix as a sign and a logarithm,
+ * det A = sign exp(logabs), which neither overflows nor underflows.  From
+ * the LU factors: the product of the pivots, the signs of the row and
+ * column permutations and (KLU) the row scale factors.
+ * @param sign   +1 or -1 (0 never occurs: singular matrices are refused).
+ * @param logabs log |det A|.
+ * @return SC_OK, or SC_EINVAL without a valid factorization.
+ */
+int sc_linsolve_det(const sc_linsolve *s, int *sign, double *logabs);
+
+/**
+ * @brief Estimate of the reciprocal condition number in the 1-norm,
+ * 1 / (||A||_1 ||A^-1||_1): dense from LAPACK dgecon, KLU from
+ * klu_condest.  Costs a few solves.
+ * @return SC_OK, or SC_EINVAL without a valid factorization.
+ */
+int sc_linsolve_rcond(sc_linsolve *s, double *rcond, sc_msg *msg);
+
+/**
+ * @brief Crude reciprocal condition number min |U_kk| / max |U_kk| of the
+ * current factors (free: read from the factors).
+ * @return SC_OK, or SC_EINVAL without a valid factorization.
+ */
+int sc_linsolve_pivot_ratio(const sc_linsolve *s, double *ratio);
+
+/** The backend of @p s. */
+const sc_linsolve_type *sc_linsolve_get_type(const sc_linsolve *s);
+/** Order n. */
+int sc_linsolve_n(const sc_linsolve *s);
+/** Number of entries of the pattern. */
+int sc_linsolve_nnz(const sc_linsolve *s);
+/** Full factorizations (with pivoting) made so far. */
+unsigned long sc_linsolve_nfactor(const sc_linsolve *s);
+/** Refactorizations reusing a pivot sequence (KLU) made so far. */
+unsigned long sc_linsolve_nrefactor(const sc_linsolve *s);
+/** Solves made so far. */
+unsigned long sc_linsolve_nsolve(const sc_linsolve *s);
+
+/**
+ * @brief Convert a triplet pattern (ti[k], tj[k]), k < nt, of an n x n
+ * matrix to CSC.  Duplicates are merged: their values add up in
+ * sc_csc_scatter().
+ * @param colptr out: n + 1 entries.
+ * @param rowind out: up to nt entries (nnz are used).
+ * @param map    out: nt entries; map[k] is the CSC slot of triplet k.
+ * @param nnz    out: number of distinct entries.
+ * Allocates a temporary workspace of n + 1 ints and frees it.
+ * @return SC_OK; SC_EINVAL for n < 1, nt < 0 or an index outside [0, n);
+ *         SC_ENOMEM.
+ */
+int sc_csc_from_triplets(int n, int nt, const int *ti, const int *tj,
+                         int *colptr, int *rowind, int *map, int *nnz,
+                         sc_msg *msg);
+
+/**
+ * @brief CSC values from triplet values: val[map[k]] += tval[k] after
+ * zeroing the @p nnz entries of @p val.
+ */
+void sc_csc_scatter(int nt, const int *map, const double *tval, int nnz,
+                    double *val);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,3 @@
+# Tests of the generic continuation layer (continuation/).
+sc_add_test(test_linalg)
+sc_add_test(test_continuation)
