@@ -1,1 +1,1 @@
-# sources of src/hybrid
+list(APPEND SC_SOURCES src/hybrid/guard.c)

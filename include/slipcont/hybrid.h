@@ -1,0 +1,75 @@
+/**
+ * @file hybrid.h
+ * @brief Certified location of the first root of an event guard.
+ *
+ * Every guard of the Coulomb two-block model is, along one mode, a
+ * function of time of the form
+ *
+ *     g(t) = c0 + c1 t + sum_k (a_k cos(w_k t) + b_k sin(w_k t))
+ *
+ * (a linear term plus sinusoids of known frequencies), so |g'''| is bounded
+ * by M3 = sum_k w_k^3 sqrt(a_k^2 + b_k^2) everywhere.  sc_guard_first_root()
+ * uses that bound to march through (0, tmax] in intervals that are each
+ * proved either free of roots or to hold exactly one (g strictly monotone
+ * there, with a sign change), so the first root is never missed, also when
+ * g only touches zero.  See docs/events.md for the argument.
+ */
+#ifndef SLIPCONT_HYBRID_H
+#define SLIPCONT_HYBRID_H
+
+#include "slipcont/common.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Most sinusoids in one guard. */
+#define SC_GUARD_MAXFREQ 4
+
+/** A guard c0 + c1 t + sum_k (a_k cos w_k t + b_k sin w_k t). */
+typedef struct {
+  double c0, c1;
+  int n;                       /**< number of sinusoids, 0..SC_GUARD_MAXFREQ */
+  double w[SC_GUARD_MAXFREQ];  /**< frequencies, > 0 */
+  double a[SC_GUARD_MAXFREQ];  /**< cosine coefficients */
+  double b[SC_GUARD_MAXFREQ];  /**< sine coefficients */
+} sc_guard;
+
+/** What sc_guard_first_root() found. */
+typedef struct {
+  int found;      /**< 1: a root in (0, tmax]; 0: none */
+  int tangent;    /**< 1: g only touches zero there (|g'| within rounding
+                       of 0 over an interval narrower than the tolerance) */
+  double t;       /**< the root (tmax when none) */
+  double bracket; /**< width of the interval known to hold the root */
+  double slope;   /**< g'(t) at the root */
+  int steps;      /**< intervals examined (for benchmarks) */
+} sc_root;
+
+/** @brief g(t), g'(t), g''(t); any output pointer may be NULL. */
+void sc_guard_eval(const sc_guard *g, double t, double *g0, double *g1,
+                   double *g2);
+
+/** @brief An upper bound on |g'''| over all t. */
+double sc_guard_m3(const sc_guard *g);
+
+/**
+ * @brief The first root of @p g in (0, tmax].
+ * @param skip_start 1 if g(0) = 0 by construction (a slip that starts on
+ *        its own re-stick guard): that root is skipped, its sign taken
+ *        from g'(0), g''(0).
+ * @param atol, rtol tolerance on the root time: the returned root lies in
+ *        an interval of width <= atol + rtol t (or g is within rounding of
+ *        zero there).
+ * @return SC_OK (found or not: see out->found); SC_EINVAL for a
+ *         malformed guard (non-finite coefficients, n out of range,
+ *         w <= 0) or tmax not finite and > 0.
+ * Thread safe; no allocation.
+ */
+int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
+                        double atol, double rtol, sc_root *out);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

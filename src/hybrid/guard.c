@@ -1,0 +1,238 @@
+/* Certified first-root location for guards made of a linear term and
+ * sinusoids (hybrid.h, docs/events.md).
+ *
+ * The march covers (0, tmax] by intervals [t, t + h].  Write s = time from
+ * t, g0, g1, g2 = g, g', g'' at t, M3 >= |g'''|.  Taylor's theorem gives
+ *   |g(t+s) - (g0 + g1 s + g2 s^2/2)| <= M3 s^3 / 6,
+ *   |g'(t+s) - (g1 + g2 s)|           <= M3 s^2 / 2.
+ * An interval is accepted when one of these proves it:
+ *   (A) no root: the quadratic keeps the sign of g0 with margin
+ *       M3 h^3/6 + E (E bounds the rounding error of evaluating g);
+ *   (B) at most one root: the linear model of g' keeps one sign with
+ *       margin M3 h^2/2, so g is strictly monotone; a root then exists iff
+ *       the endpoint values differ in sign, and it is unique.
+ * Otherwise h is halved.  Below the time tolerance the interval holds a
+ * point where g and g' are both within rounding of zero: a tangential
+ * touch, reported as a root with `tangent` set.  No sample spacing is
+ * ever assumed, so no root can be stepped over. */
+#include <float.h>
+#include <math.h>
+
+#include "hybrid/hybrid_impl.h"
+#include "slipcont/hybrid.h"
+
+/* Rounding bound on one evaluation of g: a few ulps of each term's size,
+ * the sinusoids' arguments w t included (their rounding grows with t). */
+#define GUARD_ROUND_ULPS 8.0
+/* Iterations of the bracketed Newton refinement: bisection alone halves a
+ * bracket of length <= tmax down to 1 ulp within ~1100 steps; Newton ends
+ * far sooner, so this cap is never the reason to stop in practice. */
+#define GUARD_MAX_REFINE 200
+
+void sc_guard_eval(const sc_guard *g, double t, double *g0, double *g1,
+                   double *g2) {
+  double v = g->c0 + g->c1 * t, d1 = g->c1, d2 = 0;
+  for (int k = 0; k < g->n; k++) {
+    double w = g->w[k], s = sin(w * t), c = cos(w * t);
+    double cv = g->a[k] * c + g->b[k] * s;
+    v += cv;
+    d1 += w * (g->b[k] * c - g->a[k] * s);
+    d2 -= w * w * cv;
+  }
+  if (g0) *g0 = v;
+  if (g1) *g1 = d1;
+  if (g2) *g2 = d2;
+}
+
+double sc_guard_m3(const sc_guard *g) {
+  double m = 0;
+  for (int k = 0; k < g->n; k++)
+    m += g->w[k] * g->w[k] * g->w[k] * hypot(g->a[k], g->b[k]);
+  return m;
+}
+
+static double round_bound(const sc_guard *g, double t) {
+  double s = fabs(g->c0) + fabs(g->c1 * t);
+  for (int k = 0; k < g->n; k++)
+    s += hypot(g->a[k], g->b[k]) * (1 + g->w[k] * t);
+  return GUARD_ROUND_ULPS * DBL_EPSILON * s;
+}
+
+static double tol_at(double t, double atol, double rtol) {
+  return atol + rtol * fabs(t);
+}
+
+/* Minimum of sigma*(p0 + p1 s + p2 s^2/2) over s in [0, h]. */
+static double quad_min(double sigma, double p0, double p1, double p2,
+                       double h) {
+  p0 *= sigma, p1 *= sigma, p2 *= sigma;
+  double m = fmin(p0, p0 + p1 * h + 0.5 * p2 * h * h);
+  if (p2 > 0) {
+    double s = -p1 / p2;
+    if (s > 0 && s < h) m = fmin(m, p0 + 0.5 * p1 * s);
+  }
+  return m;
+}
+
+/* Bracketed Newton on [lo, hi] where g(lo), g(hi) differ in sign and g is
+ * monotone. */
+static void refine(const sc_guard *g, double lo, double glo, double hi,
+                   double atol, double rtol, sc_root *out) {
+  double t = 0.5 * (lo + hi);
+  for (int it = 0; it < GUARD_MAX_REFINE; it++) {
+    double v, d;
+    sc_guard_eval(g, t, &v, &d, NULL);
+    if (fabs(v) <= round_bound(g, t)) {
+      lo = hi = t;
+      break;
+    }
+    if ((v > 0) == (glo > 0)) lo = t, glo = v;
+    else hi = t;
+    if (hi - lo <= tol_at(hi, atol, rtol)) break;
+    double tn = t - v / d;
+    t = (d != 0 && tn > lo && tn < hi) ? tn : 0.5 * (lo + hi);
+  }
+  /* Report the end nearest the root estimate inside the final bracket. */
+  out->t = (lo == hi) ? lo : 0.5 * (lo + hi);
+  out->bracket = hi - lo;
+  out->found = 1;
+  sc_guard_eval(g, out->t, NULL, &out->slope, NULL);
+}
+
+/* A single sinusoid and a constant: roots in closed form.  g = c0 +
+ * R cos(w t - phi).  Ascending roots sit at w t = phi - theta, descending
+ * ones at phi + theta (mod 2 pi), cos theta = -c0 / R.  Returns 0 when the
+ * case is degenerate and the march should decide. */
+static int closed_form(const sc_guard *g, double tmax, int skip_start,
+                       sc_root *out) {
+  double a = g->a[0], b = g->b[0], w = g->w[0], c0 = g->c0;
+  double R = hypot(a, b), E = round_bound(g, 0);
+  if (R <= E) return 0;
+  double gap = R - fabs(c0);
+  if (gap < -E) return 1; /* never reaches zero: out says not found */
+  double phi = atan2(b, a);
+  const double twopi = 2 * SC_PI;
+  double asc, desc;
+  if (gap <= E) {
+    /* touches: cos(w t - phi) = -sign(c0) */
+    asc = desc = c0 < 0 ? phi : phi + SC_PI;
+    out->tangent = 1;
+  } else {
+    double theta = atan2(sqrt(gap * (R + fabs(c0))), -c0);
+    asc = phi - theta;
+    desc = phi + theta;
+  }
+  asc = fmod(asc, twopi);
+  if (asc < 0) asc += twopi;
+  desc = fmod(desc, twopi);
+  if (desc < 0) desc += twopi;
+  double alpha;
+  if (skip_start) {
+    double g1;
+    sc_guard_eval(g, 0, NULL, &g1, NULL);
+    if (g1 == 0 || out->tangent) return 0;
+    /* the start root is of the type of g'(0): the next is the other type */
+    alpha = g1 < 0 ? asc : desc;
+    if (alpha * 1 <= 4 * DBL_EPSILON * twopi) alpha += twopi;
+  } else {
+    alpha = fmin(asc, desc);
+  }
+  double t = alpha / w;
+  if (t <= tmax) {
+    out->found = 1;
+    out->t = t;
+    sc_guard_eval(g, t, NULL, &out->slope, NULL);
+    out->bracket = out->tangent ? 0 : E / fmax(fabs(out->slope), DBL_MIN);
+  }
+  return 1;
+}
+
+int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
+                        double atol, double rtol, sc_root *out) {
+  out->found = out->tangent = 0;
+  out->t = tmax;
+  out->bracket = 0;
+  out->slope = 0;
+  out->steps = 0;
+  if (!g || g->n < 0 || g->n > SC_GUARD_MAXFREQ || !isfinite(g->c0) ||
+      !isfinite(g->c1) || !(tmax > 0) || !isfinite(tmax) || !(atol > 0) ||
+      !(rtol >= 0))
+    return SC_EINVAL;
+  double wmax = 0;
+  for (int k = 0; k < g->n; k++) {
+    if (!(g->w[k] > 0) || !isfinite(g->w[k]) || !isfinite(g->a[k]) ||
+        !isfinite(g->b[k]))
+      return SC_EINVAL;
+    wmax = fmax(wmax, g->w[k]);
+  }
+  if (g->n == 1 && g->c1 == 0 && closed_form(g, tmax, skip_start, out))
+    return SC_OK;
+  out->tangent = 0;
+  double M3 = sc_guard_m3(g);
+  /* First trial step: a quarter of the fastest period, or all of tmax. */
+  double h = wmax > 0 ? fmin(tmax, 0.5 * SC_PI / wmax) : tmax;
+  double t = 0;
+  double g0, g1, g2;
+  sc_guard_eval(g, 0, &g0, &g1, &g2);
+  int at_start_root = skip_start;
+  while (t < tmax) {
+    h = fmin(h, tmax - t);
+    out->steps++;
+    double E = round_bound(g, t + h);
+    double sigma = g0 > 0 ? 1 : -1;
+    if (at_start_root) {
+      /* g(0) = 0 by construction: its sign just after 0 is that of g1,
+       * or of g2 if g1 vanishes. */
+      sigma = g1 != 0 ? (g1 > 0 ? 1 : -1) : (g2 > 0 ? 1 : -1);
+    } else if (fabs(g0) <= E) {
+      /* g is within rounding of zero here: a root at t. */
+      out->found = 1;
+      out->t = t;
+      out->slope = g1;
+      out->tangent = fabs(g1) * tol_at(t, atol, rtol) <= E;
+      return SC_OK;
+    }
+    /* (A) no root in [t, t+h] */
+    if (!at_start_root &&
+        quad_min(sigma, g0, g1, g2, h) - M3 * h * h * h / 6 > E) {
+      t += h;
+      sc_guard_eval(g, t, &g0, &g1, &g2);
+      h *= 2;
+      continue;
+    }
+    /* (B) g strictly monotone on [t, t+h] */
+    double d0 = g1, dh = g1 + g2 * h;
+    if ((d0 > 0) == (dh > 0) && fmin(fabs(d0), fabs(dh)) > M3 * h * h / 2) {
+      double ge, ge1, ge2;
+      sc_guard_eval(g, t + h, &ge, &ge1, &ge2);
+      if (!at_start_root && (ge * sigma <= 0 || fabs(ge) <= E)) {
+        refine(g, t, g0, t + h, atol, rtol, out);
+        return SC_OK;
+      }
+      at_start_root = 0;
+      t += h;
+      g0 = ge, g1 = ge1, g2 = ge2;
+      h *= 2;
+      continue;
+    }
+    h *= 0.5;
+    if (h <= tol_at(t, atol, rtol)) {
+      /* Neither test can be passed over an interval below the tolerance:
+       * g and g' are both within rounding of zero: a touch. */
+      if (at_start_root) {
+        /* degenerate start (g' = 0 too): step past it */
+        at_start_root = 0;
+        t += h;
+        sc_guard_eval(g, t, &g0, &g1, &g2);
+        continue;
+      }
+      out->found = 1;
+      out->tangent = 1;
+      out->t = t + 0.5 * h;
+      out->bracket = h;
+      sc_guard_eval(g, out->t, NULL, &out->slope, NULL);
+      return SC_OK;
+    }
+  }
+  return SC_OK;
+}

@@ -1,0 +1,68 @@
+/* Private to the bk2 model: its instance, parameters as duals, state,
+ * and the pieces shared by the exact and the numerical flows. */
+#ifndef SC_MODELS_BK2_IMPL_H
+#define SC_MODELS_BK2_IMPL_H
+
+#include "hybrid/dual.h"
+#include "slipcont/models.h"
+
+typedef struct bk2_num bk2_num; /* numerical-flow workspace (GSL) */
+
+typedef struct {
+  double alpha, beta, phi, v;
+  int frozen;    /* driver = frozen: Vs = 0 during slips */
+  int vw;        /* friction = velocity-weakening */
+  int numerical; /* flows = numerical (always with velocity weakening) */
+  sc_accuracy acc;
+  double mu, w1, w2, vs, dstar; /* derived */
+  bk2_num *num;                 /* owned; NULL for exact flows */
+} bk2_inst;
+
+/* Parameters as duals: direction 0 is d, 1..4 are alpha, beta, phi, v. */
+typedef struct {
+  int nd;
+  sc_dual alpha, beta, mu, k1, k2, t2, v, vs, w1, w2;
+} bk2_dpar;
+
+/* Positions and velocities of the two blocks. */
+typedef struct {
+  sc_dual y1, y2, u1, u2;
+} bk2_state;
+
+/* What the events of one iterate revealed. */
+typedef struct {
+  double graze_margin; /* smallest re-stick margin (see map.h) */
+  int tangent;         /* a guard only touched zero */
+  long steps;          /* root-finding intervals */
+} bk2_events;
+
+/* Called after each slip phase with its mode, start state and duration. */
+typedef int (*bk2_phase_fn)(void *ctx, int mode, const bk2_state *x0,
+                            double duration);
+
+void sc_bk2_dparams(const bk2_inst *b, int nd, bk2_dpar *P);
+int sc_bk2_onset(const bk2_inst *b, const bk2_dpar *P, sc_dual d,
+                 bk2_state *x);
+void sc_bk2_event_shift(const bk2_dpar *P, sc_dual gval, double slope,
+                        const double acc[2], bk2_state *x);
+int sc_bk2_phase(const bk2_inst *b, const bk2_dpar *P, int mode, int fresh,
+                 bk2_state *x, double *duration, bk2_events *ev,
+                 sc_msg *msg);
+int sc_bk2_iterate(const bk2_inst *b, const bk2_dpar *P, sc_dual d,
+                   unsigned flags, bk2_state *x, sc_map_value *out,
+                   bk2_phase_fn fn, void *ctx, sc_msg *msg);
+
+/* Trajectory context helpers for the numerical sampler. */
+int sc_bk2_traj_emit(void *traj_ctx, double t, const double s[4], int mode);
+void sc_bk2_traj_advance(void *traj_ctx, double duration);
+
+/* Numerical flows (bk2_numerical.c). */
+int sc_bk2_num_setup(bk2_inst *b, sc_msg *msg);
+void sc_bk2_num_release(bk2_inst *b);
+int sc_bk2_num_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
+                     int fresh, bk2_state *x, double *duration,
+                     bk2_events *ev, sc_msg *msg);
+int sc_bk2_num_sample(const bk2_inst *b, const bk2_dpar *P, int mode,
+                      const bk2_state *x0, double duration, void *traj_ctx);
+
+#endif
