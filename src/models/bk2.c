@@ -519,6 +519,8 @@ int sc_bk2_traj_emit(void *vc, double t, const double s[4], int mode) {
 
 void sc_bk2_traj_advance(void *vc, double dur) { ((traj_ctx *)vc)->tau += dur; }
 
+double sc_bk2_traj_dtau(void *vc) { return ((traj_ctx *)vc)->dtau; }
+
 static int bk2_trajectory(void *vinst, double d, int iterations, double dtau,
                           int (*fn)(void *, double, const double *, int),
                           void *ctx, sc_msg *msg) {

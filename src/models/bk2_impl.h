@@ -55,6 +55,7 @@ int sc_bk2_iterate(const bk2_inst *b, const bk2_dpar *P, sc_dual d,
 /* Trajectory context helpers for the numerical sampler. */
 int sc_bk2_traj_emit(void *traj_ctx, double t, const double s[4], int mode);
 void sc_bk2_traj_advance(void *traj_ctx, double duration);
+double sc_bk2_traj_dtau(void *traj_ctx);
 
 /* Numerical flows (bk2_numerical.c). */
 int sc_bk2_num_setup(bk2_inst *b, sc_msg *msg);

@@ -1,19 +1,396 @@
-/* Numerical flows for bk2 (placeholder until the GSL path lands). */
-#include "models/bk2_impl.h"
+/* Numerical flows for bk2: the same equations of motion integrated with a
+ * GSL odeiv2 embedded Runge-Kutta pair (Prince-Dormand 8(9)), with the
+ * variational equations alongside when derivatives are asked for.  Used
+ * to cross-check the closed forms (flows = numerical) and for friction
+ * laws without closed forms (velocity weakening).
+ *
+ * Events: after every accepted step each guard g is interpolated by the
+ * cubic Hermite polynomial through g and g' at both ends; its first root
+ * in the step is isolated exactly (between the cubic's critical points)
+ * and then refined on the true solution by Newton steps, each integrating
+ * from the step's start.  A step is never longer than a tenth of the
+ * fastest free period, so a guard cannot turn twice inside one step
+ * unseen at the integration tolerance.  This is as far as the first-root
+ * discipline of the exact flows carries over to numerical ones. */
+#include <float.h>
+#include <math.h>
 #include <stdlib.h>
+#include <string.h>
+
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_odeiv2.h>
+
+#include "hybrid/hybrid_impl.h"
+#include "models/bk2_impl.h"
+
+#define NSTATE 4
+#define NDIR_BK2 5
+#define DIM_MAX (NSTATE * (1 + NDIR_BK2))
+/* Fraction of the fastest free period allowed as one step. */
+#define STEP_FRACTION 0.1
+/* Newton refinements of an event time on the true solution. */
+#define EVENT_NEWTON_MAX 8
+/* Rounding bound on a guard value, in ulps of the state's size. */
+#define GUARD_ROUND_ULPS 16.0
+/* Same horizon as the exact flows: slow periods without an event. */
+#define PHASE_PERIODS 16
+
+struct bk2_num {
+  gsl_odeiv2_step *step[2];   /* [0]: state only; [1]: with sensitivities */
+  gsl_odeiv2_control *ctrl[2];
+  gsl_odeiv2_evolve *evol[2];
+  double atol, rtol;
+};
+
+typedef struct {
+  const bk2_inst *b;
+  int mode, nd;
+} rhs_ctx;
+
+static int slipping(int mode, int i) {
+  return mode == SC_BK2_SLIP12 || mode == i;
+}
+
+/* Kinetic force of block i at velocity u and its derivative in u and in
+ * the parameters (directions 1..4 = alpha, beta, phi, v). */
+static double kinetic(const bk2_inst *b, int i, double u, double *dk_du,
+                      double dk_dp[NDIR_BK2]) {
+  double t = i == 1 ? 1 : b->beta;
+  for (int k = 0; k < NDIR_BK2; k++) dk_dp[k] = 0;
+  if (!b->vw) {
+    *dk_du = 0;
+    dk_dp[3] = -t * b->mu * b->mu; /* d(mu)/d(phi) = -mu^2 */
+    if (i == 2) dk_dp[2] = b->mu;
+    return t * b->mu;
+  }
+  double rel = u - b->vs, den = 1 + fabs(rel);
+  double sgn = rel > 0 ? 1 : rel < 0 ? -1 : 0;
+  *dk_du = -t * sgn / (den * den);
+  if (i == 2) dk_dp[2] = 1 / den;
+  if (!b->frozen) dk_dp[4] = t * sgn / (den * den); /* through Vs = v */
+  return t / den;
+}
+
+static int rhs(double t, const double y[], double dy[], void *vp) {
+  (void)t;
+  const rhs_ctx *c = vp;
+  const bk2_inst *b = c->b;
+  double a = b->alpha;
+  double s[2] = {(1 + a) * y[0] - a * y[1], (1 + a) * y[1] - a * y[0]};
+  double dk_du[2] = {0, 0}, dk_dp[2][NDIR_BK2] = {{0}};
+  dy[0] = y[2];
+  dy[1] = y[3];
+  for (int i = 0; i < 2; i++) {
+    dy[2 + i] = 0;
+    if (slipping(c->mode, i + 1))
+      dy[2 + i] = kinetic(b, i + 1, y[2 + i], &dk_du[i], dk_dp[i]) - s[i];
+  }
+  /* Variational equations s_k' = J s_k + df/dtheta_k. */
+  for (int k = 0; k < c->nd; k++) {
+    const double *z = y + NSTATE * (k + 1);
+    double *dz = dy + NSTATE * (k + 1);
+    dz[0] = z[2];
+    dz[1] = z[3];
+    for (int i = 0; i < 2; i++) {
+      dz[2 + i] = 0;
+      if (!slipping(c->mode, i + 1)) continue;
+      int j = 1 - i;
+      double ds = (1 + a) * z[i] - a * z[j];
+      double fp = dk_dp[i][k];
+      if (k == 1) fp -= y[i] - y[j]; /* dS_i/dalpha = Y_i - Y_j */
+      dz[2 + i] = dk_du[i] * z[2 + i] - ds + fp;
+    }
+  }
+  return GSL_SUCCESS;
+}
+
+void sc_bk2_num_release(bk2_inst *b) {
+  bk2_num *n = b->num;
+  if (!n) return;
+  for (int i = 0; i < 2; i++) {
+    if (n->evol[i]) gsl_odeiv2_evolve_free(n->evol[i]);
+    if (n->ctrl[i]) gsl_odeiv2_control_free(n->ctrl[i]);
+    if (n->step[i]) gsl_odeiv2_step_free(n->step[i]);
+  }
+  free(n);
+  b->num = NULL;
+}
+
 int sc_bk2_num_setup(bk2_inst *b, sc_msg *msg) {
+  if (b->num && b->num->atol == b->acc.ode_atol &&
+      b->num->rtol == b->acc.ode_rtol)
+    return SC_OK;
+  sc_bk2_num_release(b);
+  bk2_num *n = calloc(1, sizeof *n);
+  if (!n) goto fail;
+  b->num = n;
+  n->atol = b->acc.ode_atol;
+  n->rtol = b->acc.ode_rtol;
+  for (int i = 0; i < 2; i++) {
+    size_t dim = i ? DIM_MAX : NSTATE;
+    n->step[i] = gsl_odeiv2_step_alloc(gsl_odeiv2_step_rk8pd, dim);
+    n->ctrl[i] = gsl_odeiv2_control_y_new(n->atol, n->rtol);
+    n->evol[i] = gsl_odeiv2_evolve_alloc(dim);
+    if (!n->step[i] || !n->ctrl[i] || !n->evol[i]) goto fail;
+  }
+  return SC_OK;
+fail:
+  sc_bk2_num_release(b);
+  return sc_fail(msg, SC_ENOMEM, "bk2: cannot allocate the ODE workspace");
+}
+
+/* Pack duals into the ODE vector and back. */
+static void pack(const bk2_state *x, int nd, double *y) {
+  const sc_dual *xs[4] = {&x->y1, &x->y2, &x->u1, &x->u2};
+  for (int i = 0; i < NSTATE; i++) {
+    y[i] = xs[i]->v;
+    for (int k = 0; k < nd; k++) y[NSTATE * (k + 1) + i] = xs[i]->d[k];
+  }
+}
+
+static void unpack(const double *y, int nd, bk2_state *x) {
+  sc_dual *xs[4] = {&x->y1, &x->y2, &x->u1, &x->u2};
+  for (int i = 0; i < NSTATE; i++) {
+    *xs[i] = sc_dconst(y[i], nd);
+    for (int k = 0; k < nd; k++) xs[i]->d[k] = y[NSTATE * (k + 1) + i];
+  }
+}
+
+/* Guard kinds: 1, 2 re-stick of block i; 3 threshold of the stuck block. */
+static double guard(const bk2_inst *b, int mode, int kind, const double *y,
+                    const double *dy, double *slope) {
+  double a = b->alpha;
+  if (kind < 3) {
+    *slope = dy[1 + kind];
+    return y[1 + kind] - b->vs;
+  }
+  int j = mode == SC_BK2_SLIP1 ? 1 : 0; /* index of the stuck block */
+  int i = 1 - j;
+  double tj = j == 1 ? b->beta : 1;
+  *slope = (1 + a) * dy[j] - a * dy[i];
+  return (1 + a) * y[j] - a * y[i] - tj;
+}
+
+/* First root in (0, h] of the cubic Hermite interpolant of (g0, d0) at 0
+ * and (g1, d1) at h; skip a root at 0 if `skip0`.  Returns -1 if none. */
+static double hermite_root(double g0, double d0, double g1, double d1,
+                           double h, int skip0) {
+  /* H(s) = c0 + c1 s + c2 s^2 + c3 s^3 */
+  double c0 = g0, c1 = d0;
+  double c2 = (3 * (g1 - g0) / h - 2 * d0 - d1) / h;
+  double c3 = (d0 + d1 - 2 * (g1 - g0) / h) / (h * h);
+  /* critical points: c1 + 2 c2 s + 3 c3 s^2 = 0 */
+  double cuts[4] = {0}, nc = 1;
+  double A = 3 * c3, B = 2 * c2, C = c1;
+  if (A != 0) {
+    double disc = B * B - 4 * A * C;
+    if (disc >= 0) {
+      double q = -0.5 * (B + copysign(sqrt(disc), B));
+      double r1 = q / A, r2 = q != 0 ? C / q : r1;
+      if (r1 > r2) {
+        double tmp = r1;
+        r1 = r2, r2 = tmp;
+      }
+      if (r1 > 0 && r1 < h) cuts[(int)nc++] = r1;
+      if (r2 > 0 && r2 < h && r2 != r1) cuts[(int)nc++] = r2;
+    }
+  } else if (B != 0) {
+    double r = -C / B;
+    if (r > 0 && r < h) cuts[(int)nc++] = r;
+  }
+  cuts[(int)nc] = h;
+  for (int p = 0; p < (int)nc; p++) {
+    double lo = cuts[p], hi = cuts[p + 1];
+    /* H is monotone on each piece: starting at the skipped root, the first
+     * piece moves away from zero and holds no other root. */
+    if (p == 0 && skip0) continue;
+    double flo = c0 + lo * (c1 + lo * (c2 + lo * c3));
+    double fhi = c0 + hi * (c1 + hi * (c2 + hi * c3));
+    if (fhi == 0) return hi;
+    if ((flo > 0) == (fhi > 0) || flo == 0) continue;
+    for (int it = 0; it < 200 && hi - lo > 4 * DBL_EPSILON * hi; it++) {
+      double m = 0.5 * (lo + hi);
+      double fm = c0 + m * (c1 + m * (c2 + m * c3));
+      if ((fm > 0) == (flo > 0)) lo = m, flo = fm;
+      else hi = m;
+    }
+    return 0.5 * (lo + hi);
+  }
+  return -1;
+}
+
+/* Integrate y from t0 to t1 (the evolve object restarted). */
+static int advance_to(bk2_num *n, int w, gsl_odeiv2_system *sys, double t0,
+                      double t1, double hmax, double *y) {
+  gsl_odeiv2_evolve_reset(n->evol[w]);
+  gsl_odeiv2_step_reset(n->step[w]);
+  double t = t0, h = fmin(hmax, t1 - t0);
+  while (t < t1) {
+    double hc = fmin(h, hmax);
+    int st = gsl_odeiv2_evolve_apply(n->evol[w], n->ctrl[w], n->step[w], sys,
+                                     &t, t1, &hc, y);
+    if (st != GSL_SUCCESS) return st;
+    h = hc;
+  }
+  return GSL_SUCCESS;
+}
+
+static double fastest_period(const bk2_inst *b, int mode) {
+  return 2 * SC_PI / (mode == SC_BK2_SLIP12 ? b->w2 : b->w1);
+}
+
+/* The state at an event, its sensitivities shifted by the event time's,
+ * and the mode that follows. */
+static int finish_event(const bk2_inst *b, const bk2_dpar *P, int mode,
+                        int kind, const double *yt, const double *dyt,
+                        double slope, bk2_state *x) {
+  int nd = P->nd;
   (void)b;
-  return sc_fail(msg, SC_EINVAL, "bk2: flows = numerical not yet available");
+  unpack(yt, nd, x);
+  if (nd) {
+    sc_dual gv;
+    if (kind == 1) gv = sc_dsub(x->u1, P->vs, nd);
+    else if (kind == 2) gv = sc_dsub(x->u2, P->vs, nd);
+    else if (mode == SC_BK2_SLIP1)
+      gv = sc_dsub(
+          sc_dadd(x->y2, sc_dmul(P->alpha, sc_dsub(x->y2, x->y1, nd), nd), nd),
+          P->t2, nd);
+    else
+      gv = sc_daddc(
+          sc_dadd(x->y1, sc_dmul(P->alpha, sc_dsub(x->y1, x->y2, nd), nd), nd),
+          -1);
+    double acc2[2] = {dyt[2], dyt[3]};
+    sc_bk2_event_shift(P, gv, slope, acc2, x);
+  }
+  switch (kind) {
+  case 1:
+    x->u1 = P->vs;
+    return mode == SC_BK2_SLIP1 ? SC_BK2_STICK : SC_BK2_SLIP2;
+  case 2:
+    x->u2 = P->vs;
+    return mode == SC_BK2_SLIP2 ? SC_BK2_STICK : SC_BK2_SLIP1;
+  default:
+    return SC_BK2_SLIP12;
+  }
 }
-void sc_bk2_num_release(bk2_inst *b) { (void)b; }
-int sc_bk2_num_phase(const bk2_inst *b, const bk2_dpar *P, int mode, int fresh,
-                     bk2_state *x, double *duration, bk2_events *ev,
-                     sc_msg *msg) {
-  (void)b, (void)P, (void)mode, (void)fresh, (void)x, (void)duration, (void)ev;
-  return sc_fail(msg, SC_EINTERNAL, "bk2: numerical flows unavailable");
+
+int sc_bk2_num_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
+                     int fresh, bk2_state *x, double *duration,
+                     bk2_events *ev, sc_msg *msg) {
+  bk2_num *n = b->num;
+  int nd = P->nd, w = nd > 0;
+  rhs_ctx ctx = {b, mode, nd};
+  size_t dim = NSTATE * (1 + (size_t)nd);
+  gsl_odeiv2_system sys = {rhs, NULL, w ? DIM_MAX : NSTATE, &ctx};
+  double y[DIM_MAX] = {0}, y0[DIM_MAX], dy0[DIM_MAX], dy1[DIM_MAX];
+  pack(x, nd, y);
+  (void)dim;
+  int kinds[3], ng = 0;
+  if (slipping(mode, 1)) kinds[ng++] = 1;
+  if (slipping(mode, 2)) kinds[ng++] = 2;
+  if (mode != SC_BK2_SLIP12) kinds[ng++] = 3;
+  double hmax = STEP_FRACTION * fastest_period(b, mode);
+  double tend = PHASE_PERIODS * 2 * SC_PI; /* slow period is 2 pi */
+  if (mode != SC_BK2_SLIP12 && b->vs > 0)
+    tend = fmax(tend, 4 * (b->beta + 1) / b->vs); /* thresholds are reached */
+  gsl_odeiv2_evolve_reset(n->evol[w]);
+  gsl_odeiv2_step_reset(n->step[w]);
+  double t = 0, h = hmax * 0.1;
+  rhs(0, y, dy0, &ctx);
+  /* Every guard approaches zero from below; one that starts within
+   * rounding of zero (or past it) fires at once, as in the exact flows. */
+  int which0 = -1;
+  double slope0 = 0;
+  for (int i = 0; i < ng && which0 < 0; i++) {
+    if (kinds[i] < 3 && (fresh & kinds[i])) continue;
+    double sl, g = guard(b, mode, kinds[i], y, dy0, &sl);
+    double scale = fabs(y[0]) + fabs(y[1]) + fabs(y[2]) + fabs(y[3]) + 1;
+    if (g >= -GUARD_ROUND_ULPS * DBL_EPSILON * (1 + b->alpha) * scale)
+      which0 = i, slope0 = sl;
+  }
+  if (which0 >= 0) {
+    /* zero-length phase: the state is unchanged, no time shift needed
+     * beyond the guard's own sensitivity */
+    *duration = 0;
+    double yt[DIM_MAX], dyt[DIM_MAX];
+    memcpy(yt, y, sizeof y);
+    memcpy(dyt, dy0, sizeof dy0);
+    return finish_event(b, P, mode, kinds[which0], yt, dyt, slope0, x);
+  }
+  while (t < tend) {
+    double t0 = t;
+    memcpy(y0, y, sizeof y);
+    double hc = fmin(h, hmax);
+    int st = gsl_odeiv2_evolve_apply(n->evol[w], n->ctrl[w], n->step[w], &sys,
+                                     &t, tend, &hc, y);
+    if (st != GSL_SUCCESS)
+      return sc_fail(msg, SC_ENOCONV,
+                     "bk2: ODE integration failed in mode %d at tau = %.6g "
+                     "(GSL: %s)",
+                     mode, t, gsl_strerror(st));
+    h = hc;
+    ev->steps++;
+    rhs(t, y, dy1, &ctx);
+    double step = t - t0, troot = -1;
+    int which = -1;
+    for (int i = 0; i < ng; i++) {
+      double s0, s1;
+      double g0 = guard(b, mode, kinds[i], y0, dy0, &s0);
+      double g1 = guard(b, mode, kinds[i], y, dy1, &s1);
+      int skip = t0 == 0 && kinds[i] < 3 && (fresh & kinds[i]);
+      double r = hermite_root(g0, s0, g1, s1, step, skip);
+      if (r >= 0 && (troot < 0 || r < troot)) troot = r, which = i;
+    }
+    if (which >= 0) {
+      /* Newton on the true solution, restarting from the step's start. */
+      double te = t0 + troot, g = 0, slope = 0;
+      double yt[DIM_MAX], dyt[DIM_MAX];
+      for (int it = 0; it < EVENT_NEWTON_MAX; it++) {
+        memcpy(yt, y0, sizeof y0);
+        if (te > t0 && advance_to(n, w, &sys, t0, te, hmax, yt)) break;
+        rhs(te, yt, dyt, &ctx);
+        g = guard(b, mode, kinds[which], yt, dyt, &slope);
+        if (slope == 0) break;
+        double dt = -g / slope;
+        double tn = fmin(fmax(te + dt, t0), t);
+        double tol = b->acc.event_atol + b->acc.event_rtol * te;
+        te = tn;
+        if (fabs(dt) <= tol) {
+          memcpy(yt, y0, sizeof y0);
+          if (te > t0) advance_to(n, w, &sys, t0, te, hmax, yt);
+          rhs(te, yt, dyt, &ctx);
+          g = guard(b, mode, kinds[which], yt, dyt, &slope);
+          break;
+        }
+      }
+      *duration = te;
+      return finish_event(b, P, mode, kinds[which], yt, dyt, slope, x);
+    }
+    memcpy(dy0, dy1, sizeof dy1);
+  }
+  return sc_fail(msg, SC_EUNDEF,
+                 "no event within %.6g time units of slip mode %d: the slip "
+                 "does not end",
+                 tend, mode);
 }
+
 int sc_bk2_num_sample(const bk2_inst *b, const bk2_dpar *P, int mode,
-                      const bk2_state *x0, double duration, void *traj_ctx) {
-  (void)b, (void)P, (void)mode, (void)x0, (void)duration, (void)traj_ctx;
-  return SC_EINTERNAL;
+                      const bk2_state *x0, double duration, void *traj) {
+  (void)P;
+  bk2_num *n = b->num;
+  rhs_ctx ctx = {b, mode, 0};
+  gsl_odeiv2_system sys = {rhs, NULL, NSTATE, &ctx};
+  double y[NSTATE] = {x0->y1.v, x0->y2.v, x0->u1.v, x0->u2.v};
+  double hmax = STEP_FRACTION * fastest_period(b, mode);
+  double t = 0, dtau = sc_bk2_traj_dtau(traj);
+  int st = sc_bk2_traj_emit(traj, 0, y, mode);
+  long nsamp = (long)ceil(duration / dtau);
+  for (long i = 1; i <= nsamp && !st; i++) {
+    double t1 = i == nsamp ? duration : i * dtau;
+    if (advance_to(n, 0, &sys, t, t1, hmax, y)) return SC_ENOCONV;
+    t = t1;
+    st = sc_bk2_traj_emit(traj, t, y, mode);
+  }
+  sc_bk2_traj_advance(traj, duration);
+  return st;
 }
