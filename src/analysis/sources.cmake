@@ -1,1 +1,2 @@
 # sources of src/analysis
+list(APPEND SC_SOURCES src/analysis/period.c src/analysis/chart.c)

@@ -1,0 +1,271 @@
+/* Two-parameter period charts: the grid, its checks, and the parallel
+ * computation of rows (OpenMP; one map clone and one period detector per
+ * thread, taken before the loops). */
+#include <limits.h>
+#include <math.h>
+#include <omp.h>
+#include <stdint.h>
+#include <string.h>
+
+#include "slipcont/chart.h"
+
+void sc_chart_spec_default(sc_chart_spec *s) {
+  memset(s, 0, sizeof *s);
+  s->transient = 1000;
+  s->max_period = SC_PERIOD_DEFAULT_MAX;
+  s->confirm = SC_PERIOD_DEFAULT_CONFIRM;
+  s->seed = SC_CHART_SEED_FIXED;
+  s->d0 = 0;
+}
+
+/* Grid value i of steps between from and to; the last is exactly to. */
+static double grid(double from, double to, long steps, long i) {
+  if (i >= steps - 1) return to;
+  return from + (double)i * ((to - from) / (double)(steps - 1));
+}
+
+double sc_chart_x(const sc_chart_spec *s, long i) {
+  return grid(s->x_from, s->x_to, s->x_steps, i);
+}
+
+double sc_chart_y(const sc_chart_spec *s, long j) {
+  return grid(s->y_from, s->y_to, s->y_steps, j);
+}
+
+/* The name of an axis: a parameter of the model. */
+static int check_name(const sc_map *m, const char *key, const char *name,
+                      sc_msg *msg) {
+  const sc_model_type *t = sc_map_type(m);
+  if (!name || !*name)
+    return sc_fail(msg, SC_EINVAL, "chart: %s is missing (valid: a parameter "
+                   "of model %s)", key, t->name);
+  if (sc_map_param_index(m, name) >= 0) return SC_OK;
+  char list[256] = "";
+  for (size_t k = 0; k < t->nparam; k++) {
+    if (k) strncat(list, ", ", sizeof list - strlen(list) - 1);
+    strncat(list, t->params[k].name, sizeof list - strlen(list) - 1);
+  }
+  return sc_fail(msg, SC_EINVAL,
+                 "chart: %s = '%s' is not a parameter of model %s (valid: %s)",
+                 key, name, t->name, list);
+}
+
+/* One axis: steps >= 2, both ends in the parameter's range. */
+static int check_axis(const sc_map *m, const char *key, const char *name,
+                      double from, double to, long steps, sc_msg *msg) {
+  const sc_model_type *t = sc_map_type(m);
+  int i = sc_map_param_index(m, name);
+  if (steps < 2)
+    return sc_fail(msg, SC_EINVAL,
+                   "chart: %s-steps = %ld (valid: >= 2; both ends are grid "
+                   "points)",
+                   key, steps);
+  if (steps > SC_CHART_MAX_POINTS)
+    return sc_fail(msg, SC_EINVAL, "chart: %s-steps = %ld (valid: <= %ld)",
+                   key, steps, SC_CHART_MAX_POINTS);
+  sc_msg sub;
+  const double ends[2] = {from, to};
+  const char *endname[2] = {"from", "to"};
+  for (int e = 0; e < 2; e++)
+    if (sc_param_check(&t->params[i], ends[e], &sub))
+      return sc_fail(msg, SC_EINVAL, "chart: %s-%s: %s", key, endname[e],
+                     sub.text);
+  return SC_OK;
+}
+
+int sc_chart_check(const sc_map *m, const sc_chart_spec *s, sc_msg *msg) {
+  int st = check_name(m, "x", s->x, msg);
+  if (!st) st = check_name(m, "y", s->y, msg);
+  if (st) return st;
+  if (strcmp(s->x, s->y) == 0)
+    return sc_fail(msg, SC_EINVAL,
+                   "chart: x and y are both '%s' (valid: two different "
+                   "parameters)",
+                   s->x);
+  st = check_axis(m, "x", s->x, s->x_from, s->x_to, s->x_steps, msg);
+  if (!st) st = check_axis(m, "y", s->y, s->y_from, s->y_to, s->y_steps, msg);
+  if (st) return st;
+  double npts = (double)s->x_steps * (double)s->y_steps;
+  if (npts > (double)SC_CHART_MAX_POINTS)
+    return sc_fail(msg, SC_EINVAL,
+                   "chart: %ld x %ld = %.0f grid points (valid: at most %ld)",
+                   s->x_steps, s->y_steps, npts, SC_CHART_MAX_POINTS);
+  double bytes = npts * (double)sizeof(sc_chart_point);
+  if (bytes > SC_CHART_MAX_BYTES)
+    return sc_fail(msg, SC_EINVAL,
+                   "chart: %.0f grid points need %.0f MiB (valid: at most "
+                   "%.0f MiB)",
+                   npts, bytes / 1048576, SC_CHART_MAX_BYTES / 1048576);
+  if (!isfinite(s->d0))
+    return sc_fail(msg, SC_EINVAL, "chart: d0 = %g (valid: finite)", s->d0);
+  if (s->transient < 1 || s->transient > INT32_MAX)
+    return sc_fail(msg, SC_EINVAL, "chart: transient = %ld (valid: 1..%ld)",
+                   s->transient, (long)INT32_MAX);
+  if (s->max_period < 1 || s->max_period > SC_PERIOD_MAX)
+    return sc_fail(msg, SC_EINVAL, "chart: max-period = %d (valid: 1..%d)",
+                   s->max_period, SC_PERIOD_MAX);
+  if (s->confirm < 1 || s->confirm > SC_PERIOD_MAX_CONFIRM)
+    return sc_fail(msg, SC_EINVAL, "chart: confirm = %d (valid: 1..%d)",
+                   s->confirm, SC_PERIOD_MAX_CONFIRM);
+  if (s->seed != SC_CHART_SEED_FIXED && s->seed != SC_CHART_SEED_NEIGHBOUR)
+    return sc_fail(msg, SC_EINVAL, "chart: seed = %d (valid: fixed, "
+                   "neighbour)", s->seed);
+  return SC_OK;
+}
+
+/* Per-thread workspace and the state shared by the threads of one call. */
+typedef struct {
+  const sc_chart_spec *s;
+  int ix, iy;                 /* parameter indices */
+  long first, stride, nx;
+  sc_chart_progress_fn progress;
+  void *ctx;
+  sc_chart_point *out;
+  long done;                  /* points completed (atomic) */
+  int stop;                   /* set to cancel (atomic) */
+  long err_index;             /* lowest failing point index (-1: a
+                                 thread's workspace), LONG_MAX if none */
+  int err_status;
+  sc_msg err_msg;
+} shared_state;
+
+/* Record a failure, keeping the one of lowest point index so that the
+ * message does not depend on the thread count. */
+static void record_error(shared_state *sh, long index, int status,
+                         const sc_msg *msg) {
+#pragma omp critical(sc_chart_error)
+  {
+    if (index < sh->err_index) {
+      sh->err_index = index;
+      sh->err_status = status;
+      sh->err_msg = *msg;
+    }
+  }
+#pragma omp atomic write
+  sh->stop = 1;
+}
+
+static int stopped(shared_state *sh) {
+  int v;
+#pragma omp atomic read
+  v = sh->stop;
+  return v;
+}
+
+/* After a point: count it, and let thread 0 report progress. */
+static void point_done(shared_state *sh) {
+  long d;
+#pragma omp atomic capture
+  d = ++sh->done;
+  if (sh->progress && omp_get_thread_num() == 0 && sh->progress(sh->ctx, d)) {
+#pragma omp atomic write
+    sh->stop = 1;
+  }
+}
+
+/* Set a parameter only when it changes (setup runs on every set). */
+static int set_param(sc_map *m, int i, double v, sc_msg *msg) {
+  if (sc_map_get_param(m, (size_t)i) == v) return SC_OK;
+  return sc_map_set_param(m, (size_t)i, v, msg);
+}
+
+/* Point (row k of this call, column i) from state d; writes out[]. */
+static int one_point(shared_state *sh, sc_map *m, sc_period *pd, long k,
+                     long i, double d, sc_msg *msg) {
+  const sc_chart_spec *s = sh->s;
+  long row = sh->first + k * sh->stride;
+  double x = sc_chart_x(s, i), y = sc_chart_y(s, row);
+  int st = set_param(m, sh->iy, y, msg);
+  if (!st) st = set_param(m, sh->ix, x, msg);
+  sc_period_result res;
+  if (!st) st = sc_period_find(pd, m, d, s->transient, &res, msg);
+  if (st) {
+    sc_msg inner = *msg;
+    sc_fail(msg, st, "chart: at %s = %.17g, %s = %.17g: %s", s->x, x, s->y,
+            y, inner.text);
+    return st;
+  }
+  sc_chart_point *pt = &sh->out[k * sh->nx + i];
+  pt->d = res.d;
+  pt->period = res.period;
+  pt->iterations = (int32_t)res.iterations;
+  return SC_OK;
+}
+
+int sc_chart_rows(const sc_map *proto, const sc_chart_spec *s, long first,
+                  long count, long stride, int threads,
+                  sc_chart_progress_fn progress, void *ctx,
+                  sc_chart_point *out, sc_msg *msg) {
+  int st = sc_chart_check(proto, s, msg);
+  if (st) return st;
+  if (first < 0 || count < 0 || stride < 1 || threads < 0 ||
+      (count > 0 && first + (count - 1) * stride >= s->y_steps))
+    return sc_fail(msg, SC_EINVAL,
+                   "sc_chart_rows: first = %ld, count = %ld, stride = %ld, "
+                   "threads = %d (valid: rows inside 0..%ld, stride >= 1, "
+                   "threads >= 0)",
+                   first, count, stride, threads, s->y_steps - 1);
+  if (count == 0) return SC_OK;
+  shared_state sh = {.s = s,
+                     .ix = sc_map_param_index(proto, s->x),
+                     .iy = sc_map_param_index(proto, s->y),
+                     .first = first,
+                     .stride = stride,
+                     .nx = s->x_steps,
+                     .progress = progress,
+                     .ctx = ctx,
+                     .out = out,
+                     .err_index = LONG_MAX};
+  const double rtol = sc_map_accuracy(proto)->period_rtol;
+  const long nx = s->x_steps;
+  const int neighbour = s->seed == SC_CHART_SEED_NEIGHBOUR;
+  int nth = threads > 0 ? threads : omp_get_max_threads();
+
+#pragma omp parallel num_threads(nth)
+  {
+    sc_map *m = NULL;
+    sc_period *pd = NULL;
+    sc_msg lmsg;
+    int lst = sc_map_clone(proto, &m, &lmsg);
+    if (!lst) lst = sc_period_alloc(s->max_period, s->confirm, rtol, &pd,
+                                    &lmsg);
+    if (lst) record_error(&sh, -1, lst, &lmsg);
+    if (!neighbour) {
+#pragma omp for schedule(dynamic, 4)
+      for (long p = 0; p < count * nx; p++) {
+        if (lst || stopped(&sh)) continue;
+        int e = one_point(&sh, m, pd, p / nx, p % nx, s->d0, &lmsg);
+        if (e) record_error(&sh, p, e, &lmsg);
+        else point_done(&sh);
+      }
+    } else {
+#pragma omp for schedule(dynamic, 1)
+      for (long k = 0; k < count; k++) {
+        double d = s->d0;
+        for (long i = 0; i < nx && !lst && !stopped(&sh); i++) {
+          int e = one_point(&sh, m, pd, k, i, d, &lmsg);
+          if (e) {
+            record_error(&sh, k * nx + i, e, &lmsg);
+            break;
+          }
+          const sc_chart_point *pt = &out[k * nx + i];
+          d = pt->period == SC_PERIOD_UNDEFINED ? s->d0 : pt->d;
+          point_done(&sh);
+        }
+      }
+    }
+    sc_period_free(pd);
+    sc_map_free(m);
+  }
+
+  if (sh.err_index != LONG_MAX) {
+    if (msg) *msg = sh.err_msg;
+    return sh.err_status;
+  }
+  if (sh.stop)
+    return sc_fail(msg, SC_ECALLBACK,
+                   "sc_chart_rows: cancelled by the progress callback after "
+                   "%ld points",
+                   sh.done);
+  return SC_OK;
+}
