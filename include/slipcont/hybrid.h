@@ -57,7 +57,10 @@ double sc_guard_m3(const sc_guard *g);
  * @brief The first root of @p g in (0, tmax].
  * @param skip_start 1 if g(0) = 0 by construction (a slip that starts on
  *        its own re-stick guard): that root is skipped, its sign taken
- *        from g'(0), g''(0).
+ *        from g'(0), g''(0).  With 0, a g(0) within rounding of zero is a
+ *        root at t = 0 only if g moves up through zero there (g'(0) > 0,
+ *        or g'(0) = 0 < g''(0)): every event of MODEL.md is a guard
+ *        reaching zero from below; otherwise it is skipped likewise.
  * @param atol, rtol tolerance on the root time: the returned root lies in
  *        an interval of width <= atol + rtol t (or g is within rounding of
  *        zero there).

@@ -165,6 +165,23 @@ int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
       return SC_EINVAL;
     wmax = fmax(wmax, g->w[k]);
   }
+  /* A guard that starts within rounding of zero: a root at 0 if it moves
+   * up through zero there (the events of MODEL.md are all upward
+   * crossings), otherwise the start root is skipped. */
+  {
+    double s0, s1, s2;
+    sc_guard_eval(g, 0, &s0, &s1, &s2);
+    if (fabs(s0) <= round_bound(g, 0)) {
+      int upward = s1 > 0 || (s1 == 0 && s2 > 0);
+      if (!skip_start && upward) {
+        out->found = 1;
+        out->t = 0;
+        out->slope = s1;
+        return SC_OK;
+      }
+      skip_start = 1;
+    }
+  }
   if (g->n == 1 && g->c1 == 0 && closed_form(g, tmax, skip_start, out))
     return SC_OK;
   out->tangent = 0;

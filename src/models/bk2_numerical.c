@@ -139,6 +139,12 @@ fail:
   return sc_fail(msg, SC_ENOMEM, "bk2: cannot allocate the ODE workspace");
 }
 
+/* Rounding bound on a guard value at state y. */
+static double round_guard(const bk2_inst *b, const double *y) {
+  double scale = fabs(y[0]) + fabs(y[1]) + fabs(y[2]) + fabs(y[3]) + 1;
+  return GUARD_ROUND_ULPS * DBL_EPSILON * (1 + b->alpha) * scale;
+}
+
 /* Pack duals into the ODE vector and back. */
 static void pack(const bk2_state *x, int nd, double *y) {
   const sc_dual *xs[4] = {&x->y1, &x->y2, &x->u1, &x->u2};
@@ -304,9 +310,8 @@ int sc_bk2_num_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
   for (int i = 0; i < ng && which0 < 0; i++) {
     if (kinds[i] < 3 && (fresh & kinds[i])) continue;
     double sl, g = guard(b, mode, kinds[i], y, dy0, &sl);
-    double scale = fabs(y[0]) + fabs(y[1]) + fabs(y[2]) + fabs(y[3]) + 1;
-    if (g >= -GUARD_ROUND_ULPS * DBL_EPSILON * (1 + b->alpha) * scale)
-      which0 = i, slope0 = sl;
+    double E = round_guard(b, y);
+    if (g > E || (g >= -E && sl > 0)) which0 = i, slope0 = sl;
   }
   if (which0 >= 0) {
     /* zero-length phase: the state is unchanged, no time shift needed
@@ -337,7 +342,10 @@ int sc_bk2_num_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
       double s0, s1;
       double g0 = guard(b, mode, kinds[i], y0, dy0, &s0);
       double g1 = guard(b, mode, kinds[i], y, dy1, &s1);
-      int skip = t0 == 0 && kinds[i] < 3 && (fresh & kinds[i]);
+      /* a guard within rounding of zero at the start, not moving up, is
+       * the start root of a slip: skip it (see sc_guard_first_root) */
+      int skip = t0 == 0 && ((kinds[i] < 3 && (fresh & kinds[i])) ||
+                             fabs(g0) <= round_guard(b, y0));
       double r = hermite_root(g0, s0, g1, s1, step, skip);
       if (r >= 0 && (troot < 0 || r < troot)) troot = r, which = i;
     }

@@ -1,0 +1,322 @@
+/* The two-block model: closed forms against numerical integration,
+ * derivatives against differences, symmetries and special pieces of the
+ * map, the reference behaviours of MODEL.md, and bad input. */
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "slipcont/map.h"
+#include "test_util.h"
+
+static sc_map *make(double alpha, double beta, double v, const char *driver) {
+  sc_map *m;
+  sc_msg msg;
+  if (sc_map_alloc("bk2", NULL, &m, &msg)) return NULL;
+  sc_map_set_param_by_name(m, "alpha", alpha, &msg);
+  sc_map_set_param_by_name(m, "beta", beta, &msg);
+  sc_map_set_param_by_name(m, "v", v, &msg);
+  sc_map_set_option(m, "driver", driver, &msg);
+  return m;
+}
+
+static double feval(sc_map *m, double d, char *itin) {
+  sc_map_value r;
+  sc_msg msg;
+  if (sc_map_eval(m, d, SC_EVAL_ITINERARY, &r, &msg)) return NAN;
+  if (itin) strcpy(itin, r.itinerary);
+  return r.f;
+}
+
+/* Parameter sets covering every mode and both drivers. */
+typedef struct {
+  double alpha, beta, v;
+  const char *driver;
+} pset;
+static const pset sets[] = {
+    {2.9, 1, 0.02, "moving"},   {3.3, 2.5, 0.025, "frozen"},
+    {5.7, 3.2, 0.025, "frozen"}, {8, 1.7, 0.01, "moving"},
+    {1.385, 0.6, 0.05, "moving"},
+};
+#define NSETS (sizeof sets / sizeof sets[0])
+
+/* The exact map against the map through numerical flows (GSL rk8pd) at
+ * ode tolerance `tol`: largest difference over a grid of d, skipping
+ * points whose itineraries differ (within the integration error of a
+ * discontinuity of f) and counting the itineraries that contain each
+ * mode. */
+static double exact_vs_numerical(double tol, int *modes_seen) {
+  double worst = 0;
+  for (size_t s = 0; s < NSETS; s++) {
+    sc_map *ex = make(sets[s].alpha, sets[s].beta, sets[s].v, sets[s].driver);
+    sc_map *nu = make(sets[s].alpha, sets[s].beta, sets[s].v, sets[s].driver);
+    sc_accuracy acc;
+    sc_accuracy_preset(&acc, "default", NULL);
+    acc.ode_atol = acc.ode_rtol = tol;
+    sc_map_set_accuracy(nu, &acc, NULL);
+    sc_map_set_option(nu, "flows", "numerical", NULL);
+    for (int i = 0; i <= 120; i++) {
+      double d = -0.3 + 0.6 * i / 120 + 1e-4;
+      char i1[SC_ITIN_LEN], i2[SC_ITIN_LEN];
+      double f1 = feval(ex, d, i1), f2 = feval(nu, d, i2);
+      if (isnan(f1) || isnan(f2) || strcmp(i1, i2) != 0) continue;
+      worst = fmax(worst, fabs(f1 - f2));
+      if (modes_seen) {
+        if (strchr(i1, '1') && !strstr(i1, "12")) modes_seen[0] = 1;
+        if (strstr(i1, "12")) modes_seen[2] = 1;
+        if (strchr(i1, '2')) modes_seen[1] = 1;
+      }
+    }
+    sc_map_free(ex);
+    sc_map_free(nu);
+  }
+  return worst;
+}
+
+static void test_closed_forms(void) {
+  int seen[3] = {0, 0, 0};
+  double e12 = exact_vs_numerical(1e-12, seen);
+  /* rk8pd at 1e-12 per step over a few hundred steps: 1e-9 is generous */
+  tu_close("closed forms vs rk8pd at tol 1e-12 (max |f diff|)", e12, 0, 1e-9);
+  tu_true(seen[0] && seen[1] && seen[2],
+          "the comparison covered SLIP1, SLIP2 and SLIP12 (%d %d %d)",
+          seen[0], seen[1], seen[2]);
+  /* Error against tolerance: it must shrink as the tolerance does. */
+  double e6 = exact_vs_numerical(1e-6, NULL), e9 = exact_vs_numerical(1e-9, NULL);
+  printf("error vs tolerance: 1e-6: %.3g  1e-9: %.3g  1e-12: %.3g\n", e6, e9,
+         e12);
+  /* The step cap (a tenth of a period) keeps rk8pd accurate even at loose
+   * tolerances, so the error falls in steps, not smoothly: assert overall
+   * convergence, not a rate. */
+  tu_true(e12 < 1e-2 * e6 && e12 <= e9,
+          "numerical map converges to the exact map (%.3g, %.3g, %.3g)", e6,
+          e9, e12);
+}
+
+/* Derivatives in d and in every parameter against central differences.
+ * Points within 1e-4 of a change of itinerary are skipped (f jumps or
+ * kinks there). */
+static void test_derivatives(void) {
+  int checked = 0, bad = 0;
+  for (size_t s = 0; s < NSETS; s++) {
+    sc_map *m = make(sets[s].alpha, sets[s].beta, sets[s].v, sets[s].driver);
+    for (int i = 0; i < 40; i++) {
+      double d = -0.27 + 0.54 * i / 39 + 0.00123;
+      sc_map_value r;
+      if (sc_map_eval(m, d, SC_EVAL_DERIV | SC_EVAL_ITINERARY, &r, NULL))
+        continue;
+      char ia[SC_ITIN_LEN], ib[SC_ITIN_LEN];
+      feval(m, d - 1e-4, ia);
+      feval(m, d + 1e-4, ib);
+      if (strcmp(ia, r.itinerary) || strcmp(ib, r.itinerary)) continue;
+      /* df/dd: step 1e-7, truncation ~ f''' h^2, rounding ~ eps / h */
+      double h = 1e-7;
+      double fd = (feval(m, d + h, NULL) - feval(m, d - h, NULL)) / (2 * h);
+      double tol = 1e-6 * (1 + fabs(fd));
+      checked++;
+      if (fabs(fd - r.dfdd) > tol) {
+        bad++;
+        printf("  df/dd at set %zu d = %.6f: %.10g vs fd %.10g\n", s, d,
+               r.dfdd, fd);
+      }
+      for (size_t k = 0; k < 4; k++) {
+        if (k == 3 && sets[s].v == 0) continue;
+        double p = sc_map_get_param(m, k), hp = 1e-7 * fmax(1, fabs(p));
+        sc_map_set_param(m, k, p + hp, NULL);
+        double fp = feval(m, d, ia);
+        sc_map_set_param(m, k, p - hp, NULL);
+        double fm = feval(m, d, ib);
+        sc_map_set_param(m, k, p, NULL);
+        if (strcmp(ia, r.itinerary) || strcmp(ib, r.itinerary)) continue;
+        double fdp = (fp - fm) / (2 * hp);
+        checked++;
+        if (fabs(fdp - r.dfdp[k]) > 1e-6 * (1 + fabs(fdp))) {
+          bad++;
+          printf("  df/d%s at set %zu d = %.6f: %.10g vs fd %.10g\n",
+                 sc_map_type(m)->params[k].name, s, d, r.dfdp[k], fdp);
+        }
+      }
+    }
+    sc_map_free(m);
+  }
+  tu_true(checked > 400, "derivatives checked at %d points", checked);
+  tu_int("derivatives off their differences by more than 1e-6 rel", bad, 0);
+}
+
+static void test_properties(void) {
+  /* beta = 1: swapping the blocks maps d to -d, so f(-d) = -f(d). */
+  sc_map *m = make(2.9, 1, 0.02, "moving");
+  double worst = 0;
+  for (int i = 0; i < 50; i++) {
+    double d = 0.005 + 0.29 * i / 49;
+    worst = fmax(worst, fabs(feval(m, -d, NULL) + feval(m, d, NULL)));
+  }
+  tu_close("beta = 1: max |f(-d) + f(d)|", worst, 0, 1e-14);
+
+  /* Single-block pieces: f(d) = d + c with f' = 1 exactly. */
+  sc_map_value r;
+  sc_map_eval(m, -0.2, SC_EVAL_DERIV, &r, NULL);
+  tu_true(r.neutral && r.dfdd == 1, "single-block piece: neutral, f' = %.17g",
+          r.dfdd);
+  double c1 = feval(m, -0.2, NULL) + 0.2, c2 = feval(m, -0.15, NULL) + 0.15;
+  tu_close("single-block piece: f(d) - d constant", c1, c2, 1e-15);
+  sc_map_free(m);
+
+  /* Frozen driver: f does not depend on v at all. */
+  sc_map *a = make(3.3, 2.5, 0.01, "frozen"), *b = make(3.3, 2.5, 0.7, "frozen");
+  int same = 1;
+  for (int i = 0; i < 30; i++) {
+    double d = -0.25 + 0.5 * i / 29;
+    same = same && feval(a, d, NULL) == feval(b, d, NULL);
+  }
+  tu_true(same, "driver frozen: f identical for v = 0.01 and v = 0.7");
+
+  /* Continuity at d*: f(d* -+ h) -> f(d*), like sqrt(h) (MODEL.md). */
+  double ds = sc_bk2_dstar(3.3, 2.5);
+  double f0 = feval(a, ds, NULL);
+  double jl = fabs(feval(a, ds - 1e-12, NULL) - f0);
+  double jr = fabs(feval(a, ds + 1e-12, NULL) - f0);
+  tu_true(jl < 1e-4 && jr < 1e-4,
+          "f continuous at d* (|f(d* -+ 1e-12) - f(d*)| = %.3g, %.3g)", jl,
+          jr);
+  double jl2 = fabs(feval(a, ds - 1e-8, NULL) - f0);
+  tu_true(jl2 > 10 * jl, "f not smooth at d*: grows like sqrt (%.3g vs %.3g)",
+          jl2, jl);
+  sc_map_free(a);
+  sc_map_free(b);
+
+  /* A grazing: locate where the itinerary 1-12-2-12-1 gives way to 1-12-1
+   * (alpha 2.9, beta 1, v 0.02): the re-stick there is tangent and f
+   * jumps. */
+  m = make(2.9, 1, 0.02, "moving");
+  double lo = -0.04, hi = -0.037;
+  char il[SC_ITIN_LEN], ih[SC_ITIN_LEN], im[SC_ITIN_LEN];
+  feval(m, lo, il);
+  feval(m, hi, ih);
+  for (int it = 0; it < 200 && hi - lo > 4 * DBL_EPSILON; it++) {
+    double mid = 0.5 * (lo + hi);
+    feval(m, mid, im);
+    if (strcmp(im, il) == 0) lo = mid;
+    else hi = mid;
+  }
+  sc_map_value L, H;
+  sc_map_eval(m, lo, SC_EVAL_ITINERARY, &L, NULL);
+  sc_map_eval(m, hi, SC_EVAL_ITINERARY, &H, NULL);
+  tu_true(strcmp(L.itinerary, H.itinerary) != 0,
+          "grazing located at d = %.17g: %s | %s", lo, L.itinerary,
+          H.itinerary);
+  tu_true(fabs(L.f - H.f) > 1e-3, "f jumps at the grazing by %.6g",
+          fabs(L.f - H.f));
+  tu_true(L.graze_margin < 1e-12,
+          "the re-stick is tangent there (margin %.3g)", L.graze_margin);
+  sc_map_free(m);
+}
+
+/* Iterate from d0 and return the period of the tail (0 if none <= 16). */
+static int period_of(sc_map *m, double d0, int iters, int keep, char *itin) {
+  double tail[512];
+  double d = d0;
+  for (int k = 0; k < iters; k++) {
+    sc_map_value r;
+    if (sc_map_eval(m, d, SC_EVAL_ITINERARY, &r, NULL)) return -1;
+    d = r.f;
+    if (k >= iters - keep) tail[k - (iters - keep)] = d;
+    if (itin) strcpy(itin, r.itinerary);
+  }
+  for (int p = 1; p <= 16; p++) {
+    int ok = 1;
+    for (int j = p; j < keep && ok; j++) ok = fabs(tail[j] - tail[j - p]) < 1e-9;
+    if (ok) return p;
+  }
+  return 0;
+}
+
+static void test_reference(void) {
+  /* Fig 5.4: period 2 at alpha 3, beta 1, v 0.025, both drivers. */
+  for (int fz = 0; fz < 2; fz++) {
+    sc_map *m = make(3, 1, 0.025, fz ? "frozen" : "moving");
+    tu_int(fz ? "fig 5.4 frozen: period" : "fig 5.4 moving: period",
+           period_of(m, 0.02, 350, 100, NULL), 2);
+    sc_map_free(m);
+  }
+  /* Fig 5.6: v swept down from 0.025, each value from the last state. */
+  sc_map *m = make(2.9, 1, 0.025, "moving");
+  double d = 0.02;
+  int p_025 = -2, p_0205 = -2, p_019 = -2, p_016 = -2;
+  char itin16[SC_ITIN_LEN] = "";
+  for (int i = 0; i <= 400; i++) {
+    double v = 0.025 - 0.01 * i / 400;
+    sc_map_set_param_by_name(m, "v", v, NULL);
+    char itin[SC_ITIN_LEN];
+    int p = period_of(m, d, 350, 100, itin);
+    d = feval(m, d, NULL);
+    for (int k = 0; k < 350; k++) d = feval(m, d, NULL);
+    if (i == 0) p_025 = p;
+    if (i == 184) p_0205 = p; /* v = 0.0204 */
+    if (i == 240) p_019 = p;  /* v = 0.019 */
+    if (i == 360) p_016 = p, strcpy(itin16, itin); /* v = 0.016 */
+  }
+  tu_int("fig 5.6: period at v = 0.025", p_025, 2);
+  tu_int("fig 5.6: period at v = 0.0204", p_0205, 4);
+  tu_int("fig 5.6: no period <= 16 at v = 0.019 (chaos)", p_019, 0);
+  tu_int("fig 5.6: period at v = 0.016", p_016, 2);
+  tu_true(strcmp(itin16, "1") == 0 || strcmp(itin16, "2") == 0,
+          "fig 5.6: v = 0.016 orbit made of single-block slips (%s)", itin16);
+  sc_map_free(m);
+
+  /* An undefined map: a slip cycle that never returns (MODEL.md). */
+  m = make(8, 1, 0.025, "moving");
+  sc_map_value r;
+  sc_msg msg = {""};
+  int st = sc_map_eval(m, -0.0235, 0, &r, &msg);
+  tu_int("alpha 8, v 0.025, d -0.0235: undefined", st, SC_EUNDEF);
+  tu_true(strstr(msg.text, "global stick phase") != NULL, "reason: %s",
+          msg.text);
+  sc_map_free(m);
+}
+
+static int count_samples(void *ctx, double tau, const double *s, int mode) {
+  (void)tau, (void)s, (void)mode;
+  ++*(long *)ctx;
+  return 0;
+}
+
+static void test_bad_input(void) {
+  sc_map *m = make(3, 1, 0.025, "moving");
+  sc_msg msg = {""};
+  tu_int("alpha = -1 refused", sc_map_set_param_by_name(m, "alpha", -1, &msg),
+         SC_EINVAL);
+  tu_true(strstr(msg.text, "alpha") && strstr(msg.text, "valid"),
+          "message: %s", msg.text);
+  tu_int("phi = 1 refused (mu < 1)",
+         sc_map_set_param_by_name(m, "phi", 1, &msg), SC_EINVAL);
+  tu_int("v = NaN refused", sc_map_set_param_by_name(m, "v", NAN, &msg),
+         SC_EINVAL);
+  tu_close("alpha unchanged after a refusal", sc_map_get_param(m, 0), 3, 0);
+  tu_int("unknown parameter", sc_map_set_param_by_name(m, "gamma", 1, &msg),
+         SC_EINVAL);
+  tu_int("unknown driver", sc_map_set_option(m, "driver", "fast", &msg),
+         SC_EINVAL);
+  sc_map_set_option(m, "driver", "frozen", NULL);
+  tu_int("velocity weakening with the driver frozen refused",
+         sc_map_set_option(m, "friction", "velocity-weakening", &msg),
+         SC_EINVAL);
+  tu_true(strstr(msg.text, "frozen") != NULL, "message: %s", msg.text);
+  sc_map_value r;
+  tu_int("d = NaN refused", sc_map_eval(m, NAN, 0, &r, &msg), SC_EINVAL);
+  long n = 0;
+  tu_int("trajectory runs", sc_map_trajectory(m, 0.02, 4, 0.05, count_samples,
+                                              &n, &msg),
+         SC_OK);
+  tu_true(n > 50, "trajectory emitted %ld samples", n);
+  sc_map_free(m);
+}
+
+int main(void) {
+  test_closed_forms();
+  test_derivatives();
+  test_properties();
+  test_reference();
+  test_bad_input();
+  return tu_finish();
+}
