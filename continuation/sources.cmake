@@ -2,4 +2,6 @@ list(APPEND SC_SOURCES
   continuation/common.c
   continuation/linsolve.c
   continuation/linsolve_dense.c
-  continuation/linsolve_klu.c)
+  continuation/linsolve_klu.c
+  continuation/branch.c
+  continuation/map1d.c)
