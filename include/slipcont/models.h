@@ -78,7 +78,9 @@ enum {
  */
 typedef struct {
   double f;                   /**< f(d), or f^n(d) */
-  double dfdd;                /**< df/dd (SC_EVAL_DERIV) */
+  double dfdd;                /**< df/dd (SC_EVAL_DERIV); NaN where f is not
+                                   differentiable (an event with g' = 0,
+                                   e.g. a start at d* with V_s = 0) */
   double dfdp[SC_MAXPARAM];   /**< df/dp_i, parameter order (SC_EVAL_DERIV) */
   int neutral;                /**< 1 if f' = 1 exactly: every iterate a
                                    single-block slip (MODEL.md) */
@@ -88,6 +90,9 @@ typedef struct {
   double graze_margin;        /**< bk2: smallest |guard| at a local extremum
                                    of a re-stick guard that did or did not
                                    reach zero (0 at grazing-sliding) */
+  int graze_block;            /**< bk2: block (1, 2) of graze_margin; 0 none */
+  int graze_mode;             /**< bk2: slip mode it ended (SC_BK2_SLIP1..) */
+  int gap_block;              /**< bk2: block (1, 2) of gsp_gap */
   double dstar_dist;          /**< bk2: smallest |d - d*| over the starts */
   char itinerary[SC_ITIN_LEN];/**< SC_EVAL_ITINERARY */
 } sc_map_value;

@@ -278,8 +278,15 @@ int sc_map_iterate(sc_map *m, double d, int n, unsigned flags,
     }
     out->neutral = out->neutral && one.neutral;
     out->nphases += one.nphases;
-    out->gsp_gap = fmin(out->gsp_gap, one.gsp_gap);
-    out->graze_margin = fmin(out->graze_margin, one.graze_margin);
+    if (one.gsp_gap < out->gsp_gap) {
+      out->gsp_gap = one.gsp_gap;
+      out->gap_block = one.gap_block;
+    }
+    if (one.graze_margin < out->graze_margin) {
+      out->graze_margin = one.graze_margin;
+      out->graze_block = one.graze_block;
+      out->graze_mode = one.graze_mode;
+    }
     out->dstar_dist = fmin(out->dstar_dist, one.dstar_dist);
     x = one.f;
   }

@@ -264,7 +264,9 @@ void sc_bk2_event_shift(const bk2_dpar *P, sc_dual gval, double slope,
   int nd = P->nd;
   if (nd == 0) return;
   double dt[SC_NDIR];
-  for (int k = 0; k < nd; k++) dt[k] = -gval.d[k] / slope;
+  /* g' = 0: the event time is not differentiable (f' is infinite there,
+   * MODEL.md: |d - d*|^(-1/2) at d* with V_s = 0): say so with NaN. */
+  for (int k = 0; k < nd; k++) dt[k] = slope != 0 ? -gval.d[k] / slope : NAN;
   double xdot[4] = {x->u1.v, x->u2.v, acc[0], acc[1]};
   sc_dual *xs[4] = {&x->y1, &x->y2, &x->u1, &x->u2};
   for (int i = 0; i < 4; i++)
@@ -388,7 +390,11 @@ static int exact_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
     sc_guard_eval(&g[first], t, NULL, NULL, &gpp);
     double h = gpp < 0 ? r[first].slope * r[first].slope / (2 * -gpp)
                        : HUGE_VAL;
-    ev->graze_margin = fmin(ev->graze_margin, h);
+    if (h < ev->graze_margin) {
+      ev->graze_margin = h;
+      ev->graze_block = kind[first];
+      ev->graze_mode = mode;
+    }
   }
   if (both) return SC_BK2_STICK;
   switch (kind[first]) {
@@ -455,7 +461,10 @@ int sc_bk2_iterate(const bk2_inst *b, const bk2_dpar *P, sc_dual d,
       if (out->neutral && nd) out->dfdd = 1;
       double s1 = spring(P, x->y1, x->y2).v, s2 = spring(P, x->y2, x->y1).v;
       out->gsp_gap = fmin(1 - s1, b->beta - s2);
+      out->gap_block = 1 - s1 <= b->beta - s2 ? 1 : 2;
       out->graze_margin = ev.graze_margin;
+      out->graze_block = ev.graze_block;
+      out->graze_mode = ev.graze_mode;
       return SC_OK;
     }
     fresh = fresh_blocks(mode, next);

@@ -31,7 +31,9 @@ typedef struct {
 
 /* What the events of one iterate revealed. */
 typedef struct {
-  double graze_margin; /* smallest re-stick margin (see map.h) */
+  double graze_margin; /* smallest re-stick margin (see models.h) */
+  int graze_block;     /* its block (1, 2) and slip mode */
+  int graze_mode;
   int tangent;         /* a guard only touched zero */
   long steps;          /* root-finding intervals */
 } bk2_events;
