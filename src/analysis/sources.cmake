@@ -1,2 +1,3 @@
 # sources of src/analysis
 list(APPEND SC_SOURCES src/analysis/period.c src/analysis/chart.c)
+list(APPEND SC_SOURCES src/analysis/sweep.c)

@@ -1,1 +1,9 @@
-set(SC_CLI_SOURCES src/cli/main.c)
+# sources of the slipcont program: one line per task (see src/cli/tasks.h)
+set(SC_CLI_SOURCES
+  src/cli/main.c
+  src/cli/help.c
+  src/cli/run.c
+  src/cli/tasks.c)
+list(APPEND SC_CLI_SOURCES src/cli/task_orbit.c)
+list(APPEND SC_CLI_SOURCES src/cli/task_map.c)
+list(APPEND SC_CLI_SOURCES src/cli/task_sweep.c)

@@ -1,1 +1,2 @@
 # sources of src/io
+list(APPEND SC_SOURCES src/io/scene.c src/io/output.c src/io/plot.c)

@@ -1,0 +1,304 @@
+/**
+ * @file io.h
+ * @brief Scenes (INI files naming a model, one task and its outputs),
+ *        atomic output files, CSV numbers and gnuplot plots.
+ *
+ * A scene is parsed and validated completely by sc_scene_load() before
+ * any work starts: unknown sections or keys, duplicate keys, malformed or
+ * non-finite numbers, values outside their range (the ranges of model
+ * parameters come from the model's table, models.h), missing required
+ * keys and a missing file are refused with one line of the form
+ *
+ *     FILE:LINE: [section] key = value out of range (valid: (lo, hi])
+ *
+ * (or `--set section.key=value: ...` for an override).  The keys of the
+ * `[task]` section are not fixed here: the caller passes one
+ * sc_task_type per task kind, each with its table of keys, so the same
+ * table drives validation, help texts and the documentation.
+ *
+ * Every function here is thread safe on distinct objects.  Nothing here
+ * prints; plotting runs the external program `gnuplot` with its output
+ * sent to a log file.
+ */
+#ifndef SLIPCONT_IO_H
+#define SLIPCONT_IO_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include "slipcont/common.h"
+#include "slipcont/map.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ------------------------------------------------------------------ */
+/* Key tables                                                          */
+
+/** The type of a scene key's value. */
+typedef enum {
+  SC_KEY_REAL,   /**< a finite number in [lo, hi] (open ends by flags) */
+  SC_KEY_INT,    /**< a decimal integer in [lo, hi] */
+  SC_KEY_CHOICE, /**< one of the '|'-separated words of `choices` */
+  SC_KEY_BOOL,   /**< yes | no */
+  SC_KEY_PARAM,  /**< the name of a parameter of the scene's model */
+  SC_KEY_TEXT,   /**< any non-empty text (a folder, ...) */
+} sc_key_type;
+
+/**
+ * One key of a scene section.  A key is required when `required` is 1;
+ * otherwise `def` is its default as text, or NULL when the default is
+ * derived from other keys (the doc says how).
+ */
+typedef struct {
+  const char *name;    /**< "from", "iterations", "seed" */
+  sc_key_type type;    /**< how the value is parsed and checked */
+  int required;        /**< 1: the scene must give it */
+  const char *def;     /**< default as text, or NULL */
+  double lo, hi;       /**< range of REAL and INT keys (hi may be HUGE_VAL) */
+  int lo_open;         /**< REAL: lo itself excluded */
+  int hi_open;         /**< REAL: hi itself excluded */
+  const char *choices; /**< CHOICE: "up|down|both" */
+  const char *doc;     /**< one line */
+} sc_key_info;
+
+/**
+ * @brief Write the valid values of @p k as text into @p buf: a range
+ * "(0, inf)" / "[1, 1000000]", the choices "up|down|both", "yes|no",
+ * "a parameter of the model" or "text".
+ * @return @p buf.
+ */
+char *sc_key_range_text(const sc_key_info *k, char *buf, size_t len);
+
+/**
+ * @brief Check the text @p value against @p k (parse, finiteness, range,
+ * choices; PARAM keys against @p m's parameter names, any name if @p m
+ * is NULL).
+ * @return SC_OK, or SC_EINVAL with `key = value ...(valid: ...)` in
+ *         @p msg.
+ */
+int sc_key_check(const sc_key_info *k, const char *value, const sc_map *m,
+                 sc_msg *msg);
+
+typedef struct sc_scene sc_scene;
+
+/**
+ * A task kind as far as scenes are concerned: its name (the value of
+ * `[task] kind`), a doc line, its keys, and an optional check of the
+ * relations between keys (e.g. `keep <= iterations`, `from` inside the
+ * range of the swept parameter), called once every key has passed its
+ * own check.  `check` reports with sc_scene_fail_key() and returns
+ * SC_OK or SC_EINVAL.
+ */
+typedef struct sc_task_type {
+  const char *kind;          /**< "sweep" */
+  const char *doc;           /**< one line */
+  const sc_key_info *keys;   /**< the [task] keys other than `kind` */
+  size_t nkeys;              /**< entries in keys */
+  int (*check)(const sc_scene *scene, sc_msg *msg); /**< or NULL */
+} sc_task_type;
+
+/* ------------------------------------------------------------------ */
+/* Scenes                                                              */
+
+/** How sc_scene_load() reads a scene; zero-initialise unused fields. */
+typedef struct {
+  /** Overrides "section.key=value", applied as if appended to the file
+   * (a key given in the file is replaced, not duplicated). */
+  const char *const *sets;
+  size_t nsets;               /**< entries in sets */
+  const char *out_dir;        /**< replaces [output] dir, or NULL */
+  const sc_task_type *const *tasks; /**< the task kinds known */
+  size_t ntasks;              /**< entries in tasks */
+} sc_scene_options;
+
+/** Longest scene file accepted, in bytes. */
+#define SC_SCENE_MAXBYTES (1 << 20)
+
+/**
+ * @brief Read, parse and validate the scene file @p path, and build the
+ * model instance it describes.
+ *
+ * Sections: `[model]` (`name`, then the model's parameters and options),
+ * `[task]` (`kind`, then the keys of that kind), `[accuracy]` (`preset`
+ * first, then fields by their sc_accuracy_set() names) and `[output]`
+ * (`dir`, `plot`).  The output folder is not touched here; see
+ * sc_output_prepare().
+ *
+ * @param opts overrides and task kinds; may be NULL (no task kinds: every
+ *        `[task]` key other than kind is refused).
+ * @param out the scene, owned by the caller (sc_scene_free()).
+ * @return SC_OK; SC_EINVAL with one line `FILE:LINE: [section] ...` in
+ *         @p msg; SC_EIO if the file cannot be read; SC_ENOMEM.
+ */
+int sc_scene_load(const char *path, const sc_scene_options *opts,
+                  sc_scene **out, sc_msg *msg);
+
+/**
+ * @brief As sc_scene_load() for a scene held in memory; @p name is used
+ * in messages in place of a file name.
+ */
+int sc_scene_parse(const char *name, const char *text,
+                   const sc_scene_options *opts, sc_scene **out,
+                   sc_msg *msg);
+
+/** @brief Release @p s and its model instance; NULL is accepted. */
+void sc_scene_free(sc_scene *s);
+
+/** The scene's file name (or the name given to sc_scene_parse()). */
+const char *sc_scene_name(const sc_scene *s);
+/** The scene's text as read (NUL-terminated). */
+const char *sc_scene_source(const sc_scene *s);
+/** The model instance, with every parameter, option and the accuracy of
+ * the scene applied; owned by the scene. */
+sc_map *sc_scene_map(const sc_scene *s);
+/** The accuracy of the scene (preset, then fields). */
+const sc_accuracy *sc_scene_accuracy(const sc_scene *s);
+/** The task kind of the scene (one of the options' tasks). */
+const sc_task_type *sc_scene_task(const sc_scene *s);
+/** The output folder: [output] dir, --out, or "out/STEM" where STEM is
+ * the scene file's name without folder and extension. */
+const char *sc_scene_output_dir(const sc_scene *s);
+/** [output] plot: 1 for yes (the default), 0 for no. */
+int sc_scene_plot(const sc_scene *s);
+
+/**
+ * @brief The effective text of a key: the scene's value if given, else
+ * the table default; NULL for a key that has neither or does not exist.
+ * @param section "model", "task", "accuracy" or "output".
+ */
+const char *sc_scene_value(const sc_scene *s, const char *section,
+                           const char *key);
+
+/** `[task]` key as a number (REAL or INT keys); NaN if absent. */
+double sc_scene_real(const sc_scene *s, const char *key);
+/** `[task]` key as an integer (INT keys); 0 if absent. */
+long sc_scene_int(const sc_scene *s, const char *key);
+/** `[task]` key as text (CHOICE, PARAM, TEXT); NULL if absent. */
+const char *sc_scene_text(const sc_scene *s, const char *key);
+/** `[task]` BOOL key: 1 for yes, 0 for no or absent. */
+int sc_scene_flag(const sc_scene *s, const char *key);
+
+/**
+ * @brief Where a key was set: "FILE:LINE", "--set section.key=value",
+ * "--out" or, for a key left at its default, the file name.
+ * @return @p buf.
+ */
+char *sc_scene_origin(const sc_scene *s, const char *section,
+                      const char *key, char *buf, size_t len);
+
+/**
+ * @brief Report a problem with a key, for sc_task_type.check: writes
+ * `ORIGIN: [section] ` followed by the formatted text into @p msg.
+ * @return SC_EINVAL.
+ */
+int sc_scene_fail_key(const sc_scene *s, const char *section,
+                      const char *key, sc_msg *msg, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 5, 6)))
+#endif
+    ;
+
+/**
+ * @brief The keys of the fixed sections "output" and "accuracy" (the
+ * latter holds `preset` only; its fields are those of common.h).
+ * @return the table, @p n set to its length; NULL for other sections.
+ */
+const sc_key_info *sc_scene_section_keys(const char *section, size_t *n);
+
+/* ------------------------------------------------------------------ */
+/* Output folders and atomic files                                      */
+
+/**
+ * @brief Make sure @p dir can receive the outputs.  With @p create 1,
+ * create it and its parents (mkdir -p) and prove it writable by creating
+ * and removing a probe file; with @p create 0 touch nothing and check
+ * that the nearest existing ancestor is a writable folder.
+ * @return SC_OK, or SC_EIO with `DIR: reason` in @p msg.
+ */
+int sc_output_prepare(const char *dir, int create, sc_msg *msg);
+
+/** A file being written under a temporary name (see sc_file_open()). */
+typedef struct sc_file sc_file;
+
+/**
+ * @brief Open `dir/name` for writing under a temporary name in the same
+ * folder (".name.XXXXXX"); sc_file_commit() renames it into place, so
+ * the final name never holds half a file.
+ * @return SC_OK, SC_EIO (message names the file and the reason) or
+ *         SC_ENOMEM.
+ */
+int sc_file_open(const char *dir, const char *name, sc_file **out,
+                 sc_msg *msg);
+
+/** The stream to write to. */
+FILE *sc_file_stream(sc_file *f);
+
+/**
+ * @brief Flush, sync, close and rename into place; frees @p f in every
+ * case (on failure the temporary file is removed).
+ * @return SC_OK or SC_EIO naming the file and the reason.
+ */
+int sc_file_commit(sc_file *f, sc_msg *msg);
+
+/** @brief Close and remove the temporary file, free @p f; NULL is
+ * accepted. */
+void sc_file_abort(sc_file *f);
+
+/**
+ * @brief Write @p x as CSV text: `%.17g`, or `nan`, `inf`, `-inf`.
+ */
+void sc_csv_double(FILE *f, double x);
+
+/* ------------------------------------------------------------------ */
+/* Plots                                                               */
+
+/**
+ * @brief Write the common head of a gnuplot script: the pngcairo
+ * terminal (1200 x 800), an output file that the variable `outfile`
+ * overrides (`gnuplot -e "outfile='x.png'" script.gp`), comma-separated
+ * data, a title and axis labels (gnuplot enhanced text: `Y_2` is a
+ * subscript).  Texts are quoted for gnuplot.
+ */
+void sc_plot_head(FILE *f, const char *png, const char *title,
+                  const char *xlabel, const char *ylabel);
+
+/** @brief Write @p text as a gnuplot single-quoted string. */
+void sc_plot_quote(FILE *f, const char *text);
+
+/**
+ * @brief A plot title listing the model's parameter values and options,
+ * e.g. "alpha = 2.9, beta = 1, phi = 1.25, driver moving" (the first
+ * option always, the others when not at their default; the model's doc
+ * line when nothing is left to list).
+ * @param skip a parameter to leave out (the one on an axis), or NULL.
+ * @return @p buf.
+ */
+char *sc_plot_title(const sc_map *m, const char *skip, char *buf,
+                    size_t len);
+
+/**
+ * @brief The axis label of a model parameter or state variable: "V" for
+ * bk2's v, "Y_2 - Y_1" for bk2's d, the name itself otherwise.
+ */
+const char *sc_plot_label(const sc_map *m, const char *name);
+
+/** @brief 1 if an executable `gnuplot` is on PATH, else 0. */
+int sc_plot_available(void);
+
+/**
+ * @brief Run `gnuplot -e "outfile='.PNG.tmp'" SCRIPT` with @p dir as the
+ * working folder, without a shell, its output sent to `SCRIPT.log`
+ * (removed on success), and rename the picture to @p png when gnuplot
+ * succeeded.
+ * @return SC_OK; SC_EIO if gnuplot is missing, failed (the message
+ *         quotes the last line of its log) or wrote no picture.
+ */
+int sc_plot_render(const char *dir, const char *script, const char *png,
+                   sc_msg *msg);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

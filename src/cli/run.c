@@ -1,0 +1,138 @@
+/* What a task may use while it runs: atomic files named in the notes,
+ * the head of summary.txt, plot declarations, notes and progress. */
+#define _POSIX_C_SOURCE 200809L
+
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "cli/tasks.h"
+
+int sc_cli_open(sc_cli_run *r, const char *name, sc_file **f) {
+  return sc_file_open(r->dir, name, f, r->msg);
+}
+
+int sc_cli_commit(sc_cli_run *r, const char *name, sc_file *f) {
+  int st = sc_file_commit(f, r->msg);
+  if (st == SC_OK) {
+    size_t n = strlen(r->written);
+    snprintf(r->written + n, sizeof r->written - n, "%s%s", n ? ", " : "",
+             name);
+  }
+  return st;
+}
+
+int sc_cli_add_plot(sc_cli_run *r, const char *script, const char *png) {
+  if (r->nplots == SC_CLI_MAXPLOTS)
+    return sc_fail(r->msg, SC_EINTERNAL, "too many plots (limit %d)",
+                   SC_CLI_MAXPLOTS);
+  snprintf(r->plot_script[r->nplots], sizeof r->plot_script[0], "%s", script);
+  snprintf(r->plot_png[r->nplots], sizeof r->plot_png[0], "%s", png);
+  r->nplots++;
+  return SC_OK;
+}
+
+void sc_cli_note(const sc_cli_run *r, const char *fmt, ...) {
+  if (r->quiet) return;
+  va_list ap;
+  va_start(ap, fmt);
+  fputs("slipcont: ", stderr);
+  vfprintf(stderr, fmt, ap);
+  fputc('\n', stderr);
+  va_end(ap);
+}
+
+void sc_cli_progress(const sc_cli_run *r, const char *what, size_t done,
+                     size_t total) {
+  if (r->quiet || !isatty(fileno(stderr))) return;
+  fprintf(stderr, "\rslipcont: %s %zu/%zu", what, done, total);
+  if (done >= total) fputc('\n', stderr);
+  fflush(stderr);
+}
+
+char *sc_cli_csv_text(char *text) {
+  for (char *p = text; *p; p++) {
+    if (*p == ',') *p = ';';
+    else if ((unsigned char)*p < 32 || *p == '"') *p = ' ';
+  }
+  return text;
+}
+
+/* The shortest %.Ng text that reads back as exactly @p x. */
+static const char *exact(double x, char *buf, size_t len) {
+  for (int prec = 15; prec <= 17; prec++) {
+    snprintf(buf, len, "%.*g", prec, x);
+    if (strtod(buf, NULL) == x) break;
+  }
+  return buf;
+}
+
+/* Every key of a section with its effective value and where it was set. */
+static void section_settings(FILE *f, const sc_scene *s, const char *section,
+                             const char *first, const sc_key_info *keys,
+                             size_t n) {
+  char where[SC_MSG_LEN];
+  fprintf(f, "[%s]\n", section);
+  if (first) {
+    const char *v = sc_scene_value(s, section, first);
+    fprintf(f, "  %-16s = %-24s ; %s\n", first, v ? v : "",
+            sc_scene_origin(s, section, first, where, sizeof where));
+  }
+  for (size_t i = 0; i < n; i++) {
+    const char *v = sc_scene_value(s, section, keys[i].name);
+    sc_scene_origin(s, section, keys[i].name, where, sizeof where);
+    int given = strcmp(where, sc_scene_name(s)) != 0;
+    fprintf(f, "  %-16s = %-24s ; %s\n", keys[i].name,
+            v ? v : "(derived)", given ? where : "default");
+  }
+}
+
+int sc_cli_summary_begin(sc_cli_run *r, sc_file **out) {
+  int st = sc_cli_open(r, "summary.txt", out);
+  if (st) return st;
+  FILE *f = sc_file_stream(*out);
+  const sc_scene *s = r->scene;
+  const sc_map *m = r->map;
+  const sc_model_type *t = sc_map_type(m);
+  char where[SC_MSG_LEN];
+  time_t now = time(NULL);
+  struct tm tm;
+  char stamp[64] = "";
+  if (gmtime_r(&now, &tm)) strftime(stamp, sizeof stamp, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  fprintf(f, "slipcont %s: %s\n", sc_scene_task(s)->kind, sc_scene_name(s));
+  fprintf(f, "written %s into %s\n\n", stamp, r->dir);
+  fputs("settings (value ; where it was set):\n", f);
+  fprintf(f, "[model]\n  %-16s = %-24s ; %s\n", "name", t->name,
+          sc_scene_origin(s, "model", "name", where, sizeof where));
+  for (size_t i = 0; i < t->nparam; i++) {
+    sc_scene_origin(s, "model", t->params[i].name, where, sizeof where);
+    char num[40];
+    fprintf(f, "  %-16s = %-24s ; %s\n", t->params[i].name,
+            exact(sc_map_get_param(m, i), num, sizeof num),
+            strcmp(where, sc_scene_name(s)) ? where : "default");
+  }
+  for (size_t i = 0; i < t->noption; i++) {
+    sc_scene_origin(s, "model", t->options[i].name, where, sizeof where);
+    fprintf(f, "  %-16s = %-24s ; %s\n", t->options[i].name,
+            sc_map_get_option(m, t->options[i].name),
+            strcmp(where, sc_scene_name(s)) ? where : "default");
+  }
+  const sc_task_type *tt = sc_scene_task(s);
+  section_settings(f, s, "task", "kind", tt->keys, tt->nkeys);
+  size_t n;
+  const sc_key_info *ak = sc_scene_section_keys("accuracy", &n);
+  section_settings(f, s, "accuracy", NULL, ak, n);
+  const sc_accuracy *acc = sc_scene_accuracy(s);
+  for (size_t i = 0; i < sc_accuracy_nfields(); i++) {
+    char num[40];
+    fprintf(f, "  %-16s = %s\n", sc_accuracy_field_name(i),
+            exact(sc_accuracy_field_value(acc, i), num, sizeof num));
+  }
+  fprintf(f, "[output]\n  %-16s = %s\n  %-16s = %s\n", "dir", r->dir,
+          "plot", sc_scene_plot(s) ? "yes" : "no");
+  fputs("\nresults:\n", f);
+  return SC_OK;
+}

@@ -1,0 +1,126 @@
+/* Task `map`: f^n on a grid of states, with its derivative, itinerary
+ * and, where it is undefined, the reason (fig 5.5). */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "cli/tasks.h"
+#include "slipcont/analysis.h"
+
+static const sc_key_info map_keys[] = {
+    {"iterate", SC_KEY_INT, 0, "1", 1, 1000, 0, 0, NULL,
+     "n: the map drawn is f^n, the n-th iterate"},
+    {"from", SC_KEY_REAL, 1, NULL, -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
+     "first state of the grid (bk2: d = Y2 - Y1)"},
+    {"to", SC_KEY_REAL, 1, NULL, -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
+     "last state of the grid"},
+    {"steps", SC_KEY_INT, 0, "1001", 1, 100000000, 0, 0, NULL,
+     "grid points, both ends included (1: from only)"},
+};
+
+/* Short reasons are enough in the CSV: the first failure's full message
+ * goes to the summary. */
+static int map_run(sc_cli_run *r) {
+  const sc_scene *s = r->scene;
+  sc_map *m = r->map;
+  int n = (int)sc_scene_int(s, "iterate");
+  double from = sc_scene_real(s, "from"), to = sc_scene_real(s, "to");
+  size_t steps = (size_t)sc_scene_int(s, "steps");
+  sc_file *csv = NULL, *sum = NULL, *gp = NULL;
+  int st = sc_cli_open(r, "map.csv", &csv);
+  if (st) return st;
+  FILE *f = sc_file_stream(csv);
+  fputs("d,f,df,itinerary,status\n", f);
+  size_t nundef = 0, nok = 0;
+  double fmin = HUGE_VAL, fmax = -HUGE_VAL;
+  char first_reason[SC_MSG_LEN] = "";
+  sc_map_value v;
+  sc_msg em;
+  for (size_t i = 0; i < steps; i++) {
+    double d = sc_grid_point(from, to, steps, i);
+    st = sc_map_iterate(m, d, n, SC_EVAL_DERIV | SC_EVAL_ITINERARY, &v, &em);
+    sc_csv_double(f, d);
+    fputc(',', f);
+    if (st == SC_OK) {
+      sc_csv_double(f, v.f);
+      fputc(',', f);
+      sc_csv_double(f, v.dfdd);
+      fprintf(f, ",%s,ok\n", sc_cli_csv_text(v.itinerary));
+      fmin = fmin < v.f ? fmin : v.f;
+      fmax = fmax > v.f ? fmax : v.f;
+      nok++;
+    } else if (st == SC_EUNDEF || st == SC_ENOCONV || st == SC_ENONFINITE) {
+      if (!nundef)
+        snprintf(first_reason, sizeof first_reason, "at %.17g: %.400s", d,
+                 em.text);
+      nundef++;
+      fprintf(f, "nan,nan,,%s\n", sc_cli_csv_text(em.text));
+    } else {
+      sc_file_abort(csv);
+      return sc_fail(r->msg, st, "map at %s = %.17g: %s",
+                     sc_map_type(m)->state_name, d, em.text);
+    }
+    sc_cli_progress(r, "map", i + 1, steps);
+  }
+  if ((st = sc_cli_commit(r, "map.csv", csv))) return st;
+
+  if ((st = sc_cli_summary_begin(r, &sum))) return st;
+  f = sc_file_stream(sum);
+  fprintf(f, "  f^%d evaluated at %zu points: %zu defined, %zu undefined\n", n,
+          steps, nok, nundef);
+  if (nok) fprintf(f, "  range of f^%d: [%.17g, %.17g]\n", n, fmin, fmax);
+  if (nundef) fprintf(f, "  first undefined point %s\n", first_reason);
+  if (strcmp(sc_map_type(m)->name, "bk2") == 0) {
+    double a = sc_map_get_param(m, (size_t)sc_map_param_index(m, "alpha"));
+    double b = sc_map_get_param(m, (size_t)sc_map_param_index(m, "beta"));
+    fprintf(f, "  d* = (beta - 1)/(1 + 2 alpha) = %.17g\n", sc_bk2_dstar(a, b));
+  }
+  if ((st = sc_cli_commit(r, "summary.txt", sum))) return st;
+
+  if ((st = sc_cli_open(r, "map.gp", &gp))) return st;
+  f = sc_file_stream(gp);
+  char title[512], ylabel[64], xlabel[128];
+  const char *state = sc_map_type(m)->state_name;
+  snprintf(xlabel, sizeof xlabel, "%s", sc_plot_label(m, state));
+  if (n == 1) snprintf(ylabel, sizeof ylabel, "f(%s)", state);
+  else snprintf(ylabel, sizeof ylabel, "f^{%d}(%s)", n, state);
+  sc_plot_title(m, NULL, title, sizeof title);
+  sc_plot_head(f, "map.png", title, xlabel, ylabel);
+  fputs("set key inside left top box opaque\n", f);
+  if (strcmp(sc_map_type(m)->name, "bk2") == 0) {
+    double a = sc_map_get_param(m, (size_t)sc_map_param_index(m, "alpha"));
+    double b = sc_map_get_param(m, (size_t)sc_map_param_index(m, "beta"));
+    fputs("# d*: both blocks reach their threshold together\n", f);
+    fprintf(f, "dstar = %.17g\n", sc_bk2_dstar(a, b));
+    fputs("set arrow 1 from dstar, graph 0 to dstar, graph 1 nohead "
+          "dt 2 lc rgb '#888888'\n",
+          f);
+    fputs("set label 1 'd*' at dstar, graph 0.97 offset 0.5,0 tc rgb "
+          "'#666666'\n",
+          f);
+  }
+  fputs("# points, not lines, so that jumps of the map stay open\n", f);
+  fprintf(f,
+          "plot 'map.csv' using 1:2 skip 1 with points pt 7 ps 0.35 "
+          "lc rgb '#1f4e9e' title '%s', \\\n"
+          "     x with lines dt 2 lc rgb '#999999' title 'diagonal'\n",
+          n == 1 ? "f" : "f^n");
+  if ((st = sc_cli_commit(r, "map.gp", gp))) return st;
+  if ((st = sc_cli_add_plot(r, "map.gp", "map.png"))) return st;
+  if (nundef)
+    sc_cli_note(r, "map undefined at %zu of %zu points (first %s)", nundef,
+                steps, first_reason);
+  return SC_OK;
+}
+
+const sc_cli_task sc_cli_task_map = {
+    .type = {.kind = "map",
+             .doc = "the event map f^n on a grid of states, with f', "
+                    "itineraries and undefined points",
+             .keys = map_keys,
+             .nkeys = sizeof map_keys / sizeof map_keys[0],
+             .check = NULL},
+    .outputs = "map.csv (d,f,df,itinerary,status), summary.txt, map.gp, "
+               "map.png",
+    .run = map_run,
+};

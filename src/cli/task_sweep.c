@@ -1,0 +1,234 @@
+/* Task `sweep`: a brute-force one-parameter bifurcation diagram
+ * (figs 5.6, 5.8, 5.12), computed by sc_sweep (analysis.h). */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "cli/tasks.h"
+#include "slipcont/analysis.h"
+
+static const sc_key_info sweep_keys[] = {
+    {"parameter", SC_KEY_PARAM, 1, NULL, 0, 0, 0, 0, NULL,
+     "the model parameter swept (bk2: alpha, beta, phi or v)"},
+    {"from", SC_KEY_REAL, 1, NULL, -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
+     "first grid value (inside the parameter's range)"},
+    {"to", SC_KEY_REAL, 1, NULL, -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
+     "last grid value (inside the parameter's range; may be below from)"},
+    {"steps", SC_KEY_INT, 0, "200", 1, 10000000, 0, 0, NULL,
+     "grid points, both ends included (1: from only)"},
+    {"iterations", SC_KEY_INT, 0, "300", 1, 100000000, 0, 0, NULL,
+     "map iterates at each parameter value"},
+    {"keep", SC_KEY_INT, 0, "100", 1, 100000000, 0, 0, NULL,
+     "last iterates kept and drawn (<= iterations)"},
+    {"d0", SC_KEY_REAL, 1, NULL, -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
+     "initial state (bk2: d = Y2 - Y1 of the first global stick phase)"},
+    {"direction", SC_KEY_CHOICE, 0, NULL, 0, 0, 0, 0, "up|down|both",
+     "up: increasing parameter, down: decreasing, both: up then down "
+     "(default: from towards to)"},
+    {"seed", SC_KEY_CHOICE, 0, "fixed", 0, 0, 0, 0, "fixed|previous",
+     "each value starts from d0 (fixed; parallel), or from the final state "
+     "of the previous value (previous)"},
+};
+
+/* Most kept values held in memory (8 bytes each): 4 GiB. */
+#define SWEEP_MAX_VALUES 536870912.0
+
+static int sweep_check(const sc_scene *s, sc_msg *msg) {
+  const sc_map *m = sc_scene_map(s);
+  const char *name = sc_scene_text(s, "parameter");
+  const sc_param_info *pi = &sc_map_type(m)->params[sc_map_param_index(m, name)];
+  /* The range is the model table's (never a copy of it). */
+  sc_key_info range = {pi->name, SC_KEY_REAL, 0, NULL, pi->lo, pi->hi,
+                       pi->lo_open, pi->hi_open, NULL, NULL};
+  char text[128];
+  sc_key_range_text(&range, text, sizeof text);
+  const char *ends[] = {"from", "to"};
+  for (int k = 0; k < 2; k++) {
+    if (sc_param_check(pi, sc_scene_real(s, ends[k]), NULL))
+      return sc_scene_fail_key(s, "task", ends[k], msg,
+                               "%s = %s out of range of %s (valid: %s)",
+                               ends[k], sc_scene_text(s, ends[k]), name, text);
+  }
+  long it = sc_scene_int(s, "iterations"), keep = sc_scene_int(s, "keep");
+  if (keep > it)
+    return sc_scene_fail_key(s, "task", "keep", msg,
+                             "keep = %ld is more than iterations = %ld "
+                             "(valid: [1, iterations])",
+                             keep, it);
+  const char *dir = sc_scene_text(s, "direction");
+  double passes = dir && strcmp(dir, "both") == 0 ? 2 : 1;
+  double values = passes * (double)sc_scene_int(s, "steps") * (double)keep;
+  if (values > SWEEP_MAX_VALUES)
+    return sc_scene_fail_key(s, "task", "steps", msg,
+                             "steps x keep%s = %.0f values is too many "
+                             "(valid: at most %.0f)",
+                             passes > 1 ? " x 2" : "", values,
+                             SWEEP_MAX_VALUES);
+  return SC_OK;
+}
+
+static int on_progress(void *ctx, size_t done, size_t total) {
+  const sc_cli_run *r = ctx;
+  /* Redraw about 200 times per sweep at most. */
+  size_t every = total / 200 + 1;
+  if (done % every == 0 || done == total)
+    sc_cli_progress(r, "sweep", done, total);
+  return 0;
+}
+
+static const char *dir_name(int d) { return d == SC_SWEEP_DOWN ? "down" : "up"; }
+
+/* Runs of equal period along each pass, for the summary. */
+static void write_findings(FILE *f, const sc_sweep *sw, const char *pname) {
+  size_t n = sc_sweep_npoints(sw);
+  int seen[SC_SWEEP_PERIOD_MAX + 2] = {0};
+  sc_sweep_point a, b;
+  fprintf(f, "  parameter values: %zu points; map undefined at %zu\n", n,
+          sc_sweep_nundefined(sw));
+  if (sc_sweep_nundefined(sw))
+    fprintf(f, "  first undefined: %s\n", sc_sweep_undefined_reason(sw));
+  fputs("  period by parameter range (0: none found up to 16, i.e. chaos "
+        "or a longer period; -1: map undefined):\n",
+        f);
+  size_t i = 0;
+  while (i < n) {
+    sc_sweep_get_point(sw, i, &a);
+    size_t j = i;
+    while (j + 1 < n) {
+      sc_sweep_get_point(sw, j + 1, &b);
+      if (b.direction != a.direction || b.period != a.period) break;
+      j++;
+    }
+    sc_sweep_get_point(sw, j, &b);
+    fprintf(f, "    %-4s %s from %.10g to %.10g (%zu values): period %d\n",
+            dir_name(a.direction), pname, a.p, b.p, j - i + 1, a.period);
+    seen[a.period + 1] = 1;
+    i = j + 1;
+  }
+  fputs("  periods seen:", f);
+  for (int p = -1; p <= SC_SWEEP_PERIOD_MAX; p++)
+    if (seen[p + 1]) fprintf(f, " %d", p);
+  fputc('\n', f);
+}
+
+static int sweep_run(sc_cli_run *r) {
+  const sc_scene *s = r->scene;
+  sc_map *m = r->map;
+  const char *pname = sc_scene_text(s, "parameter");
+  sc_sweep_spec sp = {0};
+  sp.param = (size_t)sc_map_param_index(m, pname);
+  sp.from = sc_scene_real(s, "from");
+  sp.to = sc_scene_real(s, "to");
+  sp.steps = (size_t)sc_scene_int(s, "steps");
+  sp.iterations = (int)sc_scene_int(s, "iterations");
+  sp.keep = (int)sc_scene_int(s, "keep");
+  sp.d0 = sc_scene_real(s, "d0");
+  const char *dir = sc_scene_text(s, "direction");
+  if (!dir) sp.direction = sp.to >= sp.from ? SC_SWEEP_UP : SC_SWEEP_DOWN;
+  else if (strcmp(dir, "both") == 0) sp.direction = SC_SWEEP_BOTH;
+  else if (strcmp(dir, "down") == 0) sp.direction = SC_SWEEP_DOWN;
+  else sp.direction = SC_SWEEP_UP;
+  sp.seed = strcmp(sc_scene_text(s, "seed"), "previous") == 0
+                ? SC_SEED_PREVIOUS
+                : SC_SEED_FIXED;
+  sp.progress = on_progress;
+  sp.progress_ctx = r;
+
+  sc_sweep *sw = NULL;
+  int st = sc_sweep_alloc(m, &sp, &sw, r->msg);
+  if (st) return st;
+  st = sc_sweep_run(sw, r->msg);
+  if (st) {
+    sc_sweep_free(sw);
+    return st;
+  }
+
+  sc_file *csv = NULL, *sum = NULL, *gp = NULL;
+  if ((st = sc_cli_open(r, "sweep.csv", &csv))) goto done;
+  FILE *f = sc_file_stream(csv);
+  fprintf(f, "%s,d,period,direction\n", pname);
+  size_t n = sc_sweep_npoints(sw);
+  sc_sweep_point pt;
+  for (size_t i = 0; i < n; i++) {
+    sc_sweep_get_point(sw, i, &pt);
+    if (pt.status != SC_OK) {
+      sc_csv_double(f, pt.p);
+      fprintf(f, ",nan,%d,%s\n", SC_SWEEP_UNDEFINED, dir_name(pt.direction));
+      continue;
+    }
+    for (int k = 0; k < pt.nd; k++) {
+      sc_csv_double(f, pt.p);
+      fputc(',', f);
+      sc_csv_double(f, pt.d[k]);
+      fprintf(f, ",%d,%s\n", pt.period, dir_name(pt.direction));
+    }
+  }
+  st = sc_cli_commit(r, "sweep.csv", csv);
+  csv = NULL;
+  if (st) goto done;
+
+  if ((st = sc_cli_summary_begin(r, &sum))) goto done;
+  write_findings(sc_file_stream(sum), sw, pname);
+  fprintf(sc_file_stream(sum), "  map evaluations: %lu\n", sc_sweep_nevals(sw));
+  st = sc_cli_commit(r, "summary.txt", sum);
+  sum = NULL;
+  if (st) goto done;
+
+  if ((st = sc_cli_open(r, "sweep.gp", &gp))) goto done;
+  f = sc_file_stream(gp);
+  char title[512], key[2][96];
+  const char *xl = sc_plot_label(m, pname);
+  sc_plot_title(m, pname, title, sizeof title);
+  sc_plot_head(f, "sweep.png", title, xl,
+               sc_plot_label(m, sc_map_type(m)->state_name));
+  fprintf(f, "set xrange [%.17g:%.17g]\n", fmin(sp.from, sp.to),
+          fmax(sp.from, sp.to));
+  snprintf(key[0], sizeof key[0], "increasing %s", xl);
+  snprintf(key[1], sizeof key[1], "decreasing %s", xl);
+  fputs("set key inside right top box opaque\n", f);
+  fputs("# column 4 is the direction of the pass: up or down\n", f);
+  fputs("up(c)   = strcol(4) eq 'up'   ? column(c) : NaN\n", f);
+  fputs("down(c) = strcol(4) eq 'down' ? column(c) : NaN\n", f);
+  fputs("plot ", f);
+  int first = 1;
+  if (sp.direction != SC_SWEEP_DOWN) {
+    fputs("'sweep.csv' skip 1 using 1:(up(2)) with points pt 7 ps 0.25 "
+          "lc rgb '#1f4e9e' title ",
+          f);
+    sc_plot_quote(f, key[0]);
+    first = 0;
+  }
+  if (sp.direction != SC_SWEEP_UP) {
+    if (!first) fputs(", \\\n     ", f);
+    fputs("'sweep.csv' skip 1 using 1:(down(2)) with points pt 7 ps 0.18 "
+          "lc rgb '#d62728' title ",
+          f);
+    sc_plot_quote(f, key[1]);
+  }
+  fputc('\n', f);
+  st = sc_cli_commit(r, "sweep.gp", gp);
+  gp = NULL;
+  if (st) goto done;
+  st = sc_cli_add_plot(r, "sweep.gp", "sweep.png");
+  if (sc_sweep_nundefined(sw))
+    sc_cli_note(r, "map undefined at %zu parameter values (first: %s)",
+                sc_sweep_nundefined(sw), sc_sweep_undefined_reason(sw));
+done:
+  sc_file_abort(csv);
+  sc_file_abort(sum);
+  sc_file_abort(gp);
+  sc_sweep_free(sw);
+  return st;
+}
+
+const sc_cli_task sc_cli_task_sweep = {
+    .type = {.kind = "sweep",
+             .doc = "brute-force one-parameter bifurcation diagram: iterate "
+                    "at each parameter value, keep the tail, find its period",
+             .keys = sweep_keys,
+             .nkeys = sizeof sweep_keys / sizeof sweep_keys[0],
+             .check = sweep_check},
+    .outputs = "sweep.csv (PARAMETER,d,period,direction), summary.txt, "
+               "sweep.gp, sweep.png",
+    .run = sweep_run,
+};

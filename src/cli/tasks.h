@@ -1,0 +1,112 @@
+/* The tasks of the `slipcont` program, and what a task may use while it
+ * runs.
+ *
+ * Registration contract (how to add a task kind, e.g. `chart`):
+ *
+ * 1. Write src/cli/task_chart.c defining one constant
+ *
+ *        const sc_cli_task sc_cli_task_chart = {
+ *            .type = {.kind = "chart", .doc = "...", .keys = chart_keys,
+ *                     .nkeys = sizeof chart_keys / sizeof chart_keys[0],
+ *                     .check = chart_check},
+ *            .outputs = "chart.csv (x,y,period), chart.gp/png",
+ *            .run = chart_run,
+ *        };
+ *
+ *    - `.type.kind` is the value of `[task] kind` (it may contain '-',
+ *      e.g. "fixed-point"; the C name uses '_').
+ *    - `.type.keys` is the one table of the task's `[task]` keys (name,
+ *      type, required or default, range, doc; io.h sc_key_info).  Scene
+ *      validation, `slipcont help KIND`, `slipcont keys --markdown` and
+ *      docs/guide.md are all generated from it, so a key exists nowhere
+ *      else.  Do not list `kind` itself.
+ *    - `.type.check` (may be NULL) checks relations between keys once
+ *      each key has passed its own check (`keep <= iterations`, `from`
+ *      inside the range of the swept parameter: take ranges from the
+ *      model's table with sc_param_check(), never hard-code them) and
+ *      reports with sc_scene_fail_key() so that the message names the
+ *      file, line and key.  It must not compute or write anything.
+ *    - `.run` does the work (see sc_cli_run below): it writes every file
+ *      through sc_cli_open()/sc_cli_commit() (atomic), writes
+ *      summary.txt with sc_cli_summary_begin(), declares each gnuplot
+ *      script with sc_cli_add_plot() (main renders them afterwards when
+ *      `[output] plot = yes`), prints to stderr only through
+ *      sc_cli_note()/sc_cli_progress(), and returns SC_OK or an error
+ *      status with r->msg filled (the program then exits with status 1).
+ * 2. Add one line `X(chart)` to SC_CLI_TASK_LIST in src/cli/tasks.c.
+ * 3. Add src/cli/task_chart.c to src/cli/sources.cmake.
+ * 4. Regenerate the key tables of docs/guide.md
+ *    (`slipcont keys --markdown`, between the markers) and describe the
+ *    task's outputs there; the test `cli_guide_keys` compares them.
+ */
+#ifndef SC_CLI_TASKS_H
+#define SC_CLI_TASKS_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include "slipcont/io.h"
+#include "slipcont/map.h"
+
+/** Most plots one task may declare. */
+#define SC_CLI_MAXPLOTS 8
+
+/** Everything a task may use while it runs. */
+typedef struct sc_cli_run {
+  const sc_scene *scene; /**< the validated scene */
+  sc_map *map;           /**< its model instance (sc_scene_map()) */
+  const char *dir;       /**< output folder: exists and is writable */
+  int quiet;             /**< 1: no progress or notes on stderr */
+  sc_msg *msg;           /**< where run() explains a failure */
+  size_t nplots;         /**< plots declared so far */
+  char plot_script[SC_CLI_MAXPLOTS][64]; /**< "sweep.gp" */
+  char plot_png[SC_CLI_MAXPLOTS][64];    /**< "sweep.png" */
+  char written[1024];    /**< names of the files written, for the notes */
+} sc_cli_run;
+
+/** A task kind of the program: see the contract above. */
+typedef struct sc_cli_task {
+  sc_task_type type;   /**< kind, doc, keys, check (io.h) */
+  const char *outputs; /**< the files it writes, one line */
+  int (*run)(sc_cli_run *r);
+} sc_cli_task;
+
+/** Number of registered tasks; sc_cli_task_get(i) lists them. */
+size_t sc_cli_task_count(void);
+/** Registered task @p i, or NULL. */
+const sc_cli_task *sc_cli_task_get(size_t i);
+/** Registered task by kind, or NULL. */
+const sc_cli_task *sc_cli_task_find(const char *kind);
+/** The scene-level descriptions of all tasks, for sc_scene_options. */
+const sc_task_type *const *sc_cli_task_types(size_t *n);
+
+/** Open `dir/name` atomically (sc_file_open()); message into r->msg. */
+int sc_cli_open(sc_cli_run *r, const char *name, sc_file **f);
+/** Commit a file opened with sc_cli_open() and remember its name. */
+int sc_cli_commit(sc_cli_run *r, const char *name, sc_file *f);
+
+/**
+ * Open summary.txt and write its head: the scene, the overrides, and
+ * every effective setting of every section (defaults included).  The task
+ * then writes its findings under "results:" and commits with
+ * sc_cli_commit(r, "summary.txt", f).
+ */
+int sc_cli_summary_begin(sc_cli_run *r, sc_file **f);
+
+/** Declare a gnuplot script (already written) and the PNG it makes. */
+int sc_cli_add_plot(sc_cli_run *r, const char *script, const char *png);
+
+/** A note on stderr ("slipcont: ...") unless r->quiet. */
+void sc_cli_note(const sc_cli_run *r, const char *fmt, ...)
+    __attribute__((format(printf, 2, 3)));
+
+/** Progress on stderr for a terminal, unless r->quiet: "what: done/total",
+ * redrawn in place; done == total ends the line. */
+void sc_cli_progress(const sc_cli_run *r, const char *what, size_t done,
+                     size_t total);
+
+/** Replace ',' by ';' and control characters by ' ' so that @p text can
+ * be one CSV field; returns @p text. */
+char *sc_cli_csv_text(char *text);
+
+#endif

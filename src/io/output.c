@@ -1,0 +1,188 @@
+/* Output folders and atomic files: every result is written under a
+ * temporary name in its final folder and renamed into place once
+ * complete, so a reader never sees half a file under a result's name. */
+#define _POSIX_C_SOURCE 200809L
+
+#include <errno.h>
+#include <fcntl.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "slipcont/io.h"
+
+/* Create @p path and its parents (mkdir -p); errno on failure. */
+static int mkdir_p(const char *path) {
+  size_t n = strlen(path);
+  char *buf = malloc(n + 1);
+  if (!buf) return ENOMEM;
+  memcpy(buf, path, n + 1);
+  int err = 0;
+  for (size_t i = 1; i <= n && !err; i++) {
+    if (buf[i] != '/' && buf[i] != '\0') continue;
+    if (buf[i - 1] == '/') continue; /* "a//b" */
+    char c = buf[i];
+    buf[i] = '\0';
+    if (mkdir(buf, 0777) != 0) {
+      struct stat sb;
+      if (errno != EEXIST) err = errno;
+      else if (stat(buf, &sb) != 0) err = errno;
+      else if (!S_ISDIR(sb.st_mode)) err = ENOTDIR;
+    }
+    buf[i] = c;
+  }
+  free(buf);
+  return err;
+}
+
+/* The nearest existing ancestor of @p path (or path itself) must be a
+ * writable folder; nothing is created. */
+static int check_ancestor(const char *path, sc_msg *msg) {
+  size_t n = strlen(path);
+  char *buf = malloc(n + 2);
+  if (!buf) return sc_fail(msg, SC_ENOMEM, "%s: out of memory", path);
+  memcpy(buf, path, n + 1);
+  int st = SC_OK;
+  for (;;) {
+    struct stat sb;
+    if (stat(buf, &sb) == 0) {
+      if (!S_ISDIR(sb.st_mode))
+        st = sc_fail(msg, SC_EIO,
+                     "%s: cannot create the output folder: %s is not a "
+                     "folder",
+                     path, buf);
+      else if (access(buf, W_OK | X_OK) != 0)
+        st = sc_fail(msg, SC_EIO,
+                     "%s: cannot create the output folder: %s is not "
+                     "writable (%s)",
+                     path, buf, strerror(errno));
+      break;
+    }
+    if (errno != ENOENT) {
+      st = sc_fail(msg, SC_EIO, "%s: cannot create the output folder: %s (%s)",
+                   path, buf, strerror(errno));
+      break;
+    }
+    char *slash = strrchr(buf, '/');
+    while (slash && slash > buf && slash[1] == '\0') {
+      *slash = '\0';
+      slash = strrchr(buf, '/');
+    }
+    if (!slash) {
+      memcpy(buf, ".", 2);
+    } else if (slash == buf) {
+      buf[1] = '\0';
+    } else {
+      *slash = '\0';
+    }
+  }
+  free(buf);
+  return st;
+}
+
+int sc_output_prepare(const char *dir, int create, sc_msg *msg) {
+  if (!dir || !dir[0])
+    return sc_fail(msg, SC_EIO, "output folder: empty name");
+  if (!create) return check_ancestor(dir, msg);
+  int err = mkdir_p(dir);
+  if (err)
+    return sc_fail(msg, SC_EIO, "%s: cannot create the output folder (%s)", dir,
+                   strerror(err));
+  /* Prove it writable: permissions alone do not tell (root, read-only
+   * mounts). */
+  size_t n = strlen(dir);
+  char *probe = malloc(n + 32);
+  if (!probe) return sc_fail(msg, SC_ENOMEM, "%s: out of memory", dir);
+  snprintf(probe, n + 32, "%s/.slipcont-probe.XXXXXX", dir);
+  int fd = mkstemp(probe);
+  if (fd < 0) {
+    int e = errno;
+    free(probe);
+    return sc_fail(msg, SC_EIO, "%s: output folder not writable (%s)", dir,
+                   strerror(e));
+  }
+  close(fd);
+  unlink(probe);
+  free(probe);
+  return SC_OK;
+}
+
+struct sc_file {
+  FILE *f;
+  char *tmp;   /* dir/.name.XXXXXX */
+  char *final; /* dir/name */
+};
+
+int sc_file_open(const char *dir, const char *name, sc_file **out,
+                 sc_msg *msg) {
+  *out = NULL;
+  sc_file *w = calloc(1, sizeof *w);
+  size_t n = strlen(dir) + strlen(name) + 16;
+  if (!w || !(w->tmp = malloc(n)) || !(w->final = malloc(n))) goto nomem;
+  snprintf(w->final, n, "%s/%s", dir, name);
+  snprintf(w->tmp, n, "%s/.%s.XXXXXX", dir, name);
+  int fd = mkstemp(w->tmp);
+  if (fd < 0) {
+    int e = errno;
+    free(w->tmp);
+    free(w->final);
+    free(w);
+    return sc_fail(msg, SC_EIO, "%s/%s: cannot create (%s)", dir, name,
+                   strerror(e));
+  }
+  /* mkstemp makes the file private; results are ordinary files. */
+  fchmod(fd, 0644);
+  w->f = fdopen(fd, "w");
+  if (!w->f) {
+    close(fd);
+    unlink(w->tmp);
+    goto nomem;
+  }
+  *out = w;
+  return SC_OK;
+nomem:
+  if (w) {
+    free(w->tmp);
+    free(w->final);
+  }
+  free(w);
+  return sc_fail(msg, SC_ENOMEM, "%s/%s: out of memory", dir, name);
+}
+
+FILE *sc_file_stream(sc_file *f) { return f->f; }
+
+int sc_file_commit(sc_file *w, sc_msg *msg) {
+  int err = 0;
+  if (fflush(w->f) != 0 || ferror(w->f)) err = errno ? errno : EIO;
+  if (!err && fsync(fileno(w->f)) != 0) err = errno;
+  if (fclose(w->f) != 0 && !err) err = errno ? errno : EIO;
+  w->f = NULL;
+  if (!err && rename(w->tmp, w->final) != 0) err = errno;
+  int st = SC_OK;
+  if (err) {
+    unlink(w->tmp);
+    st = sc_fail(msg, SC_EIO, "%s: write failed (%s)", w->final, strerror(err));
+  }
+  free(w->tmp);
+  free(w->final);
+  free(w);
+  return st;
+}
+
+void sc_file_abort(sc_file *w) {
+  if (!w) return;
+  if (w->f) fclose(w->f);
+  unlink(w->tmp);
+  free(w->tmp);
+  free(w->final);
+  free(w);
+}
+
+void sc_csv_double(FILE *f, double x) {
+  if (isnan(x)) fputs("nan", f);
+  else if (isinf(x)) fputs(x > 0 ? "inf" : "-inf", f);
+  else fprintf(f, "%.17g", x);
+}
