@@ -692,6 +692,109 @@ static void test_solve_driver(void) {
   sc_branch_free(b);
 }
 
+
+/* ------------------------------------------------------------------ */
+/* Multiple shooting with a sparse Jacobian                             */
+/* ------------------------------------------------------------------ */
+
+/* A period-m orbit of the logistic map as m unknowns: u = (x_0 .. x_(m-1),
+ * r), F_i = f(x_i) - x_(i+1 mod m).  The Jacobian is cyclic bidiagonal
+ * plus the parameter column, given as a CSC pattern: column j holds rows
+ * j - 1 (the -1 of F_(j-1)) and j (f'(x_j)), sorted; column m all rows. */
+enum { SHOOT_MAXM = 16 };
+typedef struct {
+  int m;
+  int cp[SHOOT_MAXM + 2];
+  int ri[3 * SHOOT_MAXM];
+} shoot_ctx;
+
+static int shoot_f(const double *u, double *F, void *user) {
+  const shoot_ctx *c = user;
+  double r = u[c->m];
+  for (int i = 0; i < c->m; i++)
+    F[i] = r * u[i] * (1 - u[i]) - u[(i + 1) % c->m];
+  return 0;
+}
+
+static int shoot_jac(const double *u, double *J, void *user) {
+  const shoot_ctx *c = user;
+  int m = c->m;
+  double r = u[m];
+  for (int j = 0; j < m; j++)
+    for (int k = c->cp[j]; k < c->cp[j + 1]; k++)
+      J[k] = c->ri[k] == j ? r * (1 - 2 * u[j]) : -1;
+  for (int k = c->cp[m]; k < c->cp[m + 1]; k++) {
+    int i = c->ri[k];
+    J[k] = u[i] * (1 - u[i]);
+  }
+  return 0;
+}
+
+static int shoot_test(const double *u, const double *t, double *psi,
+                      void *user) {
+  const shoot_ctx *c = user;
+  (void)t;
+  double mult = 1;
+  for (int i = 0; i < c->m; i++) mult *= u[c->m] * (1 - 2 * u[i]);
+  psi[0] = mult + 1; /* multiplier -1: flip */
+  return 0;
+}
+
+static void test_shooting(const sc_linsolve_type *ls, int m, double r0,
+                          double rref) {
+  printf("--- multiple shooting, period %d, sparse Jacobian (%s)\n", m,
+         sc_linsolve_type_name(ls));
+  shoot_ctx c = {.m = m};
+  int k = 0;
+  for (int j = 0; j < m; j++) {
+    c.cp[j] = k;
+    int lo = j == 0 ? j : j - 1, hi = j == 0 ? m - 1 : j;
+    c.ri[k++] = lo;
+    if (hi != lo) c.ri[k++] = hi;
+  }
+  c.cp[m] = k;
+  for (int i = 0; i < m; i++) c.ri[k++] = i;
+  c.cp[m + 1] = k;
+  sc_cont_problem pb = {.n = (size_t)m, .f = shoot_f, .jac = shoot_jac,
+                        .jac_colptr = c.cp, .jac_rowind = c.ri, .ntest = 1,
+                        .test = shoot_test, .user = &c};
+  sc_cont_settings set;
+  sc_cont_settings_default(&set);
+  set.h0 = 1e-3;
+  set.hmax = 1e-2;
+  set.pmax = 3.6;
+  set.linsolve = ls;
+  sc_accuracy acc = acc_default();
+  sc_branch *b;
+  sc_msg msg = {""};
+  int st = sc_branch_alloc(&pb, &set, &acc, &b, &msg);
+  tu_int("shooting branch allocated", st, SC_OK);
+  if (st) {
+    printf("  %s\n", msg.text);
+    return;
+  }
+  sc_map *map;
+  sc_map_alloc("logistic", NULL, &map, &msg);
+  double u0[SHOOT_MAXM + 1];
+  u0[0] = attractor_point(map, r0, 20000);
+  sc_map_free(map);
+  for (int i = 1; i < m; i++) u0[i] = r0 * u0[i - 1] * (1 - u0[i - 1]);
+  u0[m] = r0;
+  st = sc_branch_set(b, u0, &msg);
+  while (st == SC_OK || st == SC_CONTINUE) st = sc_branch_step(b, &msg);
+  tu_int("shooting: flip located", st, SC_SPECIAL);
+  /* Same system as the period-m branch of f^m, written as m equations: the
+   * same 1e-13 (see test_cascade). */
+  tu_close("shooting: flip parameter", sc_branch_point(b)[m], rref, 1e-13);
+  const sc_linsolve *l = sc_branch_linsolve(b);
+  printf("  factor %lu, refactor %lu, solves %lu, Newton %lu\n",
+         sc_linsolve_nfactor(l), sc_linsolve_nrefactor(l),
+         sc_linsolve_nsolve(l), sc_branch_nnewton(b));
+  tu_int("shooting: bordered system is sparse (nnz)", sc_linsolve_nnz(l),
+         2 * m + m + (m + 1));
+  sc_branch_free(b);
+}
+
 int main(void) {
   setvbuf(stdout, NULL, _IOLBF, 0);
   test_cascade(sc_linsolve_dense, 6);
@@ -700,6 +803,10 @@ int main(void) {
   test_cubic_folds(sc_linsolve_dense);
   test_cubic_folds(sc_linsolve_klu);
   test_cusp();
+  /* r_3 and r_4 from the 50-digit references of test_cascade */
+  test_shooting(sc_linsolve_klu, 4, 3.5, 3.5440903595519228536159659866);
+  test_shooting(sc_linsolve_dense, 4, 3.5, 3.5440903595519228536159659866);
+  test_shooting(sc_linsolve_klu, 8, 3.56, 3.56440726609543259777355758653);
   test_step_control();
   test_rejection();
   test_errors();
