@@ -1,3 +1,7 @@
 sc_add_test(test_common)
 sc_add_test(test_guard)
 sc_add_test(test_bk2)
+# The API example prints the period-2 orbit of fig 5.4.
+add_test(NAME example_api COMMAND example_api)
+set_tests_properties(example_api PROPERTIES PASS_REGULAR_EXPRESSION
+  "d = -0.0153337753869[0-9]* -> f\\(d\\) = 0.0153337753869[0-9]*  f' = 0.634677  itinerary 1-12-2")

@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# Install what slipcont needs to build, test and plot (Debian/Ubuntu).
+# Skips apt when everything is already there, so reruns are quick.
+set -euo pipefail
+pkgs=(build-essential cmake pkg-config libgsl-dev liblapack-dev libblas-dev
+      libsuitesparse-dev libinih-dev gnuplot-nox libopenmpi-dev openmpi-bin)
+missing=()
+for p in "${pkgs[@]}"; do
+  dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  sudo=""
+  [ "$(id -u)" -ne 0 ] && sudo="sudo"
+  export DEBIAN_FRONTEND=noninteractive
+  $sudo apt-get update -q
+  $sudo apt-get install -y -q "${missing[@]}"
+fi
