@@ -7,3 +7,4 @@ set(SC_CLI_SOURCES
 list(APPEND SC_CLI_SOURCES src/cli/task_orbit.c)
 list(APPEND SC_CLI_SOURCES src/cli/task_map.c)
 list(APPEND SC_CLI_SOURCES src/cli/task_sweep.c)
+list(APPEND SC_CLI_SOURCES src/cli/task_chart.c src/cli/progress.c $<$<BOOL:${SLIPCONT_MPI}>:src/cli/mpi_chart.c>)

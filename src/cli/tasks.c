@@ -8,6 +8,7 @@
 #define SC_CLI_TASK_LIST(X) \
   X(orbit)                  \
   X(map)                    \
+  X(chart)                  \
   X(sweep)
 
 #define SC_CLI_TASK_DECLARE_(name) extern const sc_cli_task sc_cli_task_##name;

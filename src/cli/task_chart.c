@@ -1,0 +1,605 @@
+/* Task `chart`: the period of the attractor on a grid over two model
+ * parameters (fig 5.7), computed in blocks of rows with OpenMP (and MPI
+ * ranks when built with SLIPCONT_MPI), checkpointed after blocks so that
+ * an interrupted run resumes where it stopped.  docs/charts.md. */
+#define _POSIX_C_SOURCE 200809L
+
+#include <errno.h>
+#include <math.h>
+#include <omp.h>
+#include <signal.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli/progress.h"
+#include "cli/tasks.h"
+#include "slipcont/chart.h"
+#ifdef SLIPCONT_MPI
+#include "cli/mpi_chart.h"
+#endif
+
+static const sc_key_info chart_keys[] = {
+    {"x", SC_KEY_PARAM, 1, NULL, 0, 0, 0, 0, NULL,
+     "parameter on the horizontal axis"},
+    {"x-from", SC_KEY_REAL, 1, NULL, -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
+     "first x value (inside the parameter's valid range)"},
+    {"x-to", SC_KEY_REAL, 1, NULL, -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
+     "last x value, exactly a grid point"},
+    {"x-steps", SC_KEY_INT, 0, "200", 2, SC_CHART_MAX_POINTS, 0, 0, NULL,
+     "grid points along x, both ends included"},
+    {"y", SC_KEY_PARAM, 1, NULL, 0, 0, 0, 0, NULL,
+     "parameter on the vertical axis (not x)"},
+    {"y-from", SC_KEY_REAL, 1, NULL, -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
+     "first y value (inside the parameter's valid range)"},
+    {"y-to", SC_KEY_REAL, 1, NULL, -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
+     "last y value, exactly a grid point"},
+    {"y-steps", SC_KEY_INT, 0, "200", 2, SC_CHART_MAX_POINTS, 0, 0, NULL,
+     "grid points along y (rows), both ends included"},
+    {"d0", SC_KEY_REAL, 0, "0", -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
+     "initial state of every point (bk2: d = Y2 - Y1 of the first GSP)"},
+    {"transient", SC_KEY_INT, 0, "1000", 1, INT32_MAX, 0, 0, NULL,
+     "most map iterates per point; a point stops as soon as its period is "
+     "confirmed"},
+    {"max-period", SC_KEY_INT, 0, "16", 1, SC_PERIOD_MAX, 0, 0, NULL,
+     "longest period told apart; longer ones, chaos and quasi-periodicity "
+     "are 'high'"},
+    {"confirm", SC_KEY_INT, 0, "4", 1, SC_PERIOD_MAX_CONFIRM, 0, 0, NULL,
+     "full cycles a period must repeat before it is accepted"},
+    {"seed", SC_KEY_CHOICE, 0, "fixed", 0, 0, 0, 0, "fixed|neighbour",
+     "start every point from d0, or from the final state of the previous "
+     "point of its row (rows are then sequential)"},
+};
+
+/* The chart of a scene (its names point into the scene). */
+static sc_chart_spec spec_of(const sc_scene *s) {
+  sc_chart_spec c;
+  sc_chart_spec_default(&c);
+  c.x = sc_scene_text(s, "x");
+  c.x_from = sc_scene_real(s, "x-from");
+  c.x_to = sc_scene_real(s, "x-to");
+  c.x_steps = sc_scene_int(s, "x-steps");
+  c.y = sc_scene_text(s, "y");
+  c.y_from = sc_scene_real(s, "y-from");
+  c.y_to = sc_scene_real(s, "y-to");
+  c.y_steps = sc_scene_int(s, "y-steps");
+  c.d0 = sc_scene_real(s, "d0");
+  c.transient = sc_scene_int(s, "transient");
+  c.max_period = (int)sc_scene_int(s, "max-period");
+  c.confirm = (int)sc_scene_int(s, "confirm");
+  const char *seed = sc_scene_text(s, "seed");
+  c.seed = seed && strcmp(seed, "neighbour") == 0 ? SC_CHART_SEED_NEIGHBOUR
+                                                   : SC_CHART_SEED_FIXED;
+  return c;
+}
+
+/* Relations between keys: sc_chart_check() says which key is wrong in
+ * the first word after "chart: "; name that key's line. */
+static int chart_check(const sc_scene *s, sc_msg *msg) {
+  sc_chart_spec c = spec_of(s);
+  sc_msg m;
+  if (sc_chart_check(sc_scene_map(s), &c, &m) == SC_OK) return SC_OK;
+  const char *text = strncmp(m.text, "chart: ", 7) == 0 ? m.text + 7 : m.text;
+  const char *key = "x-steps";
+  for (size_t i = 0; i < sizeof chart_keys / sizeof chart_keys[0]; i++) {
+    size_t n = strlen(chart_keys[i].name);
+    if (strncmp(text, chart_keys[i].name, n) == 0 &&
+        (text[n] == ' ' || text[n] == ':' || text[n] == '-')) {
+      key = chart_keys[i].name;
+      if (text[n] != '-') break; /* "x-from" beats "x" */
+    }
+  }
+  if (strncmp(text, "x and y", 7) == 0) key = "y";
+  return sc_scene_fail_key(s, "task", key, msg, "%s", text);
+}
+
+/* ------------------------------------------------------------------ */
+/* The scene's effective values, for the checkpoint                      */
+
+/* Every value the results depend on, one "name = value" line each: the
+ * model, its parameters and options, the accuracy, the chart.  [output]
+ * is left out: the folder and plotting do not change the results. */
+static int scene_text(const sc_cli_run *r, const sc_chart_spec *c, char *buf,
+                      size_t len) {
+  const sc_map *m = r->map;
+  const sc_model_type *t = sc_map_type(m);
+  size_t u = 0;
+#define ADD_(...)                                                      \
+  do {                                                                 \
+    int k_ = snprintf(buf + u, u < len ? len - u : 0, __VA_ARGS__);    \
+    if (k_ > 0) u += (size_t)k_;                                       \
+  } while (0)
+  ADD_("model = %s\n", t->name);
+  for (size_t i = 0; i < t->nparam; i++)
+    ADD_("model.%s = %.17g\n", t->params[i].name, sc_map_get_param(m, i));
+  for (size_t i = 0; i < t->noption; i++)
+    ADD_("model.%s = %s\n", t->options[i].name,
+         sc_map_get_option(m, t->options[i].name));
+  const sc_accuracy *acc = sc_map_accuracy(m);
+  for (size_t i = 0; i < sc_accuracy_nfields(); i++)
+    ADD_("accuracy.%s = %.17g\n", sc_accuracy_field_name(i),
+         sc_accuracy_field_value(acc, i));
+  ADD_("task.x = %s\ntask.x-from = %.17g\ntask.x-to = %.17g\n"
+       "task.x-steps = %ld\n",
+       c->x, c->x_from, c->x_to, c->x_steps);
+  ADD_("task.y = %s\ntask.y-from = %.17g\ntask.y-to = %.17g\n"
+       "task.y-steps = %ld\n",
+       c->y, c->y_from, c->y_to, c->y_steps);
+  ADD_("task.d0 = %.17g\ntask.transient = %ld\ntask.max-period = %d\n"
+       "task.confirm = %d\ntask.seed = %s\n",
+       c->d0, c->transient, c->max_period, c->confirm,
+       c->seed == SC_CHART_SEED_NEIGHBOUR ? "neighbour" : "fixed");
+  ADD_("point-bytes = %zu\n", sizeof(sc_chart_point));
+#undef ADD_
+  return u < len ? SC_OK : SC_EINTERNAL;
+}
+
+/* FNV-1a, 64 bits: a fingerprint, not a defence against tampering. */
+static uint64_t fnv1a(const char *s) {
+  uint64_t h = 1469598103934665603ULL;
+  for (; *s; s++) {
+    h ^= (unsigned char)*s;
+    h *= 1099511628211ULL;
+  }
+  return h;
+}
+
+/* ------------------------------------------------------------------ */
+/* Checkpoint: `chart.checkpoint` in the output folder                   */
+
+#define CKPT_NAME "chart.checkpoint"
+#define CKPT_MAGIC "slipcont chart checkpoint 1\n"
+#define SCENE_TEXT_LEN 8192
+
+/* Write the rows done so far, atomically (temporary name + rename). */
+static int ckpt_write(const char *dir, const char *text, uint64_t hash,
+                      long nx, long rows, const sc_chart_point *grid,
+                      sc_msg *msg) {
+  sc_file *f = NULL;
+  int st = sc_file_open(dir, CKPT_NAME, &f, msg);
+  if (st) return st;
+  FILE *o = sc_file_stream(f);
+  fputs(CKPT_MAGIC, o);
+  fprintf(o, "hash %016llx\nrows %ld\nbytes %zu\n", (unsigned long long)hash,
+          rows, strlen(text));
+  fputs(text, o);
+  if (fwrite(grid, sizeof *grid, (size_t)(rows * nx), o) != (size_t)(rows * nx)) {
+    sc_file_abort(f);
+    return sc_fail(msg, SC_EIO, "%s/%s: write failed", dir, CKPT_NAME);
+  }
+  return sc_file_commit(f, msg);
+}
+
+/* First line where two scene texts differ, as "old -> new". */
+static void first_change(const char *old, const char *now, char *buf,
+                         size_t len) {
+  while (*old && *now) {
+    size_t a = strcspn(old, "\n"), b = strcspn(now, "\n");
+    if (a != b || strncmp(old, now, a) != 0) {
+      snprintf(buf, len, "%.*s -> %.*s", (int)a, old, (int)b, now);
+      return;
+    }
+    old += a + (old[a] == '\n');
+    now += b + (now[b] == '\n');
+  }
+  snprintf(buf, len, "the scene");
+}
+
+/* Read a checkpoint into grid; returns the rows it holds (0 when there is
+ * none, it is unreadable, or it belongs to another scene: then a note
+ * says so and the chart starts over). */
+static long ckpt_read(const sc_cli_run *r, const char *text, uint64_t hash,
+                      long nx, long ny, sc_chart_point *grid) {
+  char path[4096];
+  snprintf(path, sizeof path, "%s/%s", r->dir, CKPT_NAME);
+  FILE *in = fopen(path, "rb");
+  if (!in) return 0;
+  char magic[sizeof CKPT_MAGIC] = "";
+  unsigned long long h = 0;
+  long rows = -1;
+  size_t bytes = 0;
+  long got = 0;
+  char *old = NULL;
+  if (fread(magic, 1, sizeof magic - 1, in) != sizeof magic - 1 ||
+      strcmp(magic, CKPT_MAGIC) != 0 ||
+      fscanf(in, "hash %llx\nrows %ld\nbytes %zu", &h, &rows, &bytes) != 3 ||
+      fgetc(in) != '\n' || rows < 0 || rows > ny || bytes >= SCENE_TEXT_LEN) {
+    sc_cli_note(r, "%s is not a chart checkpoint: starting over", path);
+    goto done;
+  }
+  old = calloc(1, bytes + 1);
+  if (!old || fread(old, 1, bytes, in) != bytes) {
+    sc_cli_note(r, "%s is truncated: starting over", path);
+    goto done;
+  }
+  if (h != hash || strcmp(old, text) != 0) {
+    char change[256];
+    first_change(old, text, change, sizeof change);
+    sc_cli_note(r,
+                "the checkpoint %s was made for another scene (%s): "
+                "starting over",
+                path, change);
+    goto done;
+  }
+  if (fread(grid, sizeof *grid, (size_t)(rows * nx), in) !=
+      (size_t)(rows * nx)) {
+    sc_cli_note(r, "%s is truncated: starting over", path);
+    goto done;
+  }
+  got = rows;
+done:
+  free(old);
+  fclose(in);
+  return got;
+}
+
+/* ------------------------------------------------------------------ */
+/* Output files                                                          */
+
+/* Classes present, counted: index period + 1 (0: undefined, 1: high). */
+static void count_classes(const sc_chart_point *g, long n, int maxp,
+                          long *count, double *iterations) {
+  memset(count, 0, (size_t)(maxp + 2) * sizeof *count);
+  *iterations = 0;
+  for (long k = 0; k < n; k++) {
+    count[g[k].period + 1]++;
+    *iterations += g[k].iterations;
+  }
+}
+
+static int write_csv(sc_cli_run *r, const sc_chart_spec *c,
+                     const sc_chart_point *g) {
+  sc_file *f = NULL;
+  int st = sc_cli_open(r, "chart.csv", &f);
+  if (st) return st;
+  FILE *o = sc_file_stream(f);
+  fprintf(o, "%s,%s,period,%s,iterations\n", c->x, c->y,
+          sc_map_type(r->map)->state_name);
+  for (long j = 0; j < c->y_steps; j++) {
+    double y = sc_chart_y(c, j);
+    for (long i = 0; i < c->x_steps; i++) {
+      const sc_chart_point *p = &g[j * c->x_steps + i];
+      sc_csv_double(o, sc_chart_x(c, i));
+      fputc(',', o);
+      sc_csv_double(o, y);
+      fprintf(o, ",%d,", (int)p->period);
+      sc_csv_double(o, p->d);
+      fprintf(o, ",%d\n", (int)p->iterations);
+    }
+  }
+  return sc_cli_commit(r, "chart.csv", f);
+}
+
+/* One colour per period (repeating after 16), black for high, light grey
+ * for undefined: distinct neighbours, like fig 5.7. */
+static const unsigned period_rgb[16] = {
+    0x1f77b4, 0xff7f0e, 0x2ca02c, 0xd62728, 0x9467bd, 0x8c564b,
+    0xe377c2, 0x17becf, 0xbcbd22, 0x7f7f7f, 0x393b79, 0xfdd0a2,
+    0x98df8a, 0xff9896, 0xc5b0d5, 0x00ffff};
+#define HIGH_RGB 0x000000u
+#define UNDEF_RGB 0xd9d9d9u
+
+static unsigned class_rgb(int period) {
+  if (period == SC_PERIOD_UNDEFINED) return UNDEF_RGB;
+  if (period == SC_PERIOD_HIGH) return HIGH_RGB;
+  return period_rgb[(period - 1) % 16];
+}
+
+/* The title: every parameter except the two on the axes, the options. */
+static void chart_title(const sc_map *m, const sc_chart_spec *c, char *buf,
+                        size_t len) {
+  const sc_model_type *t = sc_map_type(m);
+  size_t u = 0;
+  buf[0] = '\0';
+  for (size_t i = 0; i < t->nparam && u < len; i++) {
+    const char *n = t->params[i].name;
+    if (strcmp(n, c->x) == 0 || strcmp(n, c->y) == 0) continue;
+    int k = snprintf(buf + u, len - u, "%s%s = %.10g", u ? ", " : "", n,
+                     sc_map_get_param(m, i));
+    if (k > 0) u += (size_t)k;
+  }
+  for (size_t i = 0; i < t->noption && u < len; i++) {
+    const char *v = sc_map_get_option(m, t->options[i].name);
+    if (i && strcmp(v, t->options[i].values[0]) == 0) continue;
+    int k = snprintf(buf + u, len - u, "%s%s %s", u ? ", " : "",
+                     t->options[i].name, v);
+    if (k > 0) u += (size_t)k;
+  }
+  if (u < len)
+    snprintf(buf + u, len - u, "%s%s_0 = %.10g, %ld iterates at most",
+             u ? ", " : "", t->state_name, c->d0, c->transient);
+}
+
+static int write_plot(sc_cli_run *r, const sc_chart_spec *c,
+                      const long *count) {
+  sc_file *f = NULL;
+  int st = sc_cli_open(r, "chart.gp", &f);
+  if (st) return st;
+  FILE *o = sc_file_stream(f);
+  char title[512], xl[128], yl[128];
+  chart_title(r->map, c, title, sizeof title);
+  snprintf(xl, sizeof xl, "%s", sc_plot_label(r->map, c->x));
+  snprintf(yl, sizeof yl, "%s", sc_plot_label(r->map, c->y));
+  sc_plot_head(o, "chart.png", title, xl, yl);
+  double hx = (c->x_to - c->x_from) / (double)(c->x_steps - 1) / 2;
+  double hy = (c->y_to - c->y_from) / (double)(c->y_steps - 1) / 2;
+  fprintf(o, "set xrange [%.17g:%.17g]\n", fmin(c->x_from, c->x_to) - fabs(hx),
+          fmax(c->x_from, c->x_to) + fabs(hx));
+  fprintf(o, "set yrange [%.17g:%.17g]\n", fmin(c->y_from, c->y_to) - fabs(hy),
+          fmax(c->y_from, c->y_to) + fabs(hy));
+  fputs("set size square\nunset grid\nset tics out\n"
+        "set key outside right top title 'period' box\n",
+        o);
+  fputs("# colour of a period class (column 3): -1 undefined, 0 high\n", o);
+  fputs("array C[16] = [", o);
+  for (int k = 0; k < 16; k++)
+    fprintf(o, "%s0x%06x", k ? ", " : "", period_rgb[k]);
+  fputs("]\n", o);
+  fprintf(o,
+          "rgb(p) = p < 0 ? 0x%06x : p == 0 ? 0x%06x : C[int(p - 1) %% 16 + "
+          "1]\n",
+          UNDEF_RGB, HIGH_RGB);
+  fputs("plot 'chart.csv' skip 1 using 1:2:(int(rgb($3)) >> 16 & 255):"
+        "(int(rgb($3)) >> 8 & 255):(int(rgb($3)) & 255) with rgbimage "
+        "notitle",
+        o);
+  /* A key entry for each class present. */
+  for (int p = 1; p <= c->max_period; p++)
+    if (count[p + 1])
+      fprintf(o, ", \\\n  keyentry with boxes fs solid fc rgb '#%06x' "
+              "title '%d'",
+              class_rgb(p), p);
+  if (count[SC_PERIOD_HIGH + 1])
+    fprintf(o, ", \\\n  keyentry with boxes fs solid fc rgb '#%06x' "
+            "title '> %d or chaos'",
+            HIGH_RGB, c->max_period);
+  if (count[SC_PERIOD_UNDEFINED + 1])
+    fprintf(o, ", \\\n  keyentry with boxes fs solid border lc rgb "
+            "'#000000' fc rgb '#%06x' title 'undefined'",
+            UNDEF_RGB);
+  fputc('\n', o);
+  st = sc_cli_commit(r, "chart.gp", f);
+  if (!st) st = sc_cli_add_plot(r, "chart.gp", "chart.png");
+  return st;
+}
+
+static int write_summary(sc_cli_run *r, const sc_chart_spec *c,
+                         const long *count, double iterations, double secs,
+                         long resumed, int ranks, int threads) {
+  sc_file *f = NULL;
+  int st = sc_cli_summary_begin(r, &f);
+  if (st) return st;
+  FILE *o = sc_file_stream(f);
+  long n = c->x_steps * c->y_steps;
+  fprintf(o, "  %ld x %ld = %ld points, %.0f map iterates (%.1f a point)\n",
+          c->x_steps, c->y_steps, n, iterations, iterations / (double)n);
+  fprintf(o, "  %.3f s on %d rank(s) x %d thread(s)", secs, ranks, threads);
+  if (resumed) fprintf(o, ", resumed after %ld rows", resumed);
+  fputc('\n', o);
+  for (int p = 1; p <= c->max_period; p++)
+    if (count[p + 1])
+      fprintf(o, "  period %-3d %10ld points (%.2f%%)\n", p, count[p + 1],
+              100.0 * (double)count[p + 1] / (double)n);
+  fprintf(o, "  high       %10ld points (%.2f%%): period > %d, chaos, or not "
+          "settled in %ld iterates\n",
+          count[1], 100.0 * (double)count[1] / (double)n, c->max_period,
+          c->transient);
+  fprintf(o, "  undefined  %10ld points (%.2f%%)\n", count[0],
+          100.0 * (double)count[0] / (double)n);
+  return sc_cli_commit(r, "summary.txt", f);
+}
+
+/* ------------------------------------------------------------------ */
+/* The run                                                               */
+
+/* Set by SIGINT/SIGTERM during a serial run: finish with a checkpoint. */
+static volatile sig_atomic_t interrupted;
+
+static void on_signal(int sig) {
+  (void)sig;
+  interrupted = 1;
+}
+
+typedef struct {
+  sc_progress *bar;
+  long base;  /* points done before this block (all ranks) */
+  long mult;  /* ranks: this rank's points stand for that many */
+} progress_ctx;
+
+static int on_progress(void *ctx, long done) {
+  progress_ctx *p = ctx;
+  sc_progress_update(p->bar, p->base + done * p->mult);
+  return interrupted != 0;
+}
+
+/* Seconds between checkpoints: often enough that a kill loses little,
+ * rarely enough that rewriting the rows done costs nothing. */
+#define CKPT_INTERVAL_S 2.0
+/* Points a block should hold at least, so that the threads' wait at the
+ * end of a block stays small next to the block. */
+#define BLOCK_POINTS 16384
+
+static int chart_run(sc_cli_run *r) {
+  const sc_chart_spec c = spec_of(r->scene);
+  const long nx = c.x_steps, ny = c.y_steps;
+  int rank = 0, size = 1;
+  int st = sc_chart_check(r->map, &c, r->msg);
+  if (st) return st;
+#ifdef SLIPCONT_MPI
+  if ((st = sc_mpi_chart_begin(&rank, &size, r->msg))) return st;
+#endif
+  const int threads = omp_get_max_threads();
+  const double t0 = sc_progress_now();
+  sc_chart_point *grid = NULL, *mine = NULL, *stage = NULL;
+  char *text = malloc(SCENE_TEXT_LEN);
+  struct sigaction old_int, old_term;
+  int handlers = 0;
+
+  /* Rows per block: enough points to keep the threads busy (whole rows
+   * per thread with seed = neighbour), a multiple of the ranks. */
+  long block = (BLOCK_POINTS + nx - 1) / nx;
+  if (c.seed == SC_CHART_SEED_NEIGHBOUR && block < 4L * threads)
+    block = 4L * threads;
+  block = (block + size - 1) / size * size;
+  if (block > ny) block = ny;
+
+  /* The test hook SLIPCONT_CHART_STOP_AFTER_ROWS=k stops after k rows
+   * with a checkpoint, as a kill would, but at a known place. */
+  long stop_after = 0;
+  const char *hook = getenv("SLIPCONT_CHART_STOP_AFTER_ROWS");
+  if (rank == 0 && hook) stop_after = atol(hook);
+  uint64_t hash = 0;
+  long start = 0;
+  if (!text) {
+    st = sc_fail(r->msg, SC_ENOMEM, "chart: out of memory");
+    goto out;
+  }
+  if ((st = scene_text(r, &c, text, SCENE_TEXT_LEN))) {
+    sc_fail(r->msg, st, "chart: scene text longer than %d bytes",
+            SCENE_TEXT_LEN);
+    goto out;
+  }
+  hash = fnv1a(text);
+  if (rank == 0) {
+    grid = malloc((size_t)(nx * ny) * sizeof *grid);
+    if (size > 1) stage = malloc((size_t)(block * nx) * sizeof *stage);
+    if (!grid || (size > 1 && !stage)) {
+      st = sc_fail(r->msg, SC_ENOMEM,
+                   "chart: out of memory for %ld x %ld points (%.0f MiB)", nx,
+                   ny, (double)(nx * ny) * sizeof *grid / 1048576);
+    } else {
+      start = ckpt_read(r, text, hash, nx, ny, grid);
+      if (start)
+        sc_cli_note(r, "resuming from %s/%s: %ld of %ld rows done", r->dir,
+                    CKPT_NAME, start, ny);
+    }
+  }
+  if (size > 1) {
+    mine = malloc((size_t)((block + size - 1) / size * nx) * sizeof *mine);
+    if (!mine)
+      st = sc_fail(r->msg, SC_ENOMEM, "chart: out of memory (rank %d)", rank);
+  }
+#ifdef SLIPCONT_MPI
+  st = sc_mpi_chart_min_status(st);
+  sc_mpi_chart_bcast_long(&start);
+  sc_mpi_chart_bcast_long(&stop_after);
+#endif
+  if (st) goto out;
+  if (size == 1) {
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    interrupted = 0;
+    sigaction(SIGINT, &sa, &old_int);
+    sigaction(SIGTERM, &sa, &old_term);
+    handlers = 1;
+  }
+
+  sc_progress bar;
+  sc_progress_start(&bar, "points", nx * ny, start * nx,
+                    rank == 0 && sc_progress_wanted(r->quiet));
+  double last_ckpt = sc_progress_now();
+  long done_rows = start;
+  while (done_rows < ny) {
+    long r0 = done_rows, r1 = r0 + block < ny ? r0 + block : ny;
+    if (stop_after > r0 && stop_after < r1) r1 = stop_after;
+    long nb = r1 - r0;
+    progress_ctx pc = {&bar, r0 * nx, size};
+    sc_chart_point *dst = size > 1 ? mine : grid + r0 * nx;
+    long count = rank < nb ? (nb - rank + size - 1) / size : 0;
+    st = sc_chart_rows(r->map, &c, r0 + rank, count, size, 0, on_progress,
+                       &pc, dst, r->msg);
+#ifdef SLIPCONT_MPI
+    int all = sc_mpi_chart_min_status(st);
+    if (all && !st)
+      st = sc_fail(r->msg, all, "chart: another rank failed (%s)",
+                   sc_strerror(all));
+    if (!st)
+      st = sc_mpi_chart_gather(mine, nx, r0, nb, rank, size, stage, grid,
+                               r->msg);
+#endif
+    if (st == SC_ECALLBACK && interrupted) {
+      sc_progress_finish(&bar);
+      int e = ckpt_write(r->dir, text, hash, nx, done_rows, grid, r->msg);
+      st = e ? e
+             : sc_fail(r->msg, SC_ECALLBACK,
+                       "chart: interrupted after %ld of %ld rows; the "
+                       "checkpoint %s/%s is saved: run the same command to "
+                       "resume",
+                       done_rows, ny, r->dir, CKPT_NAME);
+      goto out;
+    }
+    if (st) goto out;
+    done_rows = r1;
+    int hooked = stop_after > 0 && done_rows == stop_after && done_rows < ny;
+    if (rank == 0 && done_rows < ny &&
+        (hooked || sc_progress_now() - last_ckpt >= CKPT_INTERVAL_S)) {
+      if ((st = ckpt_write(r->dir, text, hash, nx, done_rows, grid, r->msg)))
+        goto out;
+      last_ckpt = sc_progress_now();
+    }
+    if (hooked) {
+      sc_progress_finish(&bar);
+      st = sc_fail(r->msg, SC_ECALLBACK,
+                   "chart: stopped after %ld of %ld rows by "
+                   "SLIPCONT_CHART_STOP_AFTER_ROWS; checkpoint saved",
+                   done_rows, ny);
+      goto out;
+    }
+  }
+  sc_progress_finish(&bar);
+
+  if (rank == 0) {
+    long *count = calloc((size_t)c.max_period + 2, sizeof *count);
+    double iterations = 0;
+    if (!count) {
+      st = sc_fail(r->msg, SC_ENOMEM, "chart: out of memory");
+      goto out;
+    }
+    count_classes(grid, nx * ny, c.max_period, count, &iterations);
+    st = write_csv(r, &c, grid);
+    if (!st)
+      st = write_summary(r, &c, count, iterations, sc_progress_now() - t0,
+                         start, size, threads);
+    if (!st) st = write_plot(r, &c, count);
+    if (!st) {
+      char path[4096];
+      snprintf(path, sizeof path, "%s/%s", r->dir, CKPT_NAME);
+      if (remove(path) != 0 && errno != ENOENT)
+        sc_cli_note(r, "could not remove %s: %s", path, strerror(errno));
+      sc_cli_note(r,
+                  "chart: %ld points in %.2f s (%d rank(s) x %d thread(s)); "
+                  "%ld high, %ld undefined",
+                  nx * ny, sc_progress_now() - t0, size, threads, count[1],
+                  count[0]);
+    }
+    free(count);
+  }
+out:
+  if (handlers) {
+    sigaction(SIGINT, &old_int, NULL);
+    sigaction(SIGTERM, &old_term, NULL);
+  }
+  free(grid);
+  free(mine);
+  free(stage);
+  free(text);
+#ifdef SLIPCONT_MPI
+  sc_mpi_chart_end();
+#endif
+  return st;
+}
+
+const sc_cli_task sc_cli_task_chart = {
+    .type = {.kind = "chart",
+             .doc = "period of the attractor on a grid over two parameters "
+                    "(fig 5.7): OpenMP, MPI, resumable",
+             .keys = chart_keys,
+             .nkeys = sizeof chart_keys / sizeof chart_keys[0],
+             .check = chart_check},
+    .outputs = "chart.csv (x,y,period,d,iterations), summary.txt, chart.gp, "
+               "chart.png; chart.checkpoint while unfinished",
+    .run = chart_run,
+};
