@@ -1,0 +1,49 @@
+!---------------------------------------------------------------------
+!   third iterate of the logistic map, g = f^3, for the period-3 fold
+!---------------------------------------------------------------------
+SUBROUTINE FUNC(NDIM,U,ICP,PAR,IJAC,F,DFDU,DFDP)
+  IMPLICIT NONE
+  INTEGER, INTENT(IN) :: NDIM, ICP(*), IJAC
+  DOUBLE PRECISION, INTENT(IN) :: U(NDIM), PAR(*)
+  DOUBLE PRECISION, INTENT(OUT) :: F(NDIM)
+  DOUBLE PRECISION, INTENT(INOUT) :: DFDU(NDIM,NDIM), DFDP(NDIM,*)
+  DOUBLE PRECISION :: X, R, A, B, FX
+  INTEGER :: K
+  R = PAR(1)
+  X = U(1)
+  A = 1
+  B = 0
+  DO K = 1, 3
+     FX = R*(1-2*X)
+     B = FX*B + X*(1-X)
+     A = FX*A
+     X = R*X*(1-X)
+  END DO
+  F(1) = X
+  IF (IJAC == 0) RETURN
+  DFDU(1,1) = A
+  IF (IJAC == 1) RETURN
+  DFDP(1,1) = B
+END SUBROUTINE FUNC
+
+SUBROUTINE STPNT(NDIM,U,PAR,T)
+  IMPLICIT NONE
+  INTEGER, INTENT(IN) :: NDIM
+  DOUBLE PRECISION, INTENT(INOUT) :: U(NDIM), PAR(*)
+  DOUBLE PRECISION, INTENT(IN) :: T
+  INTEGER :: K
+  PAR(1) = 3.832d0
+  U(1) = 0.5d0
+  DO K = 1, 20000
+     U(1) = PAR(1)*U(1)*(1-U(1))
+  END DO
+END SUBROUTINE STPNT
+
+SUBROUTINE BCND
+END SUBROUTINE BCND
+SUBROUTINE ICND
+END SUBROUTINE ICND
+SUBROUTINE FOPT
+END SUBROUTINE FOPT
+SUBROUTINE PVLS
+END SUBROUTINE PVLS
