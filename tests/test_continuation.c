@@ -542,6 +542,49 @@ static void test_step_control(void) {
   sc_branch_free(b);
 }
 
+
+/* F(x, r) = atan(x) - r: Newton on atan from |x| > 1.39 overshoots
+ * further at every step. */
+static int atan_f(const double *u, double *F, void *user) {
+  (void)user;
+  F[0] = atan(u[0]) - u[1];
+  return 0;
+}
+
+static int atan_jac(const double *u, double *J, void *user) {
+  (void)user;
+  J[0] = 1 / (1 + u[0] * u[0]);
+  J[1] = -1;
+  return 0;
+}
+
+static void test_diverging(void) {
+  printf("--- diverging corrector\n");
+  sc_cont_problem pb = {.n = 1, .f = atan_f, .jac = atan_jac};
+  sc_accuracy acc = acc_default();
+  sc_branch *b;
+  sc_msg msg = {""};
+  sc_branch_alloc(&pb, NULL, &acc, &b, &msg);
+  double u0[2] = {3.0, 0};
+  int st = sc_branch_set(b, u0, &msg);
+  tu_int("atan from x = 3: SC_ENOCONV", st, SC_ENOCONV);
+  tu_int("reason: diverging", sc_branch_reason(b), SC_CORR_DIVERGING);
+  printf("  message: %s\n", msg.text);
+  /* From x = 1 Newton converges to the root x = 0; the bordered
+   * Jacobian [1/(1+x^2), -1; 0, 1] has det 1 there (sign +1, log 0). */
+  double u1[2] = {1.0, 0};
+  st = sc_branch_set(b, u1, &msg);
+  tu_int("atan from x = 1: SC_OK", st, SC_OK);
+  tu_close("atan root", sc_branch_point(b)[0], 0, 1e-15);
+  int sign = 0;
+  double logabs = 1;
+  sc_branch_bordered_det(b, &sign, &logabs);
+  tu_int("bordered det sign at the start", sign, 1);
+  /* the start's tangent border is e_r: det [1/(1+x^2), -1; 0, 1] = 1 */
+  tu_close("bordered log|det| at the start", logabs, 0, 1e-15);
+  sc_branch_free(b);
+}
+
 static void test_rejection(void) {
   printf("--- special points: zero accepted, jump rejected\n");
   line_ctx c = {.jump_at = 0.4};
@@ -808,6 +851,7 @@ int main(void) {
   test_shooting(sc_linsolve_dense, 4, 3.5, 3.5440903595519228536159659866);
   test_shooting(sc_linsolve_klu, 8, 3.56, 3.56440726609543259777355758653);
   test_step_control();
+  test_diverging();
   test_rejection();
   test_errors();
   test_solve_driver();

@@ -221,9 +221,11 @@ sc_corr_reason sc_branch_reason(const sc_branch *b);
 const sc_cont_location *sc_branch_location(const sc_branch *b);
 /**
  * @brief Determinant of the bordered Jacobian [F_u; t^T] at the current
- * point, as sign and log|det| (sc_linsolve_det()).  Its sign changes at
- * branch points; with t from the previous point it does not change at
- * folds.  @return SC_OK, or SC_EINVAL before sc_branch_set().
+ * point, as sign and log|det| (sc_linsolve_det()), where t is the
+ * tangent of the previous point (at the initial point: the axis e_n, or
+ * the axis used if that was singular).  Its sign changes at simple branch
+ * points, not at folds.  @return SC_OK, or SC_EINVAL before
+ * sc_branch_set().
  */
 int sc_branch_bordered_det(const sc_branch *b, int *sign, double *logabs);
 
