@@ -40,7 +40,7 @@ struct sc_branch {
   double h;
   int ready, ended;
   sc_corr_reason reason;
-  sc_cont_location location;
+  sc_cont_location location, best_location;
   unsigned long npoints, nspecial, nrej_special, nrejected, nnewton, nfeval,
       njac, nlocate;
 };
@@ -506,6 +506,7 @@ int sc_branch_set(sc_branch *b, const double *u0, sc_msg *msg) {
     }
   }
   for (size_t k = 0; k < b->pb.ntest; k++) b->sign[k] = sgn(p->psi[k]);
+  b->location = (sc_cont_location){.test = -1};
   b->h = b->set.h0;
   b->ready = 1;
   b->npoints++;
@@ -654,6 +655,7 @@ int sc_branch_step(sc_branch *b, sc_msg *msg) {
       sbest = sl;
       found = (int)k;
       point_copy(&b->best, &b->loc, N, nt);
+      b->best_location = b->location;
     }
   }
   if (found >= 0) {
@@ -661,9 +663,7 @@ int sc_branch_step(sc_branch *b, sc_msg *msg) {
      * along keep their sign and are found again by the next step. */
     b->sign[found] = sgn(b->trial.psi[found]);
     point_copy(&b->cur, &b->best, N, nt);
-    b->location.test = found; /* the last locate() may have been another */
-    b->location.psi = b->cur.psi[found];
-    b->location.accepted = 1;
+    b->location = b->best_location; /* the last locate() may be another */
     b->npoints++;
     b->nspecial++;
     return SC_SPECIAL;

@@ -585,6 +585,56 @@ static void test_diverging(void) {
   sc_branch_free(b);
 }
 
+
+/* Folds of any branch from the tangent: psi = t[n] (the parameter
+ * component of the unit tangent) changes sign at each turning point.  On
+ * mu1 + 0.75 x - x^3 = 0 in (x, mu1) the turning points are mu1 = +-0.25. */
+static int cubic_f(const double *u, double *F, void *user) {
+  (void)user;
+  F[0] = u[1] + 0.75 * u[0] - u[0] * u[0] * u[0];
+  return 0;
+}
+
+static int cubic_jac(const double *u, double *J, void *user) {
+  (void)user;
+  J[0] = 0.75 - 3 * u[0] * u[0];
+  J[1] = 1;
+  return 0;
+}
+
+static int tangent_test(const double *u, const double *t, double *psi,
+                        void *user) {
+  (void)u, (void)user;
+  psi[0] = t[1];
+  return 0;
+}
+
+static void test_tangent_folds(void) {
+  printf("--- folds from the tangent component\n");
+  sc_cont_problem pb = {.n = 1, .f = cubic_f, .jac = cubic_jac, .ntest = 1,
+                        .test = tangent_test};
+  sc_cont_settings set;
+  sc_cont_settings_default(&set);
+  set.h0 = 0.05, set.hmax = 0.2, set.pmax = 1;
+  sc_branch *b;
+  sc_msg msg = {""};
+  sc_branch_alloc(&pb, &set, NULL, &b, &msg);
+  double u0[2] = {-1.5, -2.25};
+  int st = sc_branch_set(b, u0, &msg), n = 0;
+  const double want[2] = {0.25, -0.25};
+  while (st >= 0 && st != SC_END) {
+    st = sc_branch_step(b, &msg);
+    if (st == SC_SPECIAL && n < 2) {
+      /* mu1 is quadratic in arclength at a fold: exact to rounding */
+      tu_close(n ? "second turning point mu1" : "first turning point mu1",
+               sc_branch_point(b)[1], want[n], 1e-13);
+      n++;
+    }
+  }
+  tu_int("two turning points", n, 2);
+  sc_branch_free(b);
+}
+
 static void test_rejection(void) {
   printf("--- special points: zero accepted, jump rejected\n");
   line_ctx c = {.jump_at = 0.4};
@@ -852,6 +902,7 @@ int main(void) {
   test_shooting(sc_linsolve_klu, 8, 3.56, 3.56440726609543259777355758653);
   test_step_control();
   test_diverging();
+  test_tangent_folds();
   test_rejection();
   test_errors();
   test_solve_driver();

@@ -61,7 +61,9 @@ typedef struct {
   size_t ntest;          /**< number of test functions, may be 0 */
   /** Test functions psi_k(u), k < ntest, at a point u on the branch with
    * unit tangent @p t (n + 1 entries, oriented along the branch).  A
-   * special point is a zero of one of them.  May be NULL if ntest = 0. */
+   * special point is a zero of one of them.  May be NULL if ntest = 0.
+   * Example: psi = t[n] vanishes at the folds (turning points) of the
+   * branch in u[n], whatever F is. */
   int (*test)(const double *u, const double *t, double *psi, void *user);
   /** Optional names of the test functions ("fold", "flip"), ntest
    * entries, for messages; NULL for "test k". */
