@@ -10,8 +10,10 @@
 
 #include "slipcont/models.h"
 
-/* One direction for the map's argument plus one per parameter. */
-#define SC_NDIR (1 + SC_MAXPARAM)
+/* Directions carried: the map's argument and the parameters of the one
+ * model that uses duals (bk2: d, alpha, beta, phi, v).  Kept small because
+ * duals are passed by value in the flows' inner loops. */
+#define SC_NDIR 5
 
 typedef struct {
   double v;

@@ -51,11 +51,30 @@ double sc_guard_m3(const sc_guard *g) {
   return m;
 }
 
+/* Sizes of the guard's terms, computed once per search: the rounding
+ * bound at t is GUARD_ROUND_ULPS eps (|c0| + |c1| t + amp + wamp t). */
+typedef struct {
+  double c0, c1, amp, wamp;
+} guard_size;
+
+static guard_size guard_sizes(const sc_guard *g) {
+  guard_size z = {fabs(g->c0), fabs(g->c1), 0, 0};
+  for (int k = 0; k < g->n; k++) {
+    double r = hypot(g->a[k], g->b[k]);
+    z.amp += r;
+    z.wamp += r * g->w[k];
+  }
+  return z;
+}
+
+static double round_at(const guard_size *z, double t) {
+  return GUARD_ROUND_ULPS * DBL_EPSILON *
+         (z->c0 + z->amp + (z->c1 + z->wamp) * fabs(t));
+}
+
 static double round_bound(const sc_guard *g, double t) {
-  double s = fabs(g->c0) + fabs(g->c1 * t);
-  for (int k = 0; k < g->n; k++)
-    s += hypot(g->a[k], g->b[k]) * (1 + g->w[k] * t);
-  return GUARD_ROUND_ULPS * DBL_EPSILON * s;
+  guard_size z = guard_sizes(g);
+  return round_at(&z, t);
 }
 
 static double tol_at(double t, double atol, double rtol) {
@@ -75,28 +94,42 @@ static double quad_min(double sigma, double p0, double p1, double p2,
 }
 
 /* Bracketed Newton on [lo, hi] where g(lo), g(hi) differ in sign and g is
- * monotone. */
-static void refine(const sc_guard *g, double lo, double glo, double hi,
-                   double atol, double rtol, sc_root *out) {
-  double t = 0.5 * (lo + hi);
+ * monotone: start from the secant point; stop when g is within rounding of
+ * zero, or when a Newton step inside the bracket is below the tolerance
+ * (convergence is quadratic there, so the step itself bounds the error,
+ * and the slope at the last point is the root's to O(step)). */
+static void refine(const sc_guard *g, const guard_size *z, double lo,
+                   double glo, double hi, double ghi, double atol,
+                   double rtol, sc_root *out) {
+  double t = lo - glo * (hi - lo) / (ghi - glo);
+  if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);
+  double v = 0, d = 0, bracket = hi - lo;
   for (int it = 0; it < GUARD_MAX_REFINE; it++) {
-    double v, d;
     sc_guard_eval(g, t, &v, &d, NULL);
-    if (fabs(v) <= round_bound(g, t)) {
-      lo = hi = t;
+    if (fabs(v) <= round_at(z, t)) {
+      bracket = 0;
       break;
     }
     if ((v > 0) == (glo > 0)) lo = t, glo = v;
     else hi = t;
-    if (hi - lo <= tol_at(hi, atol, rtol)) break;
     double tn = t - v / d;
-    t = (d != 0 && tn > lo && tn < hi) ? tn : 0.5 * (lo + hi);
+    if (d != 0 && tn > lo && tn < hi) {
+      if (fabs(tn - t) <= tol_at(tn, atol, rtol)) {
+        bracket = fabs(tn - t);
+        t = tn;
+        break;
+      }
+      t = tn;
+    } else {
+      t = 0.5 * (lo + hi);
+    }
+    bracket = hi - lo;
+    if (bracket <= tol_at(hi, atol, rtol)) break;
   }
-  /* Report the end nearest the root estimate inside the final bracket. */
-  out->t = (lo == hi) ? lo : 0.5 * (lo + hi);
-  out->bracket = hi - lo;
+  out->t = t;
+  out->bracket = bracket;
   out->found = 1;
-  sc_guard_eval(g, out->t, NULL, &out->slope, NULL);
+  out->slope = d;
 }
 
 /* A single sinusoid and a constant: roots in closed form.  g = c0 +
@@ -186,6 +219,7 @@ int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
     return SC_OK;
   out->tangent = 0;
   double M3 = sc_guard_m3(g);
+  guard_size z = guard_sizes(g);
   /* First trial step: a quarter of the fastest period, or all of tmax. */
   double h = wmax > 0 ? fmin(tmax, 0.5 * SC_PI / wmax) : tmax;
   double t = 0;
@@ -195,7 +229,7 @@ int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
   while (t < tmax) {
     h = fmin(h, tmax - t);
     out->steps++;
-    double E = round_bound(g, t + h);
+    double E = round_at(&z, t + h);
     double sigma = g0 > 0 ? 1 : -1;
     if (at_start_root) {
       /* g(0) = 0 by construction: its sign just after 0 is that of g1,
@@ -223,7 +257,13 @@ int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
       double ge, ge1, ge2;
       sc_guard_eval(g, t + h, &ge, &ge1, &ge2);
       if (!at_start_root && (ge * sigma <= 0 || fabs(ge) <= E)) {
-        refine(g, t, g0, t + h, atol, rtol, out);
+        if (fabs(ge) <= E) {
+          out->found = 1;
+          out->t = t + h;
+          out->slope = ge1;
+          return SC_OK;
+        }
+        refine(g, &z, t, g0, t + h, ge, atol, rtol, out);
         return SC_OK;
       }
       at_start_root = 0;

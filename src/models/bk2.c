@@ -476,6 +476,8 @@ int sc_bk2_iterate(const bk2_inst *b, const bk2_dpar *P, sc_dual d,
                  b->acc.max_events);
 }
 
+_Static_assert(1 + 4 <= SC_NDIR, "bk2 needs d and four parameters");
+
 static int bk2_eval(void *vinst, double d, unsigned flags, sc_map_value *out,
                     sc_msg *msg) {
   const bk2_inst *b = vinst;
