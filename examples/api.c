@@ -9,7 +9,7 @@
  */
 #include <stdio.h>
 
-#include "slipcont/map.h"
+#include "slipcont/slipcont.h"
 
 int main(void) {
   sc_msg msg;
