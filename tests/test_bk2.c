@@ -302,6 +302,12 @@ static void test_bad_input(void) {
          sc_map_set_option(m, "friction", "velocity-weakening", &msg),
          SC_EINVAL);
   tu_true(strstr(msg.text, "frozen") != NULL, "message: %s", msg.text);
+  sc_map_set_option(m, "driver", "moving", NULL);
+  tu_int("velocity weakening refused until validated",
+         sc_map_set_option(m, "friction", "velocity-weakening", &msg),
+         SC_EINVAL);
+  tu_true(strcmp(sc_map_get_option(m, "friction"), "coulomb") == 0,
+          "friction unchanged after the refusal");
   sc_map_value r;
   tu_int("d = NaN refused", sc_map_eval(m, NAN, 0, &r, &msg), SC_EINVAL);
   long n = 0;
