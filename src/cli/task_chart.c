@@ -416,9 +416,10 @@ static int on_progress(void *ctx, long done) {
 /* Seconds between checkpoints: often enough that a kill loses little,
  * rarely enough that rewriting the rows done costs nothing. */
 #define CKPT_INTERVAL_S 2.0
-/* Points a block should hold at least, so that the threads' wait at the
- * end of a block stays small next to the block. */
-#define BLOCK_POINTS 16384
+/* Points a block should hold at least: enough that the threads' wait
+ * for the block's last point stays small next to the block, few enough
+ * (a second or so of bk2) that a kill loses little. */
+#define BLOCK_POINTS 2048
 
 static int chart_run(sc_cli_run *r) {
   const sc_chart_spec c = spec_of(r->scene);
@@ -439,8 +440,9 @@ static int chart_run(sc_cli_run *r) {
   /* Rows per block: enough points to keep the threads busy (whole rows
    * per thread with seed = neighbour), a multiple of the ranks. */
   long block = (BLOCK_POINTS + nx - 1) / nx;
-  if (c.seed == SC_CHART_SEED_NEIGHBOUR && block < 4L * threads)
-    block = 4L * threads;
+  if (c.seed == SC_CHART_SEED_NEIGHBOUR && block < 2L * threads)
+    block = 2L * threads;
+  if (size > 1 && block < 4L * size) block = 4L * size; /* balance ranks */
   block = (block + size - 1) / size * size;
   if (block > ny) block = ny;
 
@@ -516,7 +518,7 @@ static int chart_run(sc_cli_run *r) {
     if (all && !st)
       st = sc_fail(r->msg, all, "chart: another rank failed (%s)",
                    sc_strerror(all));
-    if (!st)
+    if (!st && size > 1)
       st = sc_mpi_chart_gather(mine, nx, r0, nb, rank, size, stage, grid,
                                r->msg);
 #endif

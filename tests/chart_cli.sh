@@ -1,0 +1,145 @@
+#!/bin/sh
+# End-to-end tests of the chart task through the slipcont program:
+# identical results for 1 and 2 threads (both seeds), resume after a
+# stop (test hook) and after SIGINT, a changed scene invalidating the
+# checkpoint, bad charts refused before any work, the examples.
+# usage: chart_cli.sh SLIPCONT SOURCE_DIR WORK_DIR
+set -u
+BIN=$1
+SRC=$2
+W=$3
+rm -rf "$W"
+mkdir -p "$W"
+cd "$W" || exit 1
+fails=0
+pass() { echo "PASS $*"; }
+fail() { echo "FAIL $*"; fails=$((fails + 1)); }
+
+# A small bk2 chart: driver frozen, alpha x beta, periods 1..16 and chaos.
+cat > small.ini <<'INI'
+[model]
+name = bk2
+driver = frozen
+phi = 1.25
+[task]
+kind = chart
+x = alpha
+x-from = 2.5
+x-to = 7.5
+x-steps = 23
+y = beta
+y-from = 1.5
+y-to = 6
+y-steps = 17
+d0 = 0
+transient = 600
+[output]
+plot = no
+INI
+
+run() { # run OUT [args...]: quiet run into folder OUT
+  out=$1
+  shift
+  "$BIN" run small.ini --quiet --out "$out" "$@"
+}
+
+# 1. Threads, both seeds.
+for seed in fixed neighbour; do
+  run t1-$seed --threads 1 --set task.seed=$seed &&
+    run t2-$seed --threads 2 --set task.seed=$seed ||
+    fail "runs with seed $seed"
+  if cmp -s t1-$seed/chart.csv t2-$seed/chart.csv; then
+    pass "seed $seed: 1 and 2 threads give identical chart.csv"
+  else
+    fail "seed $seed: chart.csv differs between 1 and 2 threads"
+  fi
+done
+head -1 t1-fixed/chart.csv | grep -qx 'alpha,beta,period,d,iterations' &&
+  pass "csv header names the parameters" || fail "csv header: $(head -1 t1-fixed/chart.csv)"
+n=$(($(wc -l < t1-fixed/chart.csv) - 1))
+[ "$n" -eq $((23 * 17)) ] && pass "csv has 23 x 17 rows" || fail "csv rows $n"
+grep -q '^7.5,6,' t1-fixed/chart.csv && pass "last grid point is exactly (7.5, 6)" ||
+  fail "last grid point"
+
+# 2. Stop after 5 rows (the hook writes a checkpoint as a kill would
+#    between blocks), then resume.
+SLIPCONT_CHART_STOP_AFTER_ROWS=5 run stop --threads 2 2> stop.err
+rc=$?
+[ $rc -eq 1 ] && pass "stopped run exits 1" || fail "stopped run exit $rc"
+[ -f stop/chart.checkpoint ] && [ ! -f stop/chart.csv ] &&
+  pass "stopped run leaves a checkpoint and no chart.csv" ||
+  fail "after the stop: $(ls stop)"
+"$BIN" run small.ini --out stop --threads 1 2> resume.err
+grep -q 'resuming from .*5 of 17 rows' resume.err &&
+  pass "rerun resumes after 5 rows" || fail "no resume note: $(cat resume.err)"
+cmp -s stop/chart.csv t1-fixed/chart.csv &&
+  pass "resumed chart identical to an uninterrupted one" ||
+  fail "resumed chart differs"
+[ ! -f stop/chart.checkpoint ] && pass "checkpoint removed when done" ||
+  fail "checkpoint left behind"
+
+# 3. A changed scene invalidates the checkpoint, with a message.
+SLIPCONT_CHART_STOP_AFTER_ROWS=4 run change 2> /dev/null
+"$BIN" run small.ini --out change --set task.transient=500 2> change.err
+grep -q 'another scene (task.transient = 600 -> task.transient = 500)' \
+  change.err && pass "scene change noted" || fail "no note: $(cat change.err)"
+grep -q resuming change.err && fail "resumed a changed scene" ||
+  pass "changed scene starts over"
+run ref500 --set task.transient=500
+cmp -s change/chart.csv ref500/chart.csv &&
+  pass "restarted chart identical to a fresh one" || fail "restarted differs"
+
+# 4. SIGINT: a chart of about 3 s on one thread, interrupted after
+#    2 s (exit 1, checkpoint of the rows done), then rerun.
+big="--set task.x-steps=60 --set task.y-steps=80 --set task.transient=2000"
+run sigref $big --threads 2
+"$BIN" run small.ini --quiet --out sig $big --threads 1 2> sig.err &
+pid=$!
+sleep 2
+kill -INT $pid 2> /dev/null
+wait $pid
+rc=$?
+if [ $rc -eq 1 ] && grep -q interrupted sig.err && [ -f sig/chart.checkpoint ]; then
+  pass "SIGINT: exit 1, checkpoint saved: $(cat sig.err)"
+else
+  echo "  (not interrupted in time: exit $rc; $(cat sig.err))"
+fi
+"$BIN" run small.ini --out sig $big --threads 2 2> sig2.err
+cat sig2.err
+cmp -s sig/chart.csv sigref/chart.csv &&
+  pass "chart after SIGINT and rerun identical" ||
+  fail "chart after SIGINT differs"
+
+# 5. Bad charts are refused before any work (exit 2, nothing written).
+bad() { # bad NEEDLE --set ...
+  needle=$1
+  shift
+  "$BIN" run small.ini --quiet --out bad "$@" 2> bad.err
+  rc=$?
+  if [ $rc -eq 2 ] && grep -q -- "$needle" bad.err && [ ! -e bad/chart.csv ]; then
+    pass "refused ($*): $(cat bad.err)"
+  else
+    fail "not refused as expected ($*): exit $rc: $(cat bad.err)"
+  fi
+}
+bad "x-steps" --set task.x-steps=0
+bad "y-steps" --set task.y-steps=-4
+bad "x and y are both 'alpha'" --set task.y=alpha
+bad "gamma" --set task.x=gamma
+bad "grid points" --set task.x-steps=20000 --set task.y-steps=20000
+bad "alpha" --set task.x-from=-1
+bad "seed" --set task.seed=random
+
+# 6. The examples, on a coarse grid.
+for ex in "$SRC"/examples/chart-*.ini; do
+  name=$(basename "$ex" .ini)
+  if "$BIN" run "$ex" --quiet --out "ex-$name" --set task.x-steps=6 \
+    --set task.y-steps=5 --set output.plot=no; then
+    pass "example $name runs"
+  else
+    fail "example $name"
+  fi
+done
+
+echo "$fails failed"
+[ $fails -eq 0 ]
