@@ -26,11 +26,11 @@ kind = chart
 x = alpha
 x-from = 2.5
 x-to = 7.5
-x-steps = 23
+x-steps = 16
 y = beta
 y-from = 1.5
 y-to = 6
-y-steps = 17
+y-steps = 12
 d0 = 0
 transient = 600
 [output]
@@ -57,7 +57,7 @@ done
 head -1 t1-fixed/chart.csv | grep -qx 'alpha,beta,period,d,iterations' &&
   pass "csv header names the parameters" || fail "csv header: $(head -1 t1-fixed/chart.csv)"
 n=$(($(wc -l < t1-fixed/chart.csv) - 1))
-[ "$n" -eq $((23 * 17)) ] && pass "csv has 23 x 17 rows" || fail "csv rows $n"
+[ "$n" -eq $((16 * 12)) ] && pass "csv has 16 x 12 rows" || fail "csv rows $n"
 grep -q '^7.5,6,' t1-fixed/chart.csv && pass "last grid point is exactly (7.5, 6)" ||
   fail "last grid point"
 
@@ -70,7 +70,7 @@ rc=$?
   pass "stopped run leaves a checkpoint and no chart.csv" ||
   fail "after the stop: $(ls stop)"
 "$BIN" run small.ini --out stop --threads 1 2> resume.err
-grep -q 'resuming from .*5 of 17 rows' resume.err &&
+grep -q 'resuming from .*5 of 12 rows' resume.err &&
   pass "rerun resumes after 5 rows" || fail "no resume note: $(cat resume.err)"
 cmp -s stop/chart.csv t1-fixed/chart.csv &&
   pass "resumed chart identical to an uninterrupted one" ||
@@ -89,13 +89,13 @@ run ref500 --set task.transient=500
 cmp -s change/chart.csv ref500/chart.csv &&
   pass "restarted chart identical to a fresh one" || fail "restarted differs"
 
-# 4. SIGINT: a chart of about 3 s on one thread, interrupted after
-#    2 s (exit 1, checkpoint of the rows done), then rerun.
-big="--set task.x-steps=60 --set task.y-steps=80 --set task.transient=2000"
+# 4. SIGINT: a chart of about 1.5 s on one thread, interrupted after
+#    1 s (exit 1, checkpoint of the rows done), then rerun.
+big="--set task.x-steps=40 --set task.y-steps=60 --set task.transient=2000"
 run sigref $big --threads 2
 "$BIN" run small.ini --quiet --out sig $big --threads 1 2> sig.err &
 pid=$!
-sleep 2
+sleep 1
 kill -INT $pid 2> /dev/null
 wait $pid
 rc=$?
