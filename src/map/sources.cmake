@@ -1,1 +1,2 @@
 list(APPEND SC_SOURCES src/map/map.c)
+list(APPEND SC_SOURCES src/map/shooting.c)

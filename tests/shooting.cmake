@@ -1,0 +1,2 @@
+# Shooting, the fixed-point search and branches of periodic orbits (issue 4).
+sc_add_test(test_shooting)
