@@ -154,9 +154,13 @@ static int prepare_output(const sc_scene *s, int create) {
   if (sc_output_prepare(sc_scene_output_dir(s), create, &msg) == SC_OK)
     return EXIT_OK;
   char where[SC_MSG_LEN];
+  const char *dir = sc_scene_output_dir(s), *reason = msg.text;
+  size_t n = strlen(dir);
+  if (strncmp(reason, dir, n) == 0 && strncmp(reason + n, ": ", 2) == 0)
+    reason += n + 2; /* the path is already in the message */
   sc_scene_origin(s, "output", "dir", where, sizeof where);
-  fprintf(stderr, "slipcont: %s: [output] dir = %s: %s\n", where,
-          sc_scene_output_dir(s), msg.text);
+  fprintf(stderr, "slipcont: %s: [output] dir = %s: %s\n", where, dir,
+          reason);
   return EXIT_INPUT;
 }
 

@@ -32,7 +32,7 @@ static int map_run(sc_cli_run *r) {
   FILE *f = sc_file_stream(csv);
   fputs("d,f,df,itinerary,status\n", f);
   size_t nundef = 0, nok = 0;
-  double fmin = HUGE_VAL, fmax = -HUGE_VAL;
+  double flo = HUGE_VAL, fhi = -HUGE_VAL;
   char first_reason[SC_MSG_LEN] = "";
   sc_map_value v;
   sc_msg em;
@@ -46,8 +46,8 @@ static int map_run(sc_cli_run *r) {
       fputc(',', f);
       sc_csv_double(f, v.dfdd);
       fprintf(f, ",%s,ok\n", sc_cli_csv_text(v.itinerary));
-      fmin = fmin < v.f ? fmin : v.f;
-      fmax = fmax > v.f ? fmax : v.f;
+      flo = flo < v.f ? flo : v.f;
+      fhi = fhi > v.f ? fhi : v.f;
       nok++;
     } else if (st == SC_EUNDEF || st == SC_ENOCONV || st == SC_ENONFINITE) {
       if (!nundef)
@@ -68,7 +68,7 @@ static int map_run(sc_cli_run *r) {
   f = sc_file_stream(sum);
   fprintf(f, "  f^%d evaluated at %zu points: %zu defined, %zu undefined\n", n,
           steps, nok, nundef);
-  if (nok) fprintf(f, "  range of f^%d: [%.17g, %.17g]\n", n, fmin, fmax);
+  if (nok) fprintf(f, "  range of f^%d: [%.17g, %.17g]\n", n, flo, fhi);
   if (nundef) fprintf(f, "  first undefined point %s\n", first_reason);
   if (strcmp(sc_map_type(m)->name, "bk2") == 0) {
     double a = sc_map_get_param(m, (size_t)sc_map_param_index(m, "alpha"));
@@ -87,6 +87,8 @@ static int map_run(sc_cli_run *r) {
   sc_plot_title(m, NULL, title, sizeof title);
   sc_plot_head(f, "map.png", title, xlabel, ylabel);
   fputs("set key inside left top box opaque\n", f);
+  if (from != to)
+    fprintf(f, "set xrange [%.17g:%.17g]\n", fmin(from, to), fmax(from, to));
   if (strcmp(sc_map_type(m)->name, "bk2") == 0) {
     double a = sc_map_get_param(m, (size_t)sc_map_param_index(m, "alpha"));
     double b = sc_map_get_param(m, (size_t)sc_map_param_index(m, "beta"));

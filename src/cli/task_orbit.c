@@ -89,7 +89,7 @@ static int write_trajectory_plots(sc_cli_run *r, const traj_ctx *c) {
   dx = dx > 0 ? 0.08 * dx : 0.1;
   fprintf(f, "set xrange [%.17g:%.17g]\nset yrange [%.17g:%.17g]\n",
           c->y1lo - dx, c->y1hi + dx, c->y2lo - dx, c->y2hi + dx);
-  fputs("set size ratio -1\nset key inside left top box opaque\n", f);
+  fputs("set size ratio -1\nset key outside right top\n", f);
   fprintf(f, "alpha = %.17g\nbeta = %.17g\n", a, b);
   fputs("# The global stick region: S1 = (1+alpha) Y1 - alpha Y2 <= 1 and\n"
         "# S2 = (1+alpha) Y2 - alpha Y1 <= beta, i.e. s1(Y1) <= Y2 <= s2(Y1)\n"

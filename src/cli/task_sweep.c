@@ -186,22 +186,27 @@ static int sweep_run(sc_cli_run *r) {
   snprintf(key[0], sizeof key[0], "increasing %s", xl);
   snprintf(key[1], sizeof key[1], "decreasing %s", xl);
   fputs("set key inside right top box opaque\n", f);
-  fputs("# column 4 is the direction of the pass: up or down\n", f);
+  fputs("# column 4 is the direction of the pass: up or down; the up pass "
+        "is drawn\n# first with larger points so that both stay visible "
+        "where they agree\n",
+        f);
   fputs("up(c)   = strcol(4) eq 'up'   ? column(c) : NaN\n", f);
   fputs("down(c) = strcol(4) eq 'down' ? column(c) : NaN\n", f);
   fputs("plot ", f);
   int first = 1;
   if (sp.direction != SC_SWEEP_DOWN) {
-    fputs("'sweep.csv' skip 1 using 1:(up(2)) with points pt 7 ps 0.25 "
-          "lc rgb '#1f4e9e' title ",
-          f);
+    fprintf(f,
+            "'sweep.csv' skip 1 using 1:(up(2)) with points pt 7 ps %s "
+            "lc rgb '%s' title ",
+            sp.direction == SC_SWEEP_BOTH ? "0.5" : "0.25",
+            sp.direction == SC_SWEEP_BOTH ? "#6fa8dc" : "#1f4e9e");
     sc_plot_quote(f, key[0]);
     first = 0;
   }
   if (sp.direction != SC_SWEEP_UP) {
     if (!first) fputs(", \\\n     ", f);
-    fputs("'sweep.csv' skip 1 using 1:(down(2)) with points pt 7 ps 0.18 "
-          "lc rgb '#d62728' title ",
+    fputs("'sweep.csv' skip 1 using 1:(down(2)) with points pt 7 ps 0.22 "
+          "lc rgb '#c00000' title ",
           f);
     sc_plot_quote(f, key[1]);
   }

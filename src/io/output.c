@@ -61,6 +61,13 @@ static int check_ancestor(const char *path, sc_msg *msg) {
                      path, buf, strerror(errno));
       break;
     }
+    if (errno == ENOTDIR) {
+      st = sc_fail(msg, SC_EIO,
+                   "%s: cannot create the output folder: a part of the "
+                   "path is not a folder",
+                   path);
+      break;
+    }
     if (errno != ENOENT) {
       st = sc_fail(msg, SC_EIO, "%s: cannot create the output folder: %s (%s)",
                    path, buf, strerror(errno));

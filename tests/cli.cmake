@@ -1,0 +1,13 @@
+# Scenes, outputs, sweeps and the slipcont program (src/io, src/cli,
+# src/analysis/sweep.c).
+sc_add_test(test_scene)
+sc_add_test(test_scene_sweep)
+
+# The program itself, through small shell scripts: refusals of bad input,
+# overrides, outputs, the examples, and the guide's key tables.
+foreach(script cli_errors cli_outputs cli_examples cli_guide)
+  add_test(NAME ${script}
+    COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/${script}.sh
+            $<TARGET_FILE:slipcont_cli> ${PROJECT_SOURCE_DIR})
+endforeach()
+set_tests_properties(cli_examples PROPERTIES TIMEOUT 300)

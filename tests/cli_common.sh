@@ -1,0 +1,81 @@
+# Helpers for the cli_*.sh tests, sourced by them.  Usage of a test:
+#   sh tests/cli_X.sh PATH/TO/slipcont SOURCE_DIR
+# Every check prints PASS/FAIL with what was observed; the script exits 1
+# if any failed.
+set -u
+BIN=$1
+SRC=$2
+NPASS=0
+NFAIL=0
+TMP=$(mktemp -d "${TMPDIR:-/tmp}/slipcont-cli.XXXXXX")
+trap 'rm -rf "$TMP"' EXIT
+
+pass() { NPASS=$((NPASS + 1)); echo "PASS $1"; }
+fail() { NFAIL=$((NFAIL + 1)); echo "FAIL $1"; }
+
+# check WHAT CONDITION-COMMAND...
+check() {
+  what=$1
+  shift
+  if "$@"; then pass "$what"; else fail "$what"; fi
+}
+
+# run_sc ARGS...: runs slipcont, leaving $RC, $OUT (stdout), $ERR (stderr).
+run_sc() {
+  "$BIN" "$@" >"$TMP/stdout" 2>"$TMP/stderr"
+  RC=$?
+  OUT=$(cat "$TMP/stdout")
+  ERR=$(cat "$TMP/stderr")
+}
+
+# expect_rc WHAT RC
+expect_rc() {
+  if [ "$RC" -eq "$2" ]; then pass "$1: exit status $2"
+  else fail "$1: exit status $RC, expected $2 (stderr: $ERR)"; fi
+}
+
+# expect_err WHAT TEXT: stderr contains TEXT (fixed string).
+expect_err() {
+  case $ERR in
+  *"$2"*) pass "$1: message contains '$2'" ;;
+  *) fail "$1: message '$ERR' lacks '$2'" ;;
+  esac
+}
+
+# expect_out WHAT TEXT: stdout contains TEXT (fixed string).
+expect_out() {
+  case $OUT in
+  *"$2"*) pass "$1: output contains '$2'" ;;
+  *) fail "$1: output lacks '$2'" ;;
+  esac
+}
+
+# first_line FILE / data_rows FILE (lines after the header)
+first_line() { head -n 1 "$1" 2>/dev/null; }
+data_rows() { if [ -f "$1" ]; then echo $(($(wc -l <"$1") - 1)); else echo -1; fi; }
+
+# expect_header WHAT FILE HEADER
+expect_header() {
+  h=$(first_line "$2")
+  if [ "$h" = "$3" ]; then pass "$1: header '$3'"
+  else fail "$1: header '$h', expected '$3'"; fi
+}
+
+# expect_rows WHAT FILE N
+expect_rows() {
+  n=$(data_rows "$2")
+  if [ "$n" -eq "$3" ]; then pass "$1: $3 data rows"
+  else fail "$1: $n data rows, expected $3"; fi
+}
+
+# no_temporaries WHAT DIR: no .name.XXXXXX files left behind.
+no_temporaries() {
+  left=$(find "$2" -name '.*' -type f 2>/dev/null)
+  if [ -z "$left" ]; then pass "$1: no temporary files left"
+  else fail "$1: temporary files left: $left"; fi
+}
+
+finish() {
+  echo "$NPASS passed, $NFAIL failed"
+  [ "$NFAIL" -eq 0 ]
+}
