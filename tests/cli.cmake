@@ -11,3 +11,5 @@ foreach(script cli_errors cli_outputs cli_examples cli_guide)
             $<TARGET_FILE:slipcont_cli> ${PROJECT_SOURCE_DIR})
 endforeach()
 set_tests_properties(cli_examples PROPERTIES TIMEOUT 300)
+# A model that hangs must fail the suite, not stall it.
+set_tests_properties(test_scene_sweep PROPERTIES TIMEOUT 300)

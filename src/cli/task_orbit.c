@@ -191,7 +191,9 @@ static int orbit_run(sc_cli_run *r) {
     fprintf(f, "  the map is undefined at iterate %ld (d = %.17g): %s\n", k,
             d[k], em.text);
   } else {
-    long nt = last + 1 < ORBIT_TAIL ? last + 1 : ORBIT_TAIL;
+    /* The second half of the orbit at most: the first is transient. */
+    long nt = (last + 1) / 2 < ORBIT_TAIL ? (last + 1) / 2 : ORBIT_TAIL;
+    if (nt < 1) nt = 1;
     const double *tail = d + last + 1 - nt;
     int p = sc_sweep_period(tail, (size_t)nt,
                             sc_map_accuracy(m)->period_rtol,
