@@ -5,9 +5,48 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "cli/tasks.h"
+
+/* The shortest %.Ng text that reads back as exactly @p x. */
+static const char *exact(double x, char *buf, size_t len) {
+  if (x == floor(x) && fabs(x) < 1e15) {
+    snprintf(buf, len, "%.0f", x);
+    return buf;
+  }
+  for (int prec = 1; prec <= 17; prec++) {
+    snprintf(buf, len, "%.*g", prec, x);
+    if (strtod(buf, NULL) == x) break;
+  }
+  return buf;
+}
+
+/* What each accuracy field does (common.h documents the struct; the
+ * field table there holds names and ranges only). */
+static const char *accuracy_doc(const char *name) {
+  static const struct {
+    const char *name, *doc;
+  } docs[] = {
+      {"event-rtol", "event times: relative tolerance of the located root"},
+      {"event-atol", "event times: absolute tolerance of the located root"},
+      {"newton-atol", "Newton (shooting, continuation): absolute step tolerance"},
+      {"newton-rtol", "Newton: relative step tolerance"},
+      {"newton-ftol", "Newton: residual tolerance"},
+      {"newton-maxiter", "Newton iterations before giving up (a count)"},
+      {"ode-atol", "numerical flows (flows = numerical): absolute tolerance"},
+      {"ode-rtol", "numerical flows: relative tolerance"},
+      {"fd-step", "relative step of finite-difference cross-checks"},
+      {"period-rtol", "period detection: tolerance relative to the spread of "
+                      "the orbit"},
+      {"max-events", "slip phases in one iterate before the map is declared "
+                     "undefined (a count)"},
+  };
+  for (size_t i = 0; i < sizeof docs / sizeof docs[0]; i++)
+    if (strcmp(docs[i].name, name) == 0) return docs[i].doc;
+  return "see sc_accuracy in include/slipcont/common.h";
+}
 
 static void key_default(const sc_key_info *k, char *buf, size_t len) {
   if (k->required) snprintf(buf, len, "required");
@@ -24,7 +63,7 @@ static void param_range(const sc_param_info *p, char *buf, size_t len) {
 /* Markdown table cells must not contain '|': write choices with ", ". */
 static void md_cell(FILE *f, const char *text) {
   for (const char *p = text; *p; p++) {
-    if (*p == '|') fputs(" \\| ", f);
+    if (*p == '|') fputs("\\|", f);
     else fputc(*p, f);
   }
 }
@@ -81,14 +120,15 @@ void sc_cli_print_model(FILE *f, const sc_model_type *t, int md) {
   }
   for (size_t i = 0; i < t->nparam; i++) {
     param_range(&t->params[i], range, sizeof range);
+    char num[40];
+    exact(t->params[i].def, num, sizeof num);
     if (md) {
-      fprintf(f, "| `%s` | %s | %.17g | ", t->params[i].name, range,
-              t->params[i].def);
+      fprintf(f, "| `%s` | %s | %s | ", t->params[i].name, range, num);
       md_cell(f, t->params[i].doc);
       fputs(" |\n", f);
     } else {
-      fprintf(f, "  %-10s %-24s default %-8.10g %s\n", t->params[i].name,
-              range, t->params[i].def, t->params[i].doc);
+      fprintf(f, "  %-10s %-24s default %-8s %s\n", t->params[i].name,
+              range, num, t->params[i].doc);
     }
   }
   for (size_t i = 0; i < t->noption; i++) {
@@ -121,21 +161,18 @@ static void accuracy_rows(FILE *f, int md) {
   sc_accuracy_preset(&p[1], "default", NULL);
   sc_accuracy_preset(&p[2], "precise", NULL);
   if (!md)
-    fprintf(f, "  %-20s %-12s %-12s %-12s\n", "field", "fast", "default",
+    fprintf(f, "  %-20s %-24s %-24s %-24s\n", "field", "fast", "default",
             "precise");
   for (size_t i = 0; i < sc_accuracy_nfields(); i++) {
     const char *name = sc_accuracy_field_name(i);
+    char v[3][40];
+    for (int j = 0; j < 3; j++)
+      exact(sc_accuracy_field_value(&p[j], i), v[j], sizeof v[j]);
     if (md)
-      fprintf(f, "| `%s` | > 0 | %.3g (fast: %.3g, precise: %.3g) | see "
-                 "`sc_accuracy` in common.h |\n",
-              name, sc_accuracy_field_value(&p[1], i),
-              sc_accuracy_field_value(&p[0], i),
-              sc_accuracy_field_value(&p[2], i));
+      fprintf(f, "| `%s` | positive | %s (fast: %s, precise: %s) | %s |\n",
+              name, v[1], v[0], v[2], accuracy_doc(name));
     else
-      fprintf(f, "  %-20s %-12.3g %-12.3g %-12.3g\n", name,
-              sc_accuracy_field_value(&p[0], i),
-              sc_accuracy_field_value(&p[1], i),
-              sc_accuracy_field_value(&p[2], i));
+      fprintf(f, "  %-20s %-24s %-24s %-24s\n", name, v[0], v[1], v[2]);
   }
 }
 
