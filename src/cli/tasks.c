@@ -9,6 +9,7 @@
   X(orbit)                  \
   X(map)                    \
   X(chart)                  \
+  X(fixed_point) X(branch)  \
   X(sweep)
 
 #define SC_CLI_TASK_DECLARE_(name) extern const sc_cli_task sc_cli_task_##name;
