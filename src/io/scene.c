@@ -478,7 +478,7 @@ static int check_model(sc_scene *s, sc_msg *msg) {
   if (!ne) return fail_missing(s, "model", "name", list, msg);
   const sc_model_type *t = sc_model_find(ne->value);
   if (!t) {
-    snprintf(detail, sizeof detail, "name = '%s' is not a model (valid: %s)",
+    snprintf(detail, sizeof detail, "name = '%.64s' is not a model (valid: %.300s)",
              ne->value, list);
     return fail_entry(s, ne, msg, detail);
   }
@@ -508,7 +508,7 @@ static int check_model(sc_scene *s, sc_msg *msg) {
       continue;
     }
     model_keys_text(t, list, sizeof list);
-    snprintf(detail, sizeof detail, "unknown key '%s' for model %s (valid: %s)",
+    snprintf(detail, sizeof detail, "unknown key '%.64s' for model %s (valid: %.300s)",
              e->key, t->name, list);
     return fail_entry(s, e, msg, detail);
   }
@@ -545,10 +545,10 @@ static int check_keys(sc_scene *s, const char *section, const char *skip,
       keys_text(skip, keys, nkeys, list, sizeof list);
       if (s->task && strcmp(section, "task") == 0)
         snprintf(detail, sizeof detail,
-                 "unknown key '%s' for kind %s (valid: %s)", e->key,
+                 "unknown key '%.64s' for kind %.64s (valid: %.300s)", e->key,
                  s->task->kind, list);
       else
-        snprintf(detail, sizeof detail, "unknown key '%s' (valid: %s)", e->key,
+        snprintf(detail, sizeof detail, "unknown key '%.64s' (valid: %.300s)", e->key,
                  list);
       return fail_entry(s, e, msg, detail);
     }
@@ -584,7 +584,7 @@ static int check_task(sc_scene *s, const sc_scene_options *o, sc_msg *msg) {
   for (size_t i = 0; i < ntasks; i++)
     if (strcmp(o->tasks[i]->kind, ke->value) == 0) s->task = o->tasks[i];
   if (!s->task) {
-    snprintf(detail, sizeof detail, "kind = '%s' is not a task (valid: %s)",
+    snprintf(detail, sizeof detail, "kind = '%.64s' is not a task (valid: %.300s)",
              ke->value, list);
     return fail_entry(s, ke, msg, detail);
   }
