@@ -202,12 +202,13 @@ static int cmd_run(const cli_args *a) {
     fputs("slipcont: gnuplot not found on PATH: the data will be written "
           "but no PNG (set [output] plot = no to silence this)\n",
           stderr);
+  sc_cli_catch_signals();
   int st = task->run(&r);
   if (st) {
     fprintf(stderr, "slipcont: %s: %s\n", sc_scene_name(s), msg.text);
     rc = EXIT_COMPUTE;
   }
-  for (size_t i = 0; plot && i < r.nplots; i++) {
+  for (size_t i = 0; plot && !sc_cli_interrupted() && i < r.nplots; i++) {
     if (sc_plot_render(r.dir, r.plot_script[i], r.plot_png[i], &msg)) {
       fprintf(stderr, "slipcont: %s\n", msg.text);
       rc = EXIT_COMPUTE;

@@ -2,12 +2,12 @@
  * the head of summary.txt, plot declarations, notes and progress. */
 #define _POSIX_C_SOURCE 200809L
 
+#include <signal.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
-#include <unistd.h>
 
 #include "cli/tasks.h"
 
@@ -45,12 +45,24 @@ void sc_cli_note(const sc_cli_run *r, const char *fmt, ...) {
   va_end(ap);
 }
 
-void sc_cli_progress(const sc_cli_run *r, const char *what, size_t done,
-                     size_t total) {
-  if (r->quiet || !isatty(fileno(stderr))) return;
-  fprintf(stderr, "\rslipcont: %s %zu/%zu", what, done, total);
-  if (done >= total) fputc('\n', stderr);
-  fflush(stderr);
+/* The one piece of process state of the program: a signal arrived.
+ * Only a flag of type volatile sig_atomic_t may be written by a handler. */
+static volatile sig_atomic_t interrupted;
+
+static void on_signal(int sig) {
+  (void)sig;
+  interrupted = 1;
+}
+
+int sc_cli_interrupted(void) { return interrupted != 0; }
+
+void sc_cli_catch_signals(void) {
+  struct sigaction sa;
+  memset(&sa, 0, sizeof sa);
+  sa.sa_handler = on_signal;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, NULL);
+  sigaction(SIGTERM, &sa, NULL);
 }
 
 char *sc_cli_csv_text(char *text) {

@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "cli/progress.h"
 #include "cli/tasks.h"
 #include "slipcont/analysis.h"
 
@@ -36,7 +37,15 @@ static int map_run(sc_cli_run *r) {
   char first_reason[SC_MSG_LEN] = "";
   sc_map_value v;
   sc_msg em;
+  sc_progress bar;
+  sc_progress_start(&bar, "points", (long)steps, 0,
+                    sc_progress_wanted(r->quiet));
   for (size_t i = 0; i < steps; i++) {
+    if (sc_cli_interrupted()) {
+      sc_progress_finish(&bar);
+      sc_file_abort(csv);
+      return sc_fail(r->msg, SC_ECALLBACK, "interrupted");
+    }
     double d = sc_grid_point(from, to, steps, i);
     st = sc_map_iterate(m, d, n, SC_EVAL_DERIV | SC_EVAL_ITINERARY, &v, &em);
     sc_csv_double(f, d);
@@ -56,12 +65,14 @@ static int map_run(sc_cli_run *r) {
       nundef++;
       fprintf(f, "nan,nan,,%s\n", sc_cli_csv_text(em.text));
     } else {
+      sc_progress_finish(&bar);
       sc_file_abort(csv);
       return sc_fail(r->msg, st, "map at %s = %.17g: %s",
                      sc_map_type(m)->state_name, d, em.text);
     }
-    sc_cli_progress(r, "map", i + 1, steps);
+    sc_progress_update(&bar, (long)i + 1);
   }
+  sc_progress_finish(&bar);
   if ((st = sc_cli_commit(r, "map.csv", csv))) return st;
 
   if ((st = sc_cli_summary_begin(r, &sum))) return st;

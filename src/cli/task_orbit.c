@@ -60,7 +60,7 @@ static int on_sample(void *ctx, double tau, const double *x, int mode) {
   c->y2lo = fmin(c->y2lo, x[1]);
   c->y2hi = fmax(c->y2hi, x[1]);
   c->rows++;
-  return ferror(c->f) ? 1 : 0;
+  return ferror(c->f) || sc_cli_interrupted() ? 1 : 0;
 }
 
 static double param(const sc_map *m, const char *name, double dflt) {
@@ -159,6 +159,10 @@ static int orbit_run(sc_cli_run *r) {
   long k;
   sc_map_value v;
   for (k = 0; k < n; k++) {
+    if (sc_cli_interrupted()) {
+      st = sc_fail(r->msg, SC_ECALLBACK, "interrupted");
+      goto done;
+    }
     fail = sc_map_eval(m, d[k], SC_EVAL_DERIV | SC_EVAL_ITINERARY, &v, &em);
     fprintf(f, "%ld,", k);
     sc_csv_double(f, d[k]);
@@ -257,8 +261,9 @@ static int orbit_run(sc_cli_run *r) {
     st = sc_map_trajectory(m, d[n - mt], (int)mt, sc_scene_real(s, "dtau"),
                            on_sample, &c, &em);
     if (st) {
-      sc_fail(r->msg, st, "trajectory from d = %.17g: %s", d[n - mt],
-              em.text);
+      if (sc_cli_interrupted()) sc_fail(r->msg, SC_ECALLBACK, "interrupted");
+      else sc_fail(r->msg, st, "trajectory from d = %.17g: %s", d[n - mt],
+                   em.text);
       goto done;
     }
     st = sc_cli_commit(r, "trajectory.csv", tr);

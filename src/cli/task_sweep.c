@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "cli/progress.h"
 #include "cli/tasks.h"
 #include "slipcont/analysis.h"
 
@@ -68,12 +69,9 @@ static int sweep_check(const sc_scene *s, sc_msg *msg) {
 }
 
 static int on_progress(void *ctx, size_t done, size_t total) {
-  const sc_cli_run *r = ctx;
-  /* Redraw about 200 times per sweep at most. */
-  size_t every = total / 200 + 1;
-  if (done % every == 0 || done == total)
-    sc_cli_progress(r, "sweep", done, total);
-  return 0;
+  (void)total;
+  sc_progress_update(ctx, (long)done);
+  return sc_cli_interrupted();
 }
 
 static const char *dir_name(int d) { return d == SC_SWEEP_DOWN ? "down" : "up"; }
@@ -131,13 +129,18 @@ static int sweep_run(sc_cli_run *r) {
   sp.seed = strcmp(sc_scene_text(s, "seed"), "previous") == 0
                 ? SC_SEED_PREVIOUS
                 : SC_SEED_FIXED;
+  sc_progress bar;
   sp.progress = on_progress;
-  sp.progress_ctx = r;
+  sp.progress_ctx = &bar;
 
   sc_sweep *sw = NULL;
   int st = sc_sweep_alloc(m, &sp, &sw, r->msg);
   if (st) return st;
+  sc_progress_start(&bar, "values", (long)sc_sweep_npoints(sw), 0,
+                    sc_progress_wanted(r->quiet));
   st = sc_sweep_run(sw, r->msg);
+  sc_progress_finish(&bar);
+  if (st == SC_ECALLBACK) sc_fail(r->msg, st, "interrupted");
   if (st) {
     sc_sweep_free(sw);
     return st;
@@ -150,6 +153,10 @@ static int sweep_run(sc_cli_run *r) {
   size_t n = sc_sweep_npoints(sw);
   sc_sweep_point pt;
   for (size_t i = 0; i < n; i++) {
+    if (sc_cli_interrupted()) {
+      st = sc_fail(r->msg, SC_ECALLBACK, "interrupted");
+      goto done;
+    }
     sc_sweep_get_point(sw, i, &pt);
     if (pt.status != SC_OK) {
       sc_csv_double(f, pt.p);

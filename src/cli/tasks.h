@@ -31,7 +31,8 @@
  *      summary.txt with sc_cli_summary_begin(), declares each gnuplot
  *      script with sc_cli_add_plot() (main renders them afterwards when
  *      `[output] plot = yes`), prints to stderr only through
- *      sc_cli_note()/sc_cli_progress(), and returns SC_OK or an error
+ *      sc_cli_note() and a progress bar (progress.h), stops cleanly when
+ *      sc_cli_interrupted() says so, and returns SC_OK or an error
  *      status with r->msg filled (the program then exits with status 1).
  * 2. Add one line `X(chart)` to SC_CLI_TASK_LIST in src/cli/tasks.c.
  * 3. Add src/cli/task_chart.c to src/cli/sources.cmake.
@@ -100,10 +101,16 @@ int sc_cli_add_plot(sc_cli_run *r, const char *script, const char *png);
 void sc_cli_note(const sc_cli_run *r, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));
 
-/** Progress on stderr for a terminal, unless r->quiet: "what: done/total",
- * redrawn in place; done == total ends the line. */
-void sc_cli_progress(const sc_cli_run *r, const char *what, size_t done,
-                     size_t total);
+/**
+ * 1 once SIGINT or SIGTERM has arrived during a run (main installs the
+ * handler with sc_cli_catch_signals() before calling run()).  A task
+ * checks it in its loops; when set it aborts the files it was writing
+ * (sc_file_abort(): no temporary is left) and returns SC_ECALLBACK with
+ * "interrupted" in r->msg.  Progress bars: src/cli/progress.h.
+ */
+int sc_cli_interrupted(void);
+/** Install the SIGINT/SIGTERM handler behind sc_cli_interrupted(). */
+void sc_cli_catch_signals(void);
 
 /** Replace ',' by ';' and control characters by ' ' so that @p text can
  * be one CSV field; returns @p text. */
