@@ -105,13 +105,21 @@ static int write_trajectory_plots(sc_cli_run *r, const traj_ctx *c) {
         "     s1(x) with lines lc rgb '#666666' dt 2 title 'S_1 = 1', \\\n"
         "     s2(x) with lines lc rgb '#666666' dt 4 title 'S_2 = beta', \\\n"
         "     'trajectory.csv' skip 1 using (mode(0,2)):(mode(0,3)) with "
-        "points pt 7 ps 0.35 lc rgb '#444444' title 'stick (GSP)', \\\n"
+        "points pt 7 ps 0.35 lc rgb '#444444' notitle, \\\n"
         "     '' skip 1 using (mode(1,2)):(mode(1,3)) with points pt 7 "
-        "ps 0.35 lc rgb '#d62728' title 'block 1 slips', \\\n"
+        "ps 0.35 lc rgb '#d62728' notitle, \\\n"
         "     '' skip 1 using (mode(2,2)):(mode(2,3)) with points pt 7 "
-        "ps 0.35 lc rgb '#1f4e9e' title 'block 2 slips', \\\n"
+        "ps 0.35 lc rgb '#1f4e9e' notitle, \\\n"
         "     '' skip 1 using (mode(3,2)):(mode(3,3)) with points pt 7 "
-        "ps 0.35 lc rgb '#2ca02c' title 'both slip'\n",
+        "ps 0.35 lc rgb '#2ca02c' notitle, \\\n"
+        "     keyentry with points pt 7 ps 1.5 lc rgb '#444444' "
+        "title 'stick (GSP)', \\\n"
+        "     keyentry with points pt 7 ps 1.5 lc rgb '#d62728' "
+        "title 'block 1 slips', \\\n"
+        "     keyentry with points pt 7 ps 1.5 lc rgb '#1f4e9e' "
+        "title 'block 2 slips', \\\n"
+        "     keyentry with points pt 7 ps 1.5 lc rgb '#2ca02c' "
+        "title 'both slip'\n",
         f);
   if ((st = sc_cli_commit(r, "phase.gp", gp))) return st;
   if ((st = sc_cli_add_plot(r, "phase.gp", "phase.png"))) return st;

@@ -199,21 +199,24 @@ static int sweep_run(sc_cli_run *r) {
         f);
   fputs("up(c)   = strcol(4) eq 'up'   ? column(c) : NaN\n", f);
   fputs("down(c) = strcol(4) eq 'down' ? column(c) : NaN\n", f);
+  /* The dots are tiny: the key shows large ones (keyentry). */
+  const char *upc = sp.direction == SC_SWEEP_BOTH ? "#6fa8dc" : "#1f4e9e";
   fputs("plot ", f);
   int first = 1;
   if (sp.direction != SC_SWEEP_DOWN) {
     fprintf(f,
             "'sweep.csv' skip 1 using 1:(up(2)) with points pt 7 ps %s "
-            "lc rgb '%s' title ",
-            sp.direction == SC_SWEEP_BOTH ? "0.5" : "0.25",
-            sp.direction == SC_SWEEP_BOTH ? "#6fa8dc" : "#1f4e9e");
+            "lc rgb '%s' notitle, \\\n"
+            "     keyentry with points pt 7 ps 1.5 lc rgb '%s' title ",
+            sp.direction == SC_SWEEP_BOTH ? "0.5" : "0.25", upc, upc);
     sc_plot_quote(f, key[0]);
     first = 0;
   }
   if (sp.direction != SC_SWEEP_UP) {
     if (!first) fputs(", \\\n     ", f);
     fputs("'sweep.csv' skip 1 using 1:(down(2)) with points pt 7 ps 0.22 "
-          "lc rgb '#c00000' title ",
+          "lc rgb '#c00000' notitle, \\\n"
+          "     keyentry with points pt 7 ps 1.5 lc rgb '#c00000' title ",
           f);
     sc_plot_quote(f, key[1]);
   }
