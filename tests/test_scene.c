@@ -365,6 +365,58 @@ static void test_keys(void) {
   tu_int("blank refused", sc_key_check(&k, " ", NULL, &msg), SC_EINVAL);
 }
 
+/* Mutations of the good scene and random bytes: every input is either
+ * accepted or refused with a message; nothing crashes (the sanitizer
+ * build checks memory).  A fixed LCG keeps the inputs reproducible. */
+static void test_fuzz(void) {
+  unsigned long long seed = 2385;
+  const char alphabet[] = "[]=;#. \t\r\nabcdefgmnoprstuvxyz0123456789-+eE";
+  char buf[2048];
+  int refused_n = 0, accepted = 0, bad_msg = 0;
+  for (int iter = 0; iter < 3000; iter++) {
+    size_t n = strlen(good);
+    memcpy(buf, good, n + 1);
+    int edits = 1 + iter % 8;
+    for (int k = 0; k < edits; k++) {
+      seed = seed * 6364136223846793005ULL + 1442695040888963407ULL;
+      size_t pos = (size_t)(seed >> 33) % (n ? n : 1);
+      char c = alphabet[(seed >> 17) % (sizeof alphabet - 1)];
+      if (iter % 3 == 0 && n + 1 < sizeof buf) { /* insert */
+        memmove(buf + pos + 1, buf + pos, n - pos + 1);
+        buf[pos] = c;
+        n++;
+      } else if (iter % 3 == 1 && n > 1) { /* delete */
+        memmove(buf + pos, buf + pos + 1, n - pos);
+        n--;
+      } else {
+        buf[pos] = c;
+      }
+    }
+    if (iter % 10 == 9) { /* random bytes 1..255, lines of any length */
+      size_t len = 1 + (size_t)(seed >> 40) % 600;
+      for (size_t k = 0; k < len; k++) {
+        seed = seed * 6364136223846793005ULL + 1442695040888963407ULL;
+        buf[k] = (char)(1 + (seed >> 33) % 255);
+      }
+      buf[len] = '\0';
+    }
+    sc_msg msg = {""};
+    int st;
+    sc_scene *sc = parse(buf, NULL, 0, NULL, &msg, &st);
+    if (st == SC_OK) accepted++;
+    else {
+      refused_n++;
+      if (!msg.text[0] || !strstr(msg.text, "x.ini")) bad_msg++;
+    }
+    sc_scene_free(sc);
+  }
+  printf("fuzz: %d accepted, %d refused\n", accepted, refused_n);
+  tu_int("fuzz: every refusal names the file", bad_msg, 0);
+  tu_true(refused_n > 1000 && accepted > 10,
+          "fuzz: both outcomes seen (%d accepted, %d refused)", accepted,
+          refused_n);
+}
+
 int main(void) {
   test_good();
   test_overrides();
@@ -372,5 +424,6 @@ int main(void) {
   test_default_dir();
   test_output();
   test_keys();
+  test_fuzz();
   return tu_finish();
 }
