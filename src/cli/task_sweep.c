@@ -175,6 +175,10 @@ static int sweep_run(sc_cli_run *r) {
   if (st) goto done;
 
   if ((st = sc_cli_summary_begin(r, &sum))) goto done;
+  fprintf(sc_file_stream(sum), "  passes: %s; seed: %s\n",
+          sp.direction == SC_SWEEP_BOTH ? "up then down"
+                                        : dir_name(sp.direction),
+          sp.seed == SC_SEED_PREVIOUS ? "previous" : "fixed");
   write_findings(sc_file_stream(sum), sw, pname);
   fprintf(sc_file_stream(sum), "  map evaluations: %lu\n", sc_sweep_nevals(sw));
   st = sc_cli_commit(r, "summary.txt", sum);
