@@ -80,22 +80,30 @@ const char *sc_plot_label(const sc_map *m, const char *name) {
   return name;
 }
 
-int sc_plot_available(void) {
+/* The full path of `gnuplot` on PATH into @p buf; 0 if there is none.
+ * Resolved before fork() so that the child needs only execv(), which is
+ * async-signal-safe (execvp() is not). */
+static int find_gnuplot(char *buf, size_t len) {
   const char *path = getenv("PATH");
   if (!path) return 0;
-  char buf[4096];
   for (const char *p = path; *p;) {
     const char *colon = strchr(p, ':');
     size_t n = colon ? (size_t)(colon - p) : strlen(p);
-    if (n == 0) snprintf(buf, sizeof buf, "./gnuplot");
-    else snprintf(buf, sizeof buf, "%.*s/gnuplot", (int)n, p);
+    int k = n == 0 ? snprintf(buf, len, "./gnuplot")
+                   : snprintf(buf, len, "%.*s/gnuplot", (int)n, p);
     struct stat sb;
-    if (stat(buf, &sb) == 0 && S_ISREG(sb.st_mode) && access(buf, X_OK) == 0)
+    if (k > 0 && (size_t)k < len && stat(buf, &sb) == 0 &&
+        S_ISREG(sb.st_mode) && access(buf, X_OK) == 0)
       return 1;
     if (!colon) break;
     p = colon + 1;
   }
   return 0;
+}
+
+int sc_plot_available(void) {
+  char buf[4096];
+  return find_gnuplot(buf, sizeof buf);
 }
 
 /* The last non-empty line of @p path into @p buf. */
@@ -116,11 +124,17 @@ static void last_line(const char *path, char *buf, size_t len) {
 
 int sc_plot_render(const char *dir, const char *script, const char *png,
                    sc_msg *msg) {
-  if (!sc_plot_available())
+  char exe[4096];
+  if (!find_gnuplot(exe, sizeof exe))
     return sc_fail(msg, SC_EIO,
                    "gnuplot not found on PATH: %s/%s was written but not "
                    "rendered (install gnuplot, or set [output] plot = no)",
                    dir, script);
+  if (exe[0] != '/') { /* a relative PATH entry: the child changes folder */
+    char *abs = realpath(exe, NULL);
+    if (abs && strlen(abs) < sizeof exe) memcpy(exe, abs, strlen(abs) + 1);
+    free(abs);
+  }
   /* Everything the child needs is prepared before fork(): after it only
    * async-signal-safe calls are made. */
   char tmp[512], arg[600], log[512], full[1024];
@@ -148,7 +162,7 @@ int sc_plot_render(const char *dir, const char *script, const char *png,
       dup2(fd, 1);
       dup2(fd, 2);
       close(fd);
-      execvp("gnuplot", argv);
+      execv(exe, argv);
       e = errno;
     }
     ssize_t wr = write(pfd[1], &e, sizeof e);
