@@ -1,6 +1,6 @@
 /* Plots: readable gnuplot scripts written beside the data, rendered to
  * PNG by running gnuplot without a shell. */
-#define _POSIX_C_SOURCE 200809L
+#define _XOPEN_SOURCE 700 /* realpath() */
 
 #include <errno.h>
 #include <fcntl.h>
