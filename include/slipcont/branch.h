@@ -173,7 +173,21 @@ int sc_orbit_branch_alloc(sc_map *m, const sc_orbit_branch_spec *spec,
                           sc_orbit_branch **out, sc_msg *msg);
 
 /**
- * @brief Continue the branch from (d0, from) towards @p to.
+ * @brief Add a starting orbit besides (d0, from): the period-@p period
+ * orbit through a guess @p d at parameter @p p, polished by multiple
+ * shooting and continued in both directions within [from, to].  Call
+ * before sc_orbit_branch_run(); each start takes one or two of the
+ * max_branches segments.
+ * @return SC_OK; SC_EINVAL for p outside the interval, a non-finite d or
+ *         a period outside [1, max_period]; SC_ENOMEM when more than
+ *         max_branches starts were added.
+ */
+int sc_orbit_branch_add_start(sc_orbit_branch *b, double p, double d,
+                              int period, sc_msg *msg);
+
+/**
+ * @brief Continue the branch from (d0, from) towards @p to, then from
+ * each added start in both directions.
  *
  * Labels: LP and PD are the zeros of the fold and flip test functions of
  * the continuation layer, located until both the arclength step and the
@@ -212,13 +226,15 @@ void sc_orbit_branch_free(sc_orbit_branch *b);
 
 /**
  * A margin below this counts as the degeneracy of a located
- * discontinuity-induced bifurcation.  The margins vary linearly with the
- * parameter near the bifurcation (with slopes of order one), and the
- * location brackets the parameter to about 1e-13; 1e-8 leaves a margin
- * of five orders for steep slopes while the margins of a regular orbit
- * are of the order of 1e-3 and more.
+ * discontinuity-induced bifurcation.  The location brackets the
+ * parameter to about 1e-13.  Grazing and crossing margins vary linearly
+ * with the parameter there; |d - d*| at a switching varies like the
+ * square root of the distance in the parameter (f' grows like
+ * |d - d*|^(-1/2), MODEL.md), so it is left at up to ~1e-7 (slope
+ * factors included).  1e-6 is above both, and far below the margins of a
+ * regular orbit (1e-3 and more).
  */
-#define SC_DIB_MARGIN_TOL 1e-8
+#define SC_DIB_MARGIN_TOL 1e-6
 
 /**
  * @brief Classify a located itinerary change from the margins of f^m at

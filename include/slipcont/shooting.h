@@ -87,7 +87,10 @@ void sc_shoot_free(sc_shoot *s);
  * newton_atol + newton_rtol |d| for every unknown and the residual is
  * within newton_ftol (single shooting: newton_ftol max(1, |(f^m)'|),
  * since the rounding of f^m grows with its derivative), or (a stagnation
- * at rounding level) the step is within 4 DBL_EPSILON |d|.  Newton is damped: a step that lands where
+ * at rounding level) the step is within 4 DBL_EPSILON |d|, or (the
+ * noise floor of an ill-conditioned Jacobian, near a fold or a flip) the
+ * residual is within tolerance and the step stopped shrinking (it is not
+ * below half the step before it).  Newton is damped: a step that lands where
  * the map is undefined, or that does not decrease the Euclidean norm of the
  * residual (across a jump of f a full step can land on another piece far
  * away), is halved, at most SC_SHOOT_MAX_HALVINGS times; a step already

@@ -1,24 +1,468 @@
-/* Task `branch`: continuation of a periodic orbit in one parameter. */
+/* Task `branch`: a periodic orbit continued in one parameter, with folds,
+ * flips and discontinuity-induced bifurcations (sc_orbit_branch,
+ * branch.h), drawn over the brute-force diagram of the same range, and
+ * the map f^m at a chosen special point (figs 5.8-5.12 with their
+ * unstable orbits added). */
+#define _POSIX_C_SOURCE 200809L
+
 #include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
 
 #include "cli/tasks.h"
+#include "slipcont/analysis.h"
 #include "slipcont/branch.h"
+
+/* Defined in task_fixed_point.c (see there). */
+int sc_cli_write_map_graph(sc_cli_run *r, const char *name, int n,
+                           double from, double to, size_t steps);
 
 static const sc_key_info branch_keys[] = {
     {"parameter", SC_KEY_PARAM, 1, NULL, 0, 0, 0, 0, NULL,
-     "the model parameter continued"},
+     "the model parameter continued (bk2: alpha, beta, phi or v)"},
+    {"from", SC_KEY_REAL, 1, NULL, -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
+     "start value of the parameter (the starting orbit is found there)"},
+    {"to", SC_KEY_REAL, 1, NULL, -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
+     "other end of the parameter interval"},
+    {"period", SC_KEY_INT, 0, "1", 1, 4096, 0, 0, NULL,
+     "m: period of the starting orbit (fixed point of f^m)"},
+    {"d0", SC_KEY_REAL, 1, NULL, -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
+     "guess of a point of the starting orbit, polished by multiple "
+     "shooting at from"},
+    {"starts", SC_KEY_TEXT, 0, NULL, 0, 0, 0, 0, NULL,
+     "more starting orbits, each continued both ways: 'P D M; P D M ...' "
+     "(parameter value, guess of an orbit point, period)"},
+    {"switch", SC_KEY_BOOL, 0, "no", 0, 0, 0, 0, NULL,
+     "yes: at each flip (PD) also continue the period-2m branch"},
+    {"max-points", SC_KEY_INT, 0, "2000", 2, 10000000, 0, 0, NULL,
+     "accepted points per branch segment"},
+    {"max-branches", SC_KEY_INT, 0, "16", 1, 1000, 0, 0, NULL,
+     "branch segments at most (period-doubled branches and continuations "
+     "past discontinuity-induced bifurcations count)"},
+    {"max-period", SC_KEY_INT, 0, "64", 1, 4096, 0, 0, NULL,
+     "no branch is followed beyond this period"},
+    {"h0", SC_KEY_REAL, 0, "0", 0, HUGE_VAL, 0, 1, NULL,
+     "initial arclength step (0: hmax / 10)"},
+    {"hmax", SC_KEY_REAL, 0, "0", 0, HUGE_VAL, 0, 1, NULL,
+     "largest arclength step (0: |to - from| / 40)"},
+    {"linsolve", SC_KEY_CHOICE, 0, "dense", 0, 0, 0, 0, "dense|klu",
+     "linear solver of the bordered systems"},
+    {"sweep", SC_KEY_BOOL, 0, "yes", 0, 0, 0, 0, NULL,
+     "yes: draw the branch over a brute-force sweep of the same range"},
+    {"sweep-steps", SC_KEY_INT, 0, "400", 2, 1000000, 0, 0, NULL,
+     "parameter values of the brute-force sweep"},
+    {"iterations", SC_KEY_INT, 0, "400", 1, 100000000, 0, 0, NULL,
+     "sweep: iterates at each value, each starting from the previous one"},
+    {"keep", SC_KEY_INT, 0, "150", 1, 100000000, 0, 0, NULL,
+     "sweep: last iterates drawn (<= iterations)"},
+    {"plot-point", SC_KEY_INT, 0, "0", 0, 100000, 0, 0, NULL,
+     "row of points.csv (from 1) at which f^m is drawn against d (0: the "
+     "first LP, PD, GR, CS or SW)"},
 };
 
+static int branch_check(const sc_scene *s, sc_msg *msg) {
+  const sc_map *m = sc_scene_map(s);
+  const char *name = sc_scene_text(s, "parameter");
+  const sc_param_info *pi =
+      &sc_map_type(m)->params[sc_map_param_index(m, name)];
+  sc_key_info range = {pi->name, SC_KEY_REAL, 0, NULL, pi->lo, pi->hi,
+                       pi->lo_open, pi->hi_open, NULL, NULL};
+  char text[128];
+  sc_key_range_text(&range, text, sizeof text);
+  const char *ends[] = {"from", "to"};
+  for (int k = 0; k < 2; k++)
+    if (sc_param_check(pi, sc_scene_real(s, ends[k]), NULL))
+      return sc_scene_fail_key(s, "task", ends[k], msg,
+                               "%s = %s out of range of %s (valid: %s)",
+                               ends[k], sc_scene_text(s, ends[k]), name, text);
+  if (sc_scene_real(s, "from") == sc_scene_real(s, "to"))
+    return sc_scene_fail_key(s, "task", "to", msg,
+                             "to = %s equals from (valid: to != from)",
+                             sc_scene_text(s, "to"));
+  if (sc_scene_int(s, "keep") > sc_scene_int(s, "iterations"))
+    return sc_scene_fail_key(s, "task", "keep", msg,
+                             "keep = %ld is more than iterations = %ld "
+                             "(valid: [1, iterations])",
+                             sc_scene_int(s, "keep"),
+                             sc_scene_int(s, "iterations"));
+  const char *starts = sc_scene_text(s, "starts");
+  for (const char *q = starts; q && *q;) {
+    double p, d;
+    int per, used = 0;
+    while (*q == ' ' || *q == ';') q++;
+    if (!*q) break;
+    if (sscanf(q, "%lf %lf %d%n", &p, &d, &per, &used) != 3 || per < 1 ||
+        !isfinite(p) || !isfinite(d) ||
+        (sc_scene_real(s, "from") - p) * (sc_scene_real(s, "to") - p) > 0)
+      return sc_scene_fail_key(s, "task", "starts", msg,
+                               "starts = %s: cannot read 'P D M' at '%.40s' "
+                               "(valid: P inside [from, to], D finite, M >= 1, "
+                               "triples separated by ';')",
+                               starts, q);
+    q += used;
+  }
+  if (sc_scene_int(s, "max-period") < sc_scene_int(s, "period"))
+    return sc_scene_fail_key(s, "task", "max-period", msg,
+                             "max-period = %ld is below period = %ld "
+                             "(valid: >= period)",
+                             sc_scene_int(s, "max-period"),
+                             sc_scene_int(s, "period"));
+  return SC_OK;
+}
+
+static double now(void) {
+  struct timespec t;
+  clock_gettime(CLOCK_MONOTONIC, &t);
+  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+/* The number of points is not known in advance: no bar, but a run
+ * stops cleanly on SIGINT. */
+static int on_progress(void *ctx, size_t n) {
+  (void)ctx;
+  (void)n;
+  return sc_cli_interrupted();
+}
+
+/* The orbit points of the period-q orbit through d at parameter p. */
+static int orbit_points(sc_map *m, size_t param, double p, double d, int q,
+                        double *out) {
+  if (sc_map_set_param(m, param, p, NULL)) return SC_EINVAL;
+  sc_map_value v;
+  out[0] = d;
+  for (int i = 1; i < q; i++) {
+    int st = sc_map_eval(m, out[i - 1], SC_EVAL_VALUE, &v, NULL);
+    if (st) return st;
+    out[i] = v.f;
+  }
+  return SC_OK;
+}
+
+static int write_points(sc_cli_run *r, const sc_orbit_branch *ob,
+                        const char *pname) {
+  sc_file *csv = NULL;
+  int st = sc_cli_open(r, "points.csv", &csv);
+  if (st) return st;
+  FILE *f = sc_file_stream(csv);
+  fputs("label,parameter,value,d,period,multiplier,note\n", f);
+  for (size_t i = 0; i < sc_orbit_branch_nspecial(ob); i++) {
+    sc_special_info sp;
+    sc_orbit_branch_special(ob, i, &sp);
+    fprintf(f, "%s,%s,", sc_point_label_text(sp.label), pname);
+    sc_csv_double(f, sp.p);
+    fputc(',', f);
+    sc_csv_double(f, sp.d);
+    fprintf(f, ",%d,", sp.period);
+    sc_csv_double(f, sp.multiplier);
+    char note[1024];
+    snprintf(note, sizeof note, "branch %d: %s", sp.branch, sp.note);
+    fprintf(f, ",%s\n", sc_cli_csv_text(note));
+  }
+  return sc_cli_commit(r, "points.csv", csv);
+}
+
+static int write_branch(sc_cli_run *r, const sc_orbit_branch *ob,
+                        const char *pname, size_t param, double *buf,
+                        int maxq) {
+  sc_file *csv = NULL, *orb = NULL;
+  int st = sc_cli_open(r, "branch.csv", &csv);
+  if (!st) st = sc_cli_open(r, "branch-orbits.csv", &orb);
+  if (st) {
+    sc_file_abort(csv);
+    return st;
+  }
+  FILE *f = sc_file_stream(csv), *g = sc_file_stream(orb);
+  fprintf(f, "%s,d,multiplier,stable,itinerary,period,branch\n", pname);
+  fprintf(g, "# every orbit point along each branch: one block per branch "
+             "and point index k\n%s,d_stable,d_unstable,k,branch\n",
+          pname);
+  size_t n = sc_orbit_branch_npoints(ob);
+  sc_branch_point_info pt;
+  for (size_t i = 0; i < n; i++) {
+    sc_orbit_branch_point(ob, i, &pt);
+    sc_csv_double(f, pt.p);
+    fputc(',', f);
+    sc_csv_double(f, pt.d);
+    fputc(',', f);
+    sc_csv_double(f, pt.multiplier);
+    char itin[SC_ITIN_LEN];
+    snprintf(itin, sizeof itin, "%s", pt.itinerary);
+    fprintf(f, ",%s,%s,%d,%d\n", pt.stable ? "yes" : "no",
+            sc_cli_csv_text(itin), pt.period, pt.branch);
+  }
+  /* Blocks: for each branch and each k, the k-th orbit point. */
+  int nb = sc_orbit_branch_nbranches(ob);
+  for (int b = 0; b < nb; b++) {
+    int q = 0;
+    for (size_t i = 0; i < n && !q; i++) {
+      sc_orbit_branch_point(ob, i, &pt);
+      if (pt.branch == b) q = pt.period;
+    }
+    if (q < 1 || q > maxq) continue;
+    for (int k = 0; k < q; k++) {
+      for (size_t i = 0; i < n; i++) {
+        sc_orbit_branch_point(ob, i, &pt);
+        if (pt.branch != b) continue;
+        if (orbit_points(r->map, param, pt.p, pt.d, q, buf)) continue;
+        sc_csv_double(g, pt.p);
+        fputc(',', g);
+        sc_csv_double(g, pt.stable ? buf[k] : NAN);
+        fputc(',', g);
+        sc_csv_double(g, pt.stable ? NAN : buf[k]);
+        fprintf(g, ",%d,%d\n", k, b);
+      }
+      fputs("\n\n", g);
+    }
+  }
+  st = sc_cli_commit(r, "branch.csv", csv);
+  if (st) {
+    sc_file_abort(orb);
+    return st;
+  }
+  return sc_cli_commit(r, "branch-orbits.csv", orb);
+}
+
+static int write_sweep(sc_cli_run *r, size_t param, double from, double to,
+                       double d0) {
+  const sc_scene *s = r->scene;
+  sc_sweep_spec sp = {0};
+  sp.param = param;
+  sp.from = from;
+  sp.to = to;
+  sp.steps = (size_t)sc_scene_int(s, "sweep-steps");
+  sp.iterations = (int)sc_scene_int(s, "iterations");
+  sp.keep = (int)sc_scene_int(s, "keep");
+  sp.d0 = d0;
+  sp.direction = to >= from ? SC_SWEEP_UP : SC_SWEEP_DOWN;
+  sp.seed = SC_SEED_PREVIOUS;
+  sc_sweep *sw = NULL;
+  int st = sc_sweep_alloc(r->map, &sp, &sw, r->msg);
+  if (!st) st = sc_sweep_run(sw, r->msg);
+  sc_file *csv = NULL;
+  if (!st) st = sc_cli_open(r, "branch-sweep.csv", &csv);
+  if (st) {
+    sc_sweep_free(sw);
+    return st;
+  }
+  FILE *f = sc_file_stream(csv);
+  fputs("p,d\n", f);
+  sc_sweep_point pt;
+  for (size_t i = 0; i < sc_sweep_npoints(sw); i++) {
+    sc_sweep_get_point(sw, i, &pt);
+    for (int k = 0; k < pt.nd; k++) {
+      sc_csv_double(f, pt.p);
+      fputc(',', f);
+      sc_csv_double(f, pt.d[k]);
+      fputc('\n', f);
+    }
+  }
+  sc_sweep_free(sw);
+  return sc_cli_commit(r, "branch-sweep.csv", csv);
+}
+
+static int write_branch_plot(sc_cli_run *r, const sc_orbit_branch *ob,
+                             const char *pname, double from, double to,
+                             int with_sweep) {
+  sc_file *gp = NULL;
+  int st = sc_cli_open(r, "branch.gp", &gp);
+  if (st) return st;
+  FILE *f = sc_file_stream(gp);
+  sc_map *m = r->map;
+  char title[512];
+  const char *xl = sc_plot_label(m, pname);
+  sc_plot_title(m, pname, title, sizeof title);
+  sc_plot_head(f, "branch.png", title, xl,
+               sc_plot_label(m, sc_map_type(m)->state_name));
+  fprintf(f, "set xrange [%.17g:%.17g]\n", fmin(from, to), fmax(from, to));
+  fputs("set key inside right top box opaque\n", f);
+  /* Special points as labels. */
+  for (size_t i = 0; i < sc_orbit_branch_nspecial(ob); i++) {
+    sc_special_info sp;
+    sc_orbit_branch_special(ob, i, &sp);
+    if (sp.label == SC_PT_EP) continue;
+    fprintf(f, "set label %zu '%s' at %.17g,%.17g offset 0.6,0.6 front "
+               "font 'Sans,11' tc rgb '#000000'\n",
+            i + 1, sc_point_label_text(sp.label), sp.p, sp.d);
+  }
+  fputs("plot ", f);
+  if (with_sweep)
+    fputs("'branch-sweep.csv' skip 1 using 1:2 with dots lc rgb '#999999' "
+          "title 'brute force', \\\n     ",
+          f);
+  fputs("'branch-orbits.csv' skip 2 using 1:2 with lines lw 2 "
+        "lc rgb '#1f4e9e' title 'stable', \\\n",
+        f);
+  fputs("     'branch-orbits.csv' skip 2 using 1:3 with lines lw 1.5 dt 2 "
+        "lc rgb '#d62728' title 'unstable', \\\n",
+        f);
+  fputs("     'points.csv' skip 1 using 3:(strcol(1) eq 'EP' ? NaN : $4) "
+        "with points pt 7 ps 1.3 lc rgb '#000000' title 'special points'\n",
+        f);
+  st = sc_cli_commit(r, "branch.gp", gp);
+  if (st) return st;
+  return sc_cli_add_plot(r, "branch.gp", "branch.png");
+}
+
+/* f^m against d at a special point, with the diagonal and the orbit. */
+static int write_map_plot(sc_cli_run *r, const sc_orbit_branch *ob,
+                          size_t param, long which, double *buf, int maxq,
+                          char *chosen, size_t clen) {
+  size_t ns = sc_orbit_branch_nspecial(ob);
+  sc_special_info sp;
+  long idx = -1;
+  if (which > 0 && (size_t)which <= ns) idx = which - 1;
+  for (size_t i = 0; idx < 0 && i < ns; i++) {
+    sc_orbit_branch_special(ob, i, &sp);
+    if (sp.label != SC_PT_EP) idx = (long)i;
+  }
+  if (idx < 0) return SC_OK;
+  sc_orbit_branch_special(ob, (size_t)idx, &sp);
+  if (sp.period > maxq) return SC_OK;
+  sc_map *m = r->map;
+  if (orbit_points(m, param, sp.p, sp.d, sp.period, buf)) return SC_OK;
+  double lo = buf[0], hi = buf[0];
+  for (int k = 1; k < sp.period; k++) lo = fmin(lo, buf[k]), hi = fmax(hi, buf[k]);
+  double w = 0.3 * (hi - lo) + 0.01 * (1 + fabs(hi));
+  int st = sc_cli_write_map_graph(r, "branch-map.csv", sp.period, lo - w,
+                                  hi + w, 4001);
+  if (st) return st;
+  sc_file *csv = NULL, *gp = NULL;
+  if ((st = sc_cli_open(r, "branch-map-orbit.csv", &csv))) return st;
+  FILE *f = sc_file_stream(csv);
+  fputs("d,d\n", f);
+  for (int k = 0; k < sp.period; k++) {
+    sc_csv_double(f, buf[k]);
+    fputc(',', f);
+    sc_csv_double(f, buf[k]);
+    fputc('\n', f);
+  }
+  if ((st = sc_cli_commit(r, "branch-map-orbit.csv", csv))) return st;
+  if ((st = sc_cli_open(r, "branch-map.gp", &gp))) return st;
+  f = sc_file_stream(gp);
+  const char *pname = sc_map_type(m)->params[param].name;
+  char title[700], ylab[64];
+  snprintf(title, sizeof title, "f^{%d} at the %s point %s = %.12g "
+           "(multiplier %.6g)",
+           sp.period, sc_point_label_text(sp.label), pname, sp.p,
+           sp.multiplier);
+  snprintf(chosen, clen, "%s at %s = %.17g", sc_point_label_text(sp.label),
+           pname, sp.p);
+  snprintf(ylab, sizeof ylab, "f^{%d}(%s)", sp.period,
+           sc_map_type(m)->state_name);
+  sc_plot_head(f, "branch-map.png", title,
+               sc_plot_label(m, sc_map_type(m)->state_name), ylab);
+  fprintf(f, "set xrange [%.17g:%.17g]\nset yrange [%.17g:%.17g]\n", lo - w,
+          hi + w, lo - w, hi + w);
+  fputs("set key inside left top box opaque\n", f);
+  fprintf(f, "plot 'branch-map.csv' skip 1 using 1:2 with lines lw 1.5 "
+             "lc rgb '#1f4e9e' title 'f^{%d}', \\\n",
+          sp.period);
+  fputs("     x with lines dt 2 lc rgb '#777777' title 'diagonal', \\\n", f);
+  fputs("     'branch-map-orbit.csv' skip 1 using 1:2 with points pt 6 ps 1.8 "
+        "lw 2 lc rgb '#d62728' title 'orbit points'\n",
+        f);
+  if ((st = sc_cli_commit(r, "branch-map.gp", gp))) return st;
+  return sc_cli_add_plot(r, "branch-map.gp", "branch-map.png");
+}
+
 static int branch_run(sc_cli_run *r) {
-  return sc_fail(r->msg, SC_EINTERNAL, "branch: not yet");
+  const sc_scene *s = r->scene;
+  sc_map *m = r->map;
+  const char *pname = sc_scene_text(s, "parameter");
+  size_t param = (size_t)sc_map_param_index(m, pname);
+  sc_orbit_branch_spec sp = {
+      .param = param,
+      .from = sc_scene_real(s, "from"),
+      .to = sc_scene_real(s, "to"),
+      .period = (int)sc_scene_int(s, "period"),
+      .d0 = sc_scene_real(s, "d0"),
+      .switch_pd = sc_scene_flag(s, "switch"),
+      .max_points = sc_scene_int(s, "max-points"),
+      .max_branches = (int)sc_scene_int(s, "max-branches"),
+      .max_period = (int)sc_scene_int(s, "max-period"),
+      .h0 = sc_scene_real(s, "h0"),
+      .hmax = sc_scene_real(s, "hmax"),
+      .linsolve = sc_linsolve_type_find(sc_scene_text(s, "linsolve")),
+      .progress = on_progress,
+      .progress_ctx = r,
+  };
+  double saved = sc_map_get_param(m, param);
+  sc_orbit_branch *ob = NULL;
+  double *buf = malloc(((size_t)sp.max_period + 2) * sizeof *buf);
+  if (!buf) return sc_fail(r->msg, SC_ENOMEM, "branch: out of memory");
+  double t0 = now();
+  unsigned long ev0 = sc_map_nevals(m);
+  int st = sc_orbit_branch_alloc(m, &sp, &ob, r->msg);
+  for (const char *q = sc_scene_text(s, "starts"); !st && q && *q;) {
+    double p, d;
+    int per, used = 0;
+    while (*q == ' ' || *q == ';') q++;
+    if (!*q || sscanf(q, "%lf %lf %d%n", &p, &d, &per, &used) != 3) break;
+    st = sc_orbit_branch_add_start(ob, p, d, per, r->msg);
+    q += used;
+  }
+  if (!st) st = sc_orbit_branch_run(ob, r->msg);
+  double elapsed = now() - t0;
+  unsigned long nev = sc_map_nevals(m) - ev0;
+  if (st) goto done;
+  if ((st = write_points(r, ob, pname))) goto done;
+  if ((st = write_branch(r, ob, pname, param, buf, sp.max_period))) goto done;
+  int with_sweep = sc_scene_flag(s, "sweep");
+  double t1 = now();
+  if (with_sweep) {
+    sc_map_set_param(m, param, saved, NULL);
+    if ((st = write_sweep(r, param, sp.from, sp.to, sp.d0))) goto done;
+  }
+  double tsweep = now() - t1;
+  if ((st = write_branch_plot(r, ob, pname, sp.from, sp.to, with_sweep)))
+    goto done;
+  char chosen[256] = "none";
+  if ((st = write_map_plot(r, ob, param, sc_scene_int(s, "plot-point"), buf,
+                           sp.max_period, chosen, sizeof chosen)))
+    goto done;
+  sc_map_set_param(m, param, saved, NULL);
+
+  sc_file *sum = NULL;
+  if ((st = sc_cli_summary_begin(r, &sum))) goto done;
+  FILE *f = sc_file_stream(sum);
+  fprintf(f, "  branches: %d, points: %zu, special points: %zu\n",
+          sc_orbit_branch_nbranches(ob), sc_orbit_branch_npoints(ob),
+          sc_orbit_branch_nspecial(ob));
+  for (size_t i = 0; i < sc_orbit_branch_nspecial(ob); i++) {
+    sc_special_info p;
+    sc_orbit_branch_special(ob, i, &p);
+    fprintf(f, "  %s  %s = %.17g  d = %.17g  period %d  multiplier %.17g\n"
+               "      branch %d: %s\n",
+            sc_point_label_text(p.label), pname, p.p, p.d, p.period,
+            p.multiplier, p.branch, p.note);
+  }
+  fprintf(f, "  continuation: %.3f s, %lu map evaluations\n", elapsed, nev);
+  if (with_sweep) fprintf(f, "  brute-force sweep: %.3f s\n", tsweep);
+  fprintf(f, "  map drawn at: %s\n", chosen);
+  st = sc_cli_commit(r, "summary.txt", sum);
+  sc_cli_note(r, "%d branches, %zu points, %zu special points in %.2f s",
+              sc_orbit_branch_nbranches(ob), sc_orbit_branch_npoints(ob),
+              sc_orbit_branch_nspecial(ob), elapsed);
+done:
+  sc_map_set_param(m, param, saved, NULL);
+  sc_orbit_branch_free(ob);
+  free(buf);
+  return st;
 }
 
 const sc_cli_task sc_cli_task_branch = {
     .type = {.kind = "branch",
-             .doc = "continuation of a periodic orbit in one parameter",
+             .doc = "continuation of a periodic orbit in one parameter: "
+                    "folds (LP), flips (PD), grazing (GR), crossing-sliding "
+                    "(CS), switching (SW)",
              .keys = branch_keys,
              .nkeys = sizeof branch_keys / sizeof branch_keys[0],
-             .check = NULL},
-    .outputs = "branch.csv, points.csv",
+             .check = branch_check},
+    .outputs = "branch.csv (PARAMETER,d,multiplier,stable,itinerary,period,"
+               "branch), points.csv (label,parameter,value,d,period,"
+               "multiplier,note), branch-orbits.csv, branch-sweep.csv, "
+               "summary.txt, branch.gp/png, branch-map.gp/png",
     .run = branch_run,
 };
