@@ -85,6 +85,7 @@ struct sc_orbit_branch {
   double *seed;
   double *orb_a; /* scratch: the orbit on the known side of a DIB */
   double *orb_c; /* scratch: the orbit at the current point */
+  double *orb_f; /* the orbit at the first point of the segment */
   g_ctx ctx;
 };
 
@@ -146,8 +147,9 @@ int sc_orbit_branch_alloc(sc_map *m, const sc_orbit_branch_spec *spec,
   b->seed = calloc(np, sizeof *b->seed);
   b->orb_a = calloc(np, sizeof *b->orb_a);
   b->orb_c = calloc(np, sizeof *b->orb_c);
+  b->orb_f = calloc(np, sizeof *b->orb_f);
   if (!b->pts || !b->sps || !b->jobs || !b->starts || !b->orbit ||
-      !b->seed || !b->orb_a || !b->orb_c) {
+      !b->seed || !b->orb_a || !b->orb_c || !b->orb_f) {
     sc_orbit_branch_free(b);
     return sc_fail(msg, SC_ENOMEM, "sc_orbit_branch_alloc: no memory for "
                                    "%zu points",
@@ -167,6 +169,7 @@ void sc_orbit_branch_free(sc_orbit_branch *b) {
   free(b->seed);
   free(b->orb_a);
   free(b->orb_c);
+  free(b->orb_f);
   free(b);
 }
 
@@ -467,25 +470,22 @@ static int switch_flip(sc_orbit_branch *b, int m, double p, double d) {
  * below the distance between distinct orbits. */
 #define SAME_ORBIT_TOL 1e-8
 
-/* Whether the orbit at (p, b->orb_c) lies on an already computed branch,
- * or closes this one on itself: returns that branch, or -1.  Points of
- * this segment's own start neighbourhood (within 2 hmax) are not
- * compared, so that a start continued both ways does not join its twin
- * at once.  Candidates are the points within hmax in p whose smallest
- * orbit point is near; the orbit is then followed from the candidate to
- * p by shooting and compared as a point set. */
+/* Whether the orbit at (p, b->orb_c) lies on a branch computed before
+ * this one: returns that branch, or -1.  Points near this segment's
+ * own start (within 2 hmax) are not compared, so that a start continued
+ * both ways does not join its twin at once.  Candidates are the points
+ * within hmax in p whose smallest orbit point is near; the orbit is then
+ * followed from the candidate to p by shooting and compared as a point
+ * set. */
 static int joins(sc_orbit_branch *b, int branch, int period, double p,
-                 double dmin, size_t own_first, double p0, double d0,
-                 double hmax, int moved) {
-  if (fabs(p - p0) + fabs(dmin - d0) <= 2 * hmax && !moved) return -1;
-  for (size_t i = 0; i + 1 < b->npts; i++) {
+                 double dmin, double p0, double d0, double hmax, int moved) {
+  if (!moved && fabs(p - p0) + fabs(dmin - d0) <= 2 * hmax) return -1;
+  for (size_t i = 0; i < b->npts; i++) {
     const point_rec *r = &b->pts[i];
-    if (r->period != period) continue;
-    if (r->branch == branch && (i != own_first || !moved)) continue;
+    if (r->period != period || r->branch == branch) continue;
     double dp = fabs(r->p - p);
     if (dp > hmax || fabs(r->dmin - dmin) > 1e-3 + 10 * dp) continue;
-    if (fabs(r->p - p0) + fabs(r->dmin - d0) <= 2 * hmax &&
-        r->branch != branch)
+    if (fabs(r->p - p0) + fabs(r->dmin - d0) <= 2 * hmax)
       continue; /* the twin's start: compared once this one moved on */
     if (set_p(b->m, b->sp.param, r->p) ||
         iterate_orbit(b, r->d, period, b->seed))
@@ -565,7 +565,6 @@ static int run_segment(sc_orbit_branch *b, const job *jb, int branch,
     return SC_OK;
   }
   double last_p = jb->p, last_d = jb->d, last_t = jb->direction;
-  size_t own_first = b->npts;
   double p_first = NAN, dmin_first = NAN;
   int moved = 0;
   for (;;) {
@@ -578,11 +577,18 @@ static int run_segment(sc_orbit_branch *b, const job *jb, int branch,
     if (sc_map_iterate(m, u[0], period, SC_EVAL_DERIV | SC_EVAL_ITINERARY, &v,
                        NULL) == SC_OK)
       add_point(b, branch, period, u[1], u[0], &v, dmin);
-    if (isnan(p_first)) p_first = u[1], dmin_first = dmin;
+    if (isnan(p_first)) {
+      p_first = u[1], dmin_first = dmin;
+      memcpy(b->orb_f, b->orb_c, (size_t)period * sizeof *b->orb_f);
+    }
     if (fabs(u[1] - p_first) + fabs(dmin - dmin_first) > 4 * set.hmax)
       moved = 1;
-    int jn = joins(b, branch, period, u[1], dmin, own_first, p_first,
-                   dmin_first, set.hmax, moved);
+    int jn = joins(b, branch, period, u[1], dmin, p_first, dmin_first,
+                   set.hmax, moved);
+    /* Back at the start after going away: a closed curve. */
+    if (jn < 0 && moved && fabs(u[1] - p_first) <= set.hmax &&
+        close_orbits(b->orb_c, period, b->orb_f, period, set.hmax))
+      jn = branch;
     if (jn >= 0) {
       special_rec *r = add_special(b, SC_PT_EP, branch, period, u[1], u[0],
                                    v.dfdd, NAN);

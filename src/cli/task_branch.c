@@ -288,7 +288,7 @@ static int write_branch_plot(sc_cli_run *r, const sc_orbit_branch *ob,
   }
   fputs("plot ", f);
   if (with_sweep)
-    fputs("'branch-sweep.csv' skip 1 using 1:2 with dots lc rgb '#999999' "
+    fputs("'branch-sweep.csv' skip 1 using 1:2 with points pt 7 ps 0.2 lc rgb '#aaaaaa' "
           "title 'brute force', \\\n     ",
           f);
   fputs("'branch-orbits.csv' skip 2 using 1:2 with lines lw 2 "
