@@ -2,6 +2,7 @@
  * and, where it is undefined, the reason (fig 5.5). */
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "cli/progress.h"
@@ -18,6 +19,42 @@ static const sc_key_info map_keys[] = {
     {"steps", SC_KEY_INT, 0, "1001", 1, 100000000, 0, 0, NULL,
      "grid points, both ends included (1: from only)"},
 };
+
+/* Pieces of constant itinerary listed in the summary. */
+#define MAP_MAX_PIECES 64
+
+typedef struct {
+  double from, to;             /* first and last grid point of the piece */
+  double flo, fhi;             /* range of f^n on it */
+  size_t npts;
+  char itinerary[SC_ITIN_LEN]; /* "undefined" where f^n is */
+} map_piece;
+
+typedef struct {
+  map_piece p[MAP_MAX_PIECES];
+  size_t n;      /* pieces stored */
+  size_t extra;  /* pieces beyond MAP_MAX_PIECES */
+} map_pieces;
+
+static void add_point(map_pieces *ps, double d, double f, const char *itin) {
+  map_piece *last = ps->n ? &ps->p[ps->n - 1] : NULL;
+  if (last && !ps->extra && strcmp(last->itinerary, itin) == 0) {
+    last->to = d;
+    last->npts++;
+    if (f < last->flo) last->flo = f;
+    if (f > last->fhi) last->fhi = f;
+    return;
+  }
+  if (ps->n == MAP_MAX_PIECES) {
+    ps->extra++;
+    return;
+  }
+  map_piece *p = &ps->p[ps->n++];
+  p->from = p->to = d;
+  p->flo = p->fhi = f;
+  p->npts = 1;
+  snprintf(p->itinerary, sizeof p->itinerary, "%s", itin);
+}
 
 /* Short reasons are enough in the CSV: the first failure's full message
  * goes to the summary. */
@@ -37,6 +74,11 @@ static int map_run(sc_cli_run *r) {
   char first_reason[SC_MSG_LEN] = "";
   sc_map_value v;
   sc_msg em;
+  map_pieces *pieces = calloc(1, sizeof *pieces);
+  if (!pieces) {
+    sc_file_abort(csv);
+    return sc_fail(r->msg, SC_ENOMEM, "map: out of memory");
+  }
   sc_progress bar;
   sc_progress_start(&bar, "points", (long)steps, 0,
                     sc_progress_wanted(r->quiet));
@@ -44,6 +86,7 @@ static int map_run(sc_cli_run *r) {
     if (sc_cli_interrupted()) {
       sc_progress_finish(&bar);
       sc_file_abort(csv);
+      free(pieces);
       return sc_fail(r->msg, SC_ECALLBACK, "interrupted");
     }
     double d = sc_grid_point(from, to, steps, i);
@@ -55,6 +98,7 @@ static int map_run(sc_cli_run *r) {
       fputc(',', f);
       sc_csv_double(f, v.dfdd);
       fprintf(f, ",%s,ok\n", sc_cli_csv_text(v.itinerary));
+      add_point(pieces, d, v.f, v.itinerary);
       flo = flo < v.f ? flo : v.f;
       fhi = fhi > v.f ? fhi : v.f;
       nok++;
@@ -64,23 +108,38 @@ static int map_run(sc_cli_run *r) {
                  em.text);
       nundef++;
       fprintf(f, "nan,nan,,%s\n", sc_cli_csv_text(em.text));
+      add_point(pieces, d, NAN, "undefined");
     } else {
       sc_progress_finish(&bar);
       sc_file_abort(csv);
+      free(pieces);
       return sc_fail(r->msg, st, "map at %s = %.17g: %s",
                      sc_map_type(m)->state_name, d, em.text);
     }
     sc_progress_update(&bar, (long)i + 1);
   }
   sc_progress_finish(&bar);
-  if ((st = sc_cli_commit(r, "map.csv", csv))) return st;
-
-  if ((st = sc_cli_summary_begin(r, &sum))) return st;
+  if ((st = sc_cli_commit(r, "map.csv", csv)) ||
+      (st = sc_cli_summary_begin(r, &sum))) {
+    free(pieces);
+    return st;
+  }
   f = sc_file_stream(sum);
   fprintf(f, "  f^%d evaluated at %zu points: %zu defined, %zu undefined\n", n,
           steps, nok, nundef);
   if (nok) fprintf(f, "  range of f^%d: [%.17g, %.17g]\n", n, flo, fhi);
   if (nundef) fprintf(f, "  first undefined point %s\n", first_reason);
+  fputs("  pieces of constant itinerary (grid points; f^n on them):\n", f);
+  for (size_t i = 0; i < pieces->n; i++) {
+    const map_piece *p = &pieces->p[i];
+    fprintf(f, "    %s from %.10g to %.10g (%zu points): %s", sc_map_type(m)->state_name,
+            p->from, p->to, p->npts, p->itinerary);
+    if (!isnan(p->flo)) fprintf(f, "; f^%d in [%.10g, %.10g]", n, p->flo, p->fhi);
+    fputc('\n', f);
+  }
+  if (pieces->extra)
+    fprintf(f, "    ... and %zu more pieces\n", pieces->extra);
+  free(pieces);
   if (strcmp(sc_map_type(m)->name, "bk2") == 0) {
     double a = sc_map_get_param(m, (size_t)sc_map_param_index(m, "alpha"));
     double b = sc_map_get_param(m, (size_t)sc_map_param_index(m, "beta"));
@@ -113,11 +172,28 @@ static int map_run(sc_cli_run *r) {
           f);
   }
   fputs("# points, not lines, so that jumps of the map stay open\n", f);
-  fprintf(f,
-          "plot 'map.csv' using 1:2 skip 1 with points pt 7 ps 0.35 "
-          "lc rgb '#1f4e9e' title '%s', \\\n"
+  if (strcmp(sc_map_type(m)->name, "bk2") == 0) {
+    fputs("# column 4 is the itinerary: without '12' only one block slips at "
+          "a time\n# (single-block slips: f' = 1, MODEL.md)\n"
+          "single(s) = strstrt(s, '12') == 0\n",
+          f);
+    fputs("plot 'map.csv' skip 1 using 1:(single(strcol(4)) ? $2 : NaN) "
+          "with points pt 7 ps 0.35 lc rgb '#2ca02c' notitle, \\\n"
+          "     '' skip 1 using 1:(single(strcol(4)) ? NaN : $2) with points "
+          "pt 7 ps 0.35 lc rgb '#1f4e9e' notitle, \\\n"
+          "     keyentry with points pt 7 ps 1.5 lc rgb '#2ca02c' "
+          "title 'one block slips at a time', \\\n"
+          "     keyentry with points pt 7 ps 1.5 lc rgb '#1f4e9e' "
+          "title 'both blocks slip', \\\n"
           "     x with lines dt 2 lc rgb '#999999' title 'diagonal'\n",
-          n == 1 ? "f" : "f^n");
+          f);
+  } else {
+    fprintf(f,
+            "plot 'map.csv' using 1:2 skip 1 with points pt 7 ps 0.35 "
+            "lc rgb '#1f4e9e' title '%s', \\\n"
+            "     x with lines dt 2 lc rgb '#999999' title 'diagonal'\n",
+            n == 1 ? "f" : "f^n");
+  }
   if ((st = sc_cli_commit(r, "map.gp", gp))) return st;
   if ((st = sc_cli_add_plot(r, "map.gp", "map.png"))) return st;
   if (nundef)
