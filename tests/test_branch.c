@@ -1,0 +1,343 @@
+/* Branches of periodic orbits (sc_orbit_branch, branch.h).
+ *
+ * - Logistic map: the fixed point continued in r with branch switching:
+ *   flips at r = 3 and r = 1 + sqrt 6 (and the next two of the cascade
+ *   against their 50-digit values); each PD's new branch has twice the
+ *   period; the period-3 fold at r = 1 + 2 sqrt 2.
+ * - bk2, driver frozen, beta = 2.5 (fig 5.8): the flip cascade from the
+ *   period-2 orbit of alpha = 3; the period-6 window's two folds, a closed
+ *   curve of orbits; multipliers -1 and +1 at the located points; every
+ *   stable branch point is the orbit brute-force iteration converges to.
+ * - bk2, driver frozen, beta = 3.2 (fig 5.12): a crossing-sliding after
+ *   which the branch goes on with period 1, a grazing-sliding, the
+ *   period-3 fold; each DIB's degeneracy recomputed at the located point.
+ *
+ * Tolerances: special points are located until the arclength step is
+ * within 1e-13 (1 + |u|) and |test function| <= 1e-8 (the continuation
+ * defaults); flips are located to rounding in the map (1e-13 for the
+ * logistic map, as in test_continuation); the multipliers at LP and PD
+ * are within test_atol = 1e-8 of +1 and -1.  DIBs are bracketed in the
+ * parameter to 1e-13 (1 + |p|) and their margins are below
+ * SC_DIB_MARGIN_TOL (branch.h explains the value). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "slipcont/branch.h"
+#include "test_util.h"
+
+static sc_orbit_branch_spec spec0(size_t param, double from, double to,
+                                  int period, double d0) {
+  sc_orbit_branch_spec sp = {.param = param, .from = from, .to = to,
+                             .period = period, .d0 = d0, .switch_pd = 1,
+                             .max_points = 2000, .max_branches = 40,
+                             .max_period = 16};
+  return sp;
+}
+
+/* Special points of a label, in the order found. */
+static int collect(const sc_orbit_branch *b, sc_point_label l,
+                   sc_special_info *out, int max) {
+  int n = 0;
+  for (size_t i = 0; i < sc_orbit_branch_nspecial(b) && n < max; i++) {
+    sc_special_info sp;
+    sc_orbit_branch_special(b, i, &sp);
+    if (sp.label == l) out[n++] = sp;
+  }
+  return n;
+}
+
+/* Period of branch @p k (from its points), 0 if it has none. */
+static int branch_period(const sc_orbit_branch *b, int k) {
+  sc_branch_point_info pt;
+  for (size_t i = 0; i < sc_orbit_branch_npoints(b); i++) {
+    sc_orbit_branch_point(b, i, &pt);
+    if (pt.branch == k) return pt.period;
+  }
+  return 0;
+}
+
+static void check_lp_pd(const sc_orbit_branch *b) {
+  sc_special_info sp[64];
+  int n = collect(b, SC_PT_PD, sp, 64);
+  for (int i = 0; i < n; i++)
+    tu_close("multiplier at a located PD", sp[i].multiplier, -1, 1e-8);
+  n = collect(b, SC_PT_LP, sp, 64);
+  for (int i = 0; i < n; i++)
+    tu_close("multiplier at a located LP", sp[i].multiplier, 1, 1e-8);
+}
+
+/* Each PD followed by a new branch: that branch has twice the period. */
+static void check_doubling(const sc_orbit_branch *b) {
+  int nb = sc_orbit_branch_nbranches(b), checked = 0;
+  for (int k = 1; k < nb; k++) {
+    /* A branch born at a flip starts within 1e-3 of that PD in p. */
+    sc_branch_point_info pt;
+    for (size_t i = 0; i < sc_orbit_branch_npoints(b); i++) {
+      sc_orbit_branch_point(b, i, &pt);
+      if (pt.branch == k) break;
+    }
+    sc_special_info sp[64];
+    int n = collect(b, SC_PT_PD, sp, 64);
+    for (int j = 0; j < n; j++)
+      if (fabs(sp[j].p - pt.p) < 2e-3 * (1 + fabs(pt.p)) &&
+          strstr(sp[j].note, "period-doubled branch is followed") &&
+          branch_period(b, sp[j].branch) * 2 == pt.period) {
+        checked++;
+        break;
+      }
+  }
+  tu_true(checked >= 1, "%d branches start at a PD with twice its period",
+          checked);
+}
+
+static void test_logistic(void) {
+  printf("--- logistic: fixed point in r with branch switching\n");
+  sc_map *m;
+  sc_msg msg = {""};
+  sc_map_alloc("logistic", NULL, &m, &msg);
+  sc_orbit_branch_spec sp = spec0(0, 2.8, 3.6, 1, 0.6);
+  sp.max_period = 8;
+  sp.hmax = 0.01;
+  sc_orbit_branch *b;
+  int st = sc_orbit_branch_alloc(m, &sp, &b, &msg);
+  if (!st) st = sc_orbit_branch_run(b, &msg);
+  tu_int("run: SC_OK", st, SC_OK);
+  sc_special_info pd[16];
+  int n = collect(b, SC_PT_PD, pd, 16);
+  tu_int("four flips (periods 1, 2, 4, 8)", n, 4);
+  /* Sorted by period, they are the cascade r_1 .. r_4 (mpmath values,
+   * as in test_continuation). */
+  const double want[4] = {3.0, 1 + 2.449489742783178098197284,
+                          3.54409035955192285361596598660,
+                          3.56440726609543259777355758653};
+  for (int k = 0; k < n && k < 4; k++) {
+    int per = 1 << k;
+    for (int i = 0; i < n; i++)
+      if (pd[i].period == per) {
+        char what[64];
+        snprintf(what, sizeof what, "flip of the period-%d orbit", per);
+        tu_close(what, pd[i].p, want[k], 1e-13);
+      }
+  }
+  check_lp_pd(b);
+  check_doubling(b);
+  tu_int("no DIB on a smooth map", collect(b, SC_PT_DI, pd, 16), 0);
+  sc_orbit_branch_free(b);
+
+  printf("--- logistic: period-3 fold\n");
+  sc_map_set_param(m, 0, 3.835, &msg);
+  double x = 0.5;
+  sc_map_value v;
+  for (int k = 0; k < 3000; k++) {
+    sc_map_eval(m, x, SC_EVAL_VALUE, &v, &msg);
+    x = v.f;
+  }
+  sp = spec0(0, 3.835, 3.8, 3, x);
+  sp.hmax = 2e-3;
+  sp.switch_pd = 0;
+  sc_orbit_branch_alloc(m, &sp, &b, &msg);
+  st = sc_orbit_branch_run(b, &msg);
+  tu_int("run: SC_OK", st, SC_OK);
+  sc_special_info lp[4];
+  n = collect(b, SC_PT_LP, lp, 4);
+  tu_int("one fold", n, 1);
+  if (n) tu_close("period-3 fold at r = 1 + 2 sqrt 2", lp[0].p, 1 + 2 * sqrt(2),
+                  1e-13);
+  check_lp_pd(b);
+  sc_orbit_branch_free(b);
+  sc_map_free(m);
+}
+
+static sc_map *bk2_frozen(double beta) {
+  sc_map *m;
+  sc_msg msg = {""};
+  sc_map_alloc("bk2", NULL, &m, &msg);
+  sc_map_set_option(m, "driver", "frozen", &msg);
+  sc_map_set_param_by_name(m, "beta", beta, &msg);
+  sc_map_set_param_by_name(m, "phi", 1.25, &msg);
+  return m;
+}
+
+/* Stable points of the branches against brute force: iterate from a
+ * point displaced by 1e-6 and compare with the orbit after 3000
+ * iterates.  Points with |multiplier| > 0.9 (slow convergence) and
+ * those within 1e-3 of a special point are skipped. */
+static void check_brute_force(const sc_orbit_branch *b, sc_map *m,
+                              size_t param) {
+  int checked = 0, bad = 0;
+  double worst = 0;
+  for (size_t i = 0; i < sc_orbit_branch_npoints(b); i += 7) {
+    sc_branch_point_info pt;
+    sc_orbit_branch_point(b, i, &pt);
+    if (!pt.stable || fabs(pt.multiplier) > 0.9) continue;
+    int near = 0;
+    for (size_t j = 0; j < sc_orbit_branch_nspecial(b); j++) {
+      sc_special_info sp;
+      sc_orbit_branch_special(b, j, &sp);
+      if (fabs(sp.p - pt.p) < 1e-3) near = 1;
+    }
+    if (near) continue;
+    sc_map_set_param(m, param, pt.p, NULL);
+    double x = pt.d + 1e-6;
+    sc_map_value v;
+    int st = 0;
+    for (int k = 0; k < 3000 * pt.period && !st; k++) {
+      st = sc_map_eval(m, x, SC_EVAL_VALUE, &v, NULL);
+      x = v.f;
+    }
+    /* After a multiple of the period the iterate is back near d. */
+    double err = st ? HUGE_VAL : fabs(x - pt.d);
+    worst = fmax(worst, err);
+    if (err > 1e-9) bad++;
+    checked++;
+  }
+  printf("  %d stable points checked against brute force, worst %.3g\n",
+         checked, worst);
+  tu_true(checked >= 10, "at least 10 stable points checked (%d)", checked);
+  /* |multiplier| <= 0.9: 3000 periods contract 1e-6 far below 1e-9. */
+  tu_int("stable points not reached by brute force within 1e-9", bad, 0);
+}
+
+static void test_fig58(void) {
+  printf("--- bk2 frozen, beta = 2.5 (fig 5.8)\n");
+  sc_map *m = bk2_frozen(2.5);
+  size_t ia = (size_t)sc_map_param_index(m, "alpha");
+  sc_msg msg = {""};
+  sc_orbit_branch_spec sp = spec0(ia, 3.0, 3.45, 2, 0.2253);
+  sp.hmax = 0.01;
+  sp.max_period = 8;
+  sc_orbit_branch *b;
+  int st = sc_orbit_branch_alloc(m, &sp, &b, &msg);
+  if (!st) st = sc_orbit_branch_add_start(b, 3.3, 0.0991, 6, &msg);
+  if (!st) st = sc_orbit_branch_run(b, &msg);
+  tu_int("run: SC_OK", st, SC_OK);
+  sc_special_info s[64];
+  int n = collect(b, SC_PT_PD, s, 64);
+  tu_true(n >= 3, "the flip cascade: %d PDs", n);
+  int first = 0;
+  for (int i = 0; i < n; i++)
+    if (s[i].period == 2 && fabs(s[i].p - 3.0568) < 1e-3) first = 1;
+  tu_true(first, "first flip of the cascade near alpha = 3.0568");
+  n = collect(b, SC_PT_LP, s, 64);
+  int lo = 0, hi = 0;
+  for (int i = 0; i < n; i++) {
+    if (s[i].period != 6) continue;
+    if (fabs(s[i].p - 3.2196) < 1e-3) lo++;
+    if (fabs(s[i].p - 3.3878) < 1e-3) hi++;
+  }
+  tu_true(lo >= 1 && hi >= 1, "the period-6 window's folds near 3.2196 and "
+                              "3.3878 (%d, %d)",
+          lo, hi);
+  n = collect(b, SC_PT_EP, s, 64);
+  int closed = 0;
+  for (int i = 0; i < n; i++)
+    if (strstr(s[i].note, "closes on itself")) closed = 1;
+  tu_true(closed, "the period-6 branch is a closed curve");
+  check_lp_pd(b);
+  check_doubling(b);
+  check_brute_force(b, m, ia);
+  sc_orbit_branch_free(b);
+  sc_map_free(m);
+}
+
+/* The margin of a DIB recomputed at its located point (and across the
+ * bracket, where the degeneracy may sit on the far side). */
+static double margin_at(sc_map *m, size_t param, const sc_special_info *sp) {
+  double best = HUGE_VAL;
+  for (int side = -1; side <= 1; side++) {
+    sc_map_set_param(m, param, sp->p + side * sp->width, NULL);
+    sc_map_value v;
+    if (sc_map_iterate(m, sp->d, sp->period, SC_EVAL_DERIV, &v, NULL))
+      continue;
+    double x = sp->label == SC_PT_GR   ? v.graze_margin
+               : sp->label == SC_PT_CS ? v.gsp_gap
+                                       : v.dstar_dist;
+    best = fmin(best, fabs(x));
+  }
+  return best;
+}
+
+static void test_fig512(void) {
+  printf("--- bk2 frozen, beta = 3.2 (fig 5.12)\n");
+  sc_map *m = bk2_frozen(3.2);
+  size_t ia = (size_t)sc_map_param_index(m, "alpha");
+  sc_msg msg = {""};
+  sc_orbit_branch_spec sp = spec0(ia, 5.0, 6.5, 2, 0.2157);
+  sp.hmax = 0.01;
+  sc_orbit_branch *b;
+  int st = sc_orbit_branch_alloc(m, &sp, &b, &msg);
+  if (!st) st = sc_orbit_branch_add_start(b, 6.0, 0.1223, 3, &msg);
+  if (!st) st = sc_orbit_branch_run(b, &msg);
+  tu_int("run: SC_OK", st, SC_OK);
+  sc_special_info cs[8], gr[8], lp[8];
+  int ncs = collect(b, SC_PT_CS, cs, 8), ngr = collect(b, SC_PT_GR, gr, 8),
+      nlp = collect(b, SC_PT_LP, lp, 8);
+  tu_true(ncs >= 1 && fabs(cs[0].p - 5.6488) < 1e-3,
+          "crossing-sliding near alpha = 5.6488 (%d found)", ncs);
+  tu_true(ngr >= 1 && fabs(gr[0].p - 5.7494) < 1e-3,
+          "grazing-sliding near alpha = 5.7494 (%d found)", ngr);
+  int p3 = 0;
+  for (int i = 0; i < nlp; i++)
+    if (lp[i].period == 3 && fabs(lp[i].p - 5.6357) < 1e-3) p3 = 1;
+  tu_true(p3, "the period-3 fold near alpha = 5.6357");
+  if (ncs) {
+    tu_int("CS on the period-2 orbit", cs[0].period, 2);
+    tu_true(strstr(cs[0].note, "continues with period 1") != NULL,
+            "after the CS the branch goes on with period 1: %s", cs[0].note);
+  }
+  /* Every GR/CS/SW: degeneracy below SC_DIB_MARGIN_TOL, recomputed. */
+  for (size_t i = 0; i < sc_orbit_branch_nspecial(b); i++) {
+    sc_special_info s;
+    sc_orbit_branch_special(b, i, &s);
+    if (s.label != SC_PT_GR && s.label != SC_PT_CS && s.label != SC_PT_SW)
+      continue;
+    char what[96];
+    snprintf(what, sizeof what, "%s at %.10g: recomputed margin",
+             sc_point_label_text(s.label), s.p);
+    tu_close(what, margin_at(m, ia, &s), 0, SC_DIB_MARGIN_TOL);
+    tu_true(s.width <= 1e-13 * (1 + fabs(s.p)) * 2,
+            "%s bracketed to %.3g in alpha", sc_point_label_text(s.label),
+            s.width);
+  }
+  check_lp_pd(b);
+  check_brute_force(b, m, ia);
+  sc_orbit_branch_free(b);
+  sc_map_free(m);
+}
+
+static void test_errors(void) {
+  printf("--- error paths\n");
+  sc_map *m;
+  sc_msg msg = {""};
+  sc_map_alloc("logistic", NULL, &m, &msg);
+  sc_orbit_branch *b = (sc_orbit_branch *)&msg;
+  sc_orbit_branch_spec sp = spec0(0, 3, 3, 1, 0.5);
+  tu_int("from = to: SC_EINVAL", sc_orbit_branch_alloc(m, &sp, &b, &msg),
+         SC_EINVAL);
+  tu_true(b == NULL, "no object on failure");
+  printf("  message: %s\n", msg.text);
+  sp = spec0(5, 2, 3, 1, 0.5);
+  tu_int("bad parameter index: SC_EINVAL",
+         sc_orbit_branch_alloc(m, &sp, &b, &msg), SC_EINVAL);
+  sp = spec0(0, 2, 3, 1, 0.5);
+  sp.max_period = 0;
+  tu_int("max_period < period: SC_EINVAL",
+         sc_orbit_branch_alloc(m, &sp, &b, &msg), SC_EINVAL);
+  sp = spec0(0, 2, 3, 1, 0.5);
+  sc_orbit_branch_alloc(m, &sp, &b, &msg);
+  tu_int("start outside the interval: SC_EINVAL",
+         sc_orbit_branch_add_start(b, 4, 0.5, 1, &msg), SC_EINVAL);
+  sc_orbit_branch_free(b);
+  sc_orbit_branch_free(NULL);
+  sc_map_free(m);
+}
+
+int main(void) {
+  setvbuf(stdout, NULL, _IOLBF, 0);
+  test_logistic();
+  test_fig58();
+  test_fig512();
+  test_errors();
+  return tu_finish();
+}
