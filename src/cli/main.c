@@ -207,6 +207,12 @@ static int cmd_run(const cli_args *a) {
   if (st) {
     fprintf(stderr, "slipcont: %s: %s\n", sc_scene_name(s), msg.text);
     rc = EXIT_COMPUTE;
+  } else if (sc_cli_interrupted()) {
+    /* The task finished its files, but the user asked to stop: no plots. */
+    fprintf(stderr, "slipcont: %s: interrupted (the files written are "
+                    "complete; no plot was rendered)\n",
+            sc_scene_name(s));
+    rc = EXIT_COMPUTE;
   }
   for (size_t i = 0; plot && !sc_cli_interrupted() && i < r.nplots; i++) {
     if (sc_plot_render(r.dir, r.plot_script[i], r.plot_png[i], &msg)) {
