@@ -2,3 +2,8 @@
 sc_add_test(test_shooting)
 sc_add_test(test_fixed_points)
 sc_add_test(test_branch)
+# The fixed-point and branch example scenes through the program.
+add_test(NAME branch_examples
+  COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/branch_examples.sh
+          $<TARGET_FILE:slipcont_cli> ${PROJECT_SOURCE_DIR})
+set_tests_properties(branch_examples PROPERTIES TIMEOUT 300)
