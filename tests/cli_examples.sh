@@ -62,16 +62,38 @@ sweep_rows() {
   else fail "$1: $n rows, expected $expect"; fi
 }
 
+# periods NAME DIRECTION LO HI: the distinct periods of the rows of
+# sweep.csv with the parameter in [LO, HI] in that pass, sorted.
+periods() {
+  awk -F, -v d="$2" -v lo="$3" -v hi="$4" \
+    'NR > 1 && $4 == d && $1 >= lo && $1 <= hi {print $3}' \
+    "$TMP/$1/sweep.csv" | sort -n -u | tr '\n' ' ' | sed 's/ $//'
+}
+
+# expect_periods NAME DIRECTION LO HI EXPECTED
+expect_periods() {
+  got=$(periods "$1" "$2" "$3" "$4")
+  if [ "$got" = "$5" ]; then pass "$1: $2 pass on [$3, $4]: period $5"
+  else fail "$1: $2 pass on [$3, $4]: periods '$got', expected '$5'"; fi
+}
+
 example symmetric-chaos
 expect_header symmetric-chaos "$TMP/symmetric-chaos/sweep.csv" "v,d,period,direction"
 sweep_rows symmetric-chaos 400 100
 summary_has symmetric-chaos "down v from 0.025 to"
 summary_has symmetric-chaos "periods seen: 0 2 4"
+expect_periods symmetric-chaos down 0.0236 0.025 2
+expect_periods symmetric-chaos down 0.0197 0.0205 4
+expect_periods symmetric-chaos down 0.015 0.0165 2
 png symmetric-chaos sweep.png
 
 example fig58-sweep
 expect_header fig58-sweep "$TMP/fig58-sweep/sweep.csv" "alpha,d,period,direction"
 sweep_rows fig58-sweep 400 150
+# the flip cascade between 3 and 3.2, and the period-6 window after it
+expect_periods fig58-sweep up 3.0 3.04 2
+expect_periods fig58-sweep up 3.07 3.14 4
+expect_periods fig58-sweep up 3.23 3.38 6
 png fig58-sweep sweep.png
 
 example fig512-sweep
@@ -79,12 +101,25 @@ expect_header fig512-sweep "$TMP/fig512-sweep/sweep.csv" "alpha,d,period,directi
 sweep_rows fig512-sweep 800 150
 summary_has fig512-sweep "up   alpha from 5 to"
 check "fig512-sweep: both directions" grep -q ',down$' "$TMP/fig512-sweep/sweep.csv"
+# period 2 at alpha = 5, period 3 at the top; between 5.66 and 5.74 the
+# passes disagree (hysteresis): the period-3 orbit coexists
+expect_periods fig512-sweep up 5 5.6 2
+expect_periods fig512-sweep down 5 5.6 2
+expect_periods fig512-sweep up 5.8 6.5 3
+expect_periods fig512-sweep down 5.66 6.5 3
+expect_periods fig512-sweep up 5.66 5.74 1
 png fig512-sweep sweep.png
 
 example logistic-sweep
 expect_header logistic-sweep "$TMP/logistic-sweep/sweep.csv" "r,d,period,direction"
 sweep_rows logistic-sweep 601 200
 summary_has logistic-sweep "periods seen: 0 1 2 3 4"
+# exact answers: flips at r = 3 and 1 + sqrt(6) = 3.4495, the period-3
+# window from 1 + sqrt(8) = 3.8284
+expect_periods logistic-sweep up 2.8 2.95 1
+expect_periods logistic-sweep up 3.05 3.43 2
+expect_periods logistic-sweep up 3.46 3.54 4
+expect_periods logistic-sweep up 3.83 3.84 3
 png logistic-sweep sweep.png
 
 finish
