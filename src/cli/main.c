@@ -173,6 +173,10 @@ static int cmd_check(const cli_args *a) {
     printf("%s: ok (model %s, task %s, output %s)\n", sc_scene_name(s),
            sc_map_type(sc_scene_map(s))->name, sc_scene_task(s)->kind,
            sc_scene_output_dir(s));
+  if (!rc && !a->quiet && sc_scene_plot(s) && !sc_plot_available())
+    fputs("slipcont: note: gnuplot not found on PATH: a run would write the "
+          "data and exit with status 1 (or set [output] plot = no)\n",
+          stderr);
   sc_scene_free(s);
   return rc;
 }
