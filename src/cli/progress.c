@@ -50,7 +50,7 @@ static void draw(sc_progress *p, double now, int final) {
   fputc('\r', p->out);
   fputc('[', p->out);
   for (int i = 0; i < p->width; i++) fputc(i < fill ? '#' : '.', p->out);
-  fprintf(p->out, "] %5.1f%% %ld/%ld %s, %.3g %s/s, %s spent, %s left ",
+  fprintf(p->out, "] %5.1f%% %ld/%ld %s, %.3g %s/s, %s spent, %s left\033[K",
           100 * frac, p->done, p->total, p->unit, rate, p->unit, spent, left);
   if (final) fputc('\n', p->out);
   fflush(p->out);

@@ -552,6 +552,17 @@ static int chart_run(sc_cli_run *r) {
     }
   }
   sc_progress_finish(&bar);
+  /* From here a signal ends the process as usual: the files are written
+   * atomically, and a long chart leaves a complete checkpoint behind
+   * until they are, so a rerun only writes them. */
+  if (handlers) {
+    sigaction(SIGINT, &old_int, NULL);
+    sigaction(SIGTERM, &old_term, NULL);
+    handlers = 0;
+  }
+  if (rank == 0 && start < ny && sc_progress_now() - t0 >= CKPT_INTERVAL_S &&
+      (st = ckpt_write(r->dir, text, hash, nx, ny, grid, r->msg)))
+    goto out;
 
   if (rank == 0) {
     long *count = calloc((size_t)c.max_period + 2, sizeof *count);
