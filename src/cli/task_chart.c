@@ -393,11 +393,17 @@ static int write_summary(sc_cli_run *r, const sc_chart_spec *c,
 /* ------------------------------------------------------------------ */
 /* The run                                                               */
 
-/* Set by SIGINT/SIGTERM during a serial run: finish with a checkpoint. */
+/* Set by SIGINT/SIGTERM during a serial run: the points under way finish
+ * and the run stops with a checkpoint.  A second signal ends the process
+ * at once (a point that never finishes cannot hold it hostage). */
 static volatile sig_atomic_t interrupted;
 
 static void on_signal(int sig) {
-  (void)sig;
+  if (interrupted) {
+    signal(sig, SIG_DFL);
+    raise(sig);
+    return;
+  }
   interrupted = 1;
 }
 
