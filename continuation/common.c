@@ -40,23 +40,35 @@ typedef struct {
   size_t offset;
   int is_int;
   double lo, hi;
+  const char *doc;
 } field_info;
 
-#define FIELD_(member, name, is_int, lo, hi)                                \
-  { name, offsetof(sc_accuracy, member), is_int, lo, hi }
+#define FIELD_(member, name, is_int, lo, hi, doc)                           \
+  { name, offsetof(sc_accuracy, member), is_int, lo, hi, doc }
 
 static const field_info fields[] = {
-    FIELD_(event_rtol, "event-rtol", 0, 4 * DBL_EPSILON, 1e-2),
-    FIELD_(event_atol, "event-atol", 0, DBL_MIN, 1e-2),
-    FIELD_(newton_atol, "newton-atol", 0, DBL_MIN, 1e-1),
-    FIELD_(newton_rtol, "newton-rtol", 0, DBL_MIN, 1e-1),
-    FIELD_(newton_ftol, "newton-ftol", 0, DBL_MIN, 1e-1),
-    FIELD_(newton_maxiter, "newton-maxiter", 1, 1, 1000),
-    FIELD_(ode_atol, "ode-atol", 0, DBL_MIN, 1e-2),
-    FIELD_(ode_rtol, "ode-rtol", 0, 4 * DBL_EPSILON, 1e-2),
-    FIELD_(fd_step, "fd-step", 0, DBL_EPSILON, 1e-1),
-    FIELD_(period_rtol, "period-rtol", 0, DBL_EPSILON, 1e-1),
-    FIELD_(max_events, "max-events", 1, 2, 4096),
+    FIELD_(event_rtol, "event-rtol", 0, 4 * DBL_EPSILON, 1e-2,
+           "event times: relative tolerance of the located root"),
+    FIELD_(event_atol, "event-atol", 0, DBL_MIN, 1e-2,
+           "event times: absolute tolerance of the located root"),
+    FIELD_(newton_atol, "newton-atol", 0, DBL_MIN, 1e-1,
+           "Newton (shooting, continuation): absolute step tolerance"),
+    FIELD_(newton_rtol, "newton-rtol", 0, DBL_MIN, 1e-1,
+           "Newton: relative step tolerance"),
+    FIELD_(newton_ftol, "newton-ftol", 0, DBL_MIN, 1e-1,
+           "Newton: residual tolerance"),
+    FIELD_(newton_maxiter, "newton-maxiter", 1, 1, 1000,
+           "Newton iterations before giving up (a count)"),
+    FIELD_(ode_atol, "ode-atol", 0, DBL_MIN, 1e-2,
+           "numerical flows (flows = numerical): absolute tolerance"),
+    FIELD_(ode_rtol, "ode-rtol", 0, 4 * DBL_EPSILON, 1e-2,
+           "numerical flows: relative tolerance"),
+    FIELD_(fd_step, "fd-step", 0, DBL_EPSILON, 1e-1,
+           "relative step of finite-difference cross-checks"),
+    FIELD_(period_rtol, "period-rtol", 0, DBL_EPSILON, 1e-1,
+           "period detection: tolerance relative to the spread of the orbit"),
+    FIELD_(max_events, "max-events", 1, 2, 4096,
+           "slip phases in one iterate before the map is declared undefined (a count)"),
 };
 #define NFIELDS (sizeof fields / sizeof fields[0])
 
@@ -64,6 +76,17 @@ size_t sc_accuracy_nfields(void) { return NFIELDS; }
 
 const char *sc_accuracy_field_name(size_t i) {
   return i < NFIELDS ? fields[i].name : NULL;
+}
+
+const char *sc_accuracy_field_doc(size_t i) {
+  return i < NFIELDS ? fields[i].doc : NULL;
+}
+
+int sc_accuracy_field_range(size_t i, double *lo, double *hi) {
+  if (i >= NFIELDS) return -1;
+  *lo = fields[i].lo;
+  *hi = fields[i].hi;
+  return fields[i].is_int;
 }
 
 double sc_accuracy_field_value(const sc_accuracy *acc, size_t i) {

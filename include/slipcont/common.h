@@ -120,6 +120,14 @@ size_t sc_accuracy_nfields(void);
 const char *sc_accuracy_field_name(size_t i);
 /** Current value of field @p i as a double (counts converted). */
 double sc_accuracy_field_value(const sc_accuracy *acc, size_t i);
+/** One line saying what field @p i controls, or NULL. */
+const char *sc_accuracy_field_doc(size_t i);
+/**
+ * @brief Valid range [lo, hi] of field @p i (closed; tolerances have
+ * lo > 0).  @return 1 if the field is a count, 0 if a real, -1 if @p i is
+ * out of range.
+ */
+int sc_accuracy_field_range(size_t i, double *lo, double *hi);
 
 /**
  * @brief Convergence test |dx| <= epsabs + epsrel |x|.

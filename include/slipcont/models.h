@@ -31,6 +31,7 @@ typedef struct {
   int lo_open;       /**< 1: lo itself is excluded */
   int hi_open;       /**< 1: hi itself is excluded (hi may be HUGE_VAL) */
   const char *doc;   /**< one line */
+  const char *symbol; /**< plot label (gnuplot text), NULL: the name */
 } sc_param_info;
 
 /** Most values one string option may take. */
@@ -107,6 +108,7 @@ typedef struct sc_model_type {
   const char *name;       /**< "bk2" */
   const char *doc;        /**< one line */
   const char *state_name; /**< what the map acts on: "d" (bk2), "x" */
+  const char *state_label; /**< plot label of the state, NULL: the name */
   size_t nparam;
   const sc_param_info *params;
   size_t noption;

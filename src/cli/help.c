@@ -4,6 +4,7 @@
 #include "cli/help.h"
 
 #include <math.h>
+#include <float.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -21,31 +22,6 @@ static const char *exact(double x, char *buf, size_t len) {
     if (strtod(buf, NULL) == x) break;
   }
   return buf;
-}
-
-/* What each accuracy field does (common.h documents the struct; the
- * field table there holds names and ranges only). */
-static const char *accuracy_doc(const char *name) {
-  static const struct {
-    const char *name, *doc;
-  } docs[] = {
-      {"event-rtol", "event times: relative tolerance of the located root"},
-      {"event-atol", "event times: absolute tolerance of the located root"},
-      {"newton-atol", "Newton (shooting, continuation): absolute step tolerance"},
-      {"newton-rtol", "Newton: relative step tolerance"},
-      {"newton-ftol", "Newton: residual tolerance"},
-      {"newton-maxiter", "Newton iterations before giving up (a count)"},
-      {"ode-atol", "numerical flows (flows = numerical): absolute tolerance"},
-      {"ode-rtol", "numerical flows: relative tolerance"},
-      {"fd-step", "relative step of finite-difference cross-checks"},
-      {"period-rtol", "period detection: tolerance relative to the spread of "
-                      "the orbit"},
-      {"max-events", "slip phases in one iterate before the map is declared "
-                     "undefined (a count)"},
-  };
-  for (size_t i = 0; i < sizeof docs / sizeof docs[0]; i++)
-    if (strcmp(docs[i].name, name) == 0) return docs[i].doc;
-  return "see sc_accuracy in include/slipcont/common.h";
 }
 
 static void key_default(const sc_key_info *k, char *buf, size_t len) {
@@ -168,9 +144,15 @@ static void accuracy_rows(FILE *f, int md) {
     char v[3][40];
     for (int j = 0; j < 3; j++)
       exact(sc_accuracy_field_value(&p[j], i), v[j], sizeof v[j]);
+    double lo, hi;
+    char range[96];
+    int is_count = sc_accuracy_field_range(i, &lo, &hi);
+    if (is_count) snprintf(range, sizeof range, "%.0f .. %.0f", lo, hi);
+    else if (lo == DBL_MIN) snprintf(range, sizeof range, "(0, %g]", hi);
+    else snprintf(range, sizeof range, "[%.3g, %g]", lo, hi);
     if (md)
-      fprintf(f, "| `%s` | positive | %s (fast: %s, precise: %s) | %s |\n",
-              name, v[1], v[0], v[2], accuracy_doc(name));
+      fprintf(f, "| `%s` | %s | %s (fast: %s, precise: %s) | %s |\n", name,
+              range, v[1], v[0], v[2], sc_accuracy_field_doc(i));
     else
       fprintf(f, "  %-20s %-24s %-24s %-24s\n", name, v[0], v[1], v[2]);
   }

@@ -65,18 +65,13 @@ char *sc_plot_title(const sc_map *m, const char *skip, char *buf,
 }
 
 const char *sc_plot_label(const sc_map *m, const char *name) {
-  /* Symbols of MODEL.md where they differ from the names in code. */
-  static const struct {
-    const char *model, *name, *label;
-  } labels[] = {
-      {"bk2", "v", "V"},
-      {"bk2", "d", "Y_2 - Y_1"},
-  };
-  const char *model = sc_map_type(m)->name;
-  for (size_t i = 0; i < sizeof labels / sizeof labels[0]; i++)
-    if (strcmp(labels[i].model, model) == 0 &&
-        strcmp(labels[i].name, name) == 0)
-      return labels[i].label;
+  /* The model tables carry the symbols of MODEL.md where they differ
+   * from the names in code. */
+  const sc_model_type *t = sc_map_type(m);
+  if (strcmp(name, t->state_name) == 0)
+    return t->state_label ? t->state_label : name;
+  int i = sc_map_param_index(m, name);
+  if (i >= 0 && t->params[i].symbol) return t->params[i].symbol;
   return name;
 }
 

@@ -17,10 +17,10 @@
 #include "slipcont/hybrid.h"
 
 static const sc_param_info bk2_params[] = {
-    {"alpha", 3, 0, 1e6, 1, 0, "coupling spring / driver spring, k_c/k"},
-    {"beta", 1, 0, 1e6, 1, 0, "static friction of block 2 / block 1"},
-    {"phi", 1.25, 1, 1e6, 1, 0, "static / kinetic friction ratio, 1/mu"},
-    {"v", 0.025, 0, 1e3, 0, 0, "driver velocity V (dimensionless)"},
+    {"alpha", 3, 0, 1e6, 1, 0, "coupling spring / driver spring, k_c/k", NULL},
+    {"beta", 1, 0, 1e6, 1, 0, "static friction of block 2 / block 1", NULL},
+    {"phi", 1.25, 1, 1e6, 1, 0, "static / kinetic friction ratio, 1/mu", NULL},
+    {"v", 0.025, 0, 1e3, 0, 0, "driver velocity V (dimensionless)", "V"},
 };
 
 static const sc_option_info bk2_options[] = {
@@ -578,6 +578,7 @@ const sc_model_type sc_model_bk2 = {
     .name = "bk2",
     .doc = "two-block Burridge-Knopoff stick-slip model (MODEL.md)",
     .state_name = "d",
+    .state_label = "Y_2 - Y_1",
     .nparam = 4,
     .params = bk2_params,
     .noption = 3,

@@ -12,7 +12,7 @@ typedef struct {
 } logistic_inst;
 
 static const sc_param_info logistic_params[] = {
-    {"r", 2.8, 0, 4, 0, 0, "growth rate"},
+    {"r", 2.8, 0, 4, 0, 0, "growth rate", NULL},
 };
 
 static int logistic_setup(void *inst, const double *p, const int *opt,
@@ -58,8 +58,8 @@ typedef struct {
 } cubic_inst;
 
 static const sc_param_info cubic_params[] = {
-    {"mu1", 0, -1e6, 1e6, 0, 0, "constant term"},
-    {"mu2", 0.5, -1e6, 1e6, 0, 0, "linear term"},
+    {"mu1", 0, -1e6, 1e6, 0, 0, "constant term", NULL},
+    {"mu2", 0.5, -1e6, 1e6, 0, 0, "linear term", NULL},
 };
 
 static int cubic_setup(void *inst, const double *p, const int *opt,
