@@ -565,7 +565,7 @@ static int run_segment(sc_orbit_branch *b, const job *jb, int branch,
     return SC_OK;
   }
   double last_p = jb->p, last_d = jb->d, last_t = jb->direction;
-  double p_first = NAN, dmin_first = NAN;
+  double p_first = NAN, dmin_first = NAN, prev_p = NAN;
   int moved = 0;
   for (;;) {
     const double *u = sc_branch_point(br);
@@ -585,10 +585,17 @@ static int run_segment(sc_orbit_branch *b, const job *jb, int branch,
       moved = 1;
     int jn = joins(b, branch, period, u[1], dmin, p_first, dmin_first,
                    set.hmax, moved);
-    /* Back at the start after going away: a closed curve. */
-    if (jn < 0 && moved && fabs(u[1] - p_first) <= set.hmax &&
-        close_orbits(b->orb_c, period, b->orb_f, period, set.hmax))
-      jn = branch;
+    /* Back at the start after going away: the step from the previous
+     * point crosses the start's parameter, and the orbit there, followed
+     * by shooting from this point, is the start's orbit. */
+    if (jn < 0 && moved && (prev_p - p_first) * (u[1] - p_first) <= 0) {
+      sc_shoot_result res;
+      memcpy(b->orb_a, b->orb_c, (size_t)period * sizeof *b->orb_a);
+      if (shoot_at(b, period, p_first, b->orb_a, &res) == SC_OK &&
+          close_orbits(b->orbit, period, b->orb_f, period, SAME_ORBIT_TOL))
+        jn = branch;
+    }
+    prev_p = u[1];
     if (jn >= 0) {
       special_rec *r = add_special(b, SC_PT_EP, branch, period, u[1], u[0],
                                    v.dfdd, NAN);
