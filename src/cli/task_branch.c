@@ -57,9 +57,10 @@ static const sc_key_info branch_keys[] = {
      "sweep: iterates at each value, each starting from the previous one"},
     {"keep", SC_KEY_INT, 0, "150", 1, 100000000, 0, 0, NULL,
      "sweep: last iterates drawn (<= iterations)"},
-    {"plot-point", SC_KEY_INT, 0, "0", 0, 100000, 0, 0, NULL,
-     "row of points.csv (from 1) at which f^m is drawn against d (0: the "
-     "first LP, PD, GR, CS or SW)"},
+    {"plot-at", SC_KEY_CHOICE, 0, "first", 0, 0, 0, 0,
+     "first|LP|PD|GR|CS|SW|DI",
+     "special point at which f^m is drawn against d (figs 5.9-5.11): the "
+     "first one with that label, or the first of any label but EP"},
 };
 
 static int branch_check(const sc_scene *s, sc_msg *msg) {
@@ -307,15 +308,17 @@ static int write_branch_plot(sc_cli_run *r, const sc_orbit_branch *ob,
 
 /* f^m against d at a special point, with the diagonal and the orbit. */
 static int write_map_plot(sc_cli_run *r, const sc_orbit_branch *ob,
-                          size_t param, long which, double *buf, int maxq,
-                          char *chosen, size_t clen) {
+                          size_t param, const char *which, double *buf,
+                          int maxq, char *chosen, size_t clen) {
   size_t ns = sc_orbit_branch_nspecial(ob);
   sc_special_info sp;
   long idx = -1;
-  if (which > 0 && (size_t)which <= ns) idx = which - 1;
+  int any = !which || strcmp(which, "first") == 0;
   for (size_t i = 0; idx < 0 && i < ns; i++) {
     sc_orbit_branch_special(ob, i, &sp);
-    if (sp.label != SC_PT_EP) idx = (long)i;
+    if (sp.label == SC_PT_EP) continue;
+    if (any || strcmp(which, sc_point_label_text(sp.label)) == 0)
+      idx = (long)i;
   }
   if (idx < 0) return SC_OK;
   sc_orbit_branch_special(ob, (size_t)idx, &sp);
@@ -419,7 +422,7 @@ static int branch_run(sc_cli_run *r) {
   if ((st = write_branch_plot(r, ob, pname, sp.from, sp.to, with_sweep)))
     goto done;
   char chosen[256] = "none";
-  if ((st = write_map_plot(r, ob, param, sc_scene_int(s, "plot-point"), buf,
+  if ((st = write_map_plot(r, ob, param, sc_scene_text(s, "plot-at"), buf,
                            sp.max_period, chosen, sizeof chosen)))
     goto done;
   sc_map_set_param(m, param, saved, NULL);
