@@ -75,4 +75,38 @@ has branch-symmetric points.csv '^PD,v,0\.0206852436[0-9]*,[0-9.]*,2,'
 has branch-symmetric points.csv '^PD,v,0\.0195011475[0-9]*,[0-9.]*,4,'
 png branch-symmetric branch.png
 
+# Refusals of bad scenes (exit status 2), before any work: the message
+# names the file, line and key.
+cat >"$TMP/bad-fp.ini" <<EOS
+[model]
+name = logistic
+[task]
+kind = fixed-point
+period = 2
+from = 1
+to = 0
+EOS
+run_sc run "$TMP/bad-fp.ini" --out "$TMP/bad-fp" --quiet
+expect_rc "fixed-point with to < from" 2
+expect_err "fixed-point with to < from" "[task] to = 0 is not above from"
+cat >"$TMP/bad-br.ini" <<EOS
+[model]
+name = logistic
+[task]
+kind = branch
+parameter = r
+from = 3
+to = 3.5
+d0 = 0.6
+starts = 3.2 0.5
+EOS
+run_sc run "$TMP/bad-br.ini" --out "$TMP/bad-br" --quiet
+expect_rc "branch with a malformed start" 2
+expect_err "branch with a malformed start" "[task] starts = 3.2 0.5"
+check "branch refused before writing anything" test ! -e "$TMP/bad-br/points.csv"
+sed 's/^starts = .*/to = 3/' "$TMP/bad-br.ini" | grep -v '^to = 3.5' >"$TMP/bad-br2.ini"
+run_sc run "$TMP/bad-br2.ini" --out "$TMP/bad-br2" --quiet
+expect_rc "branch with to = from" 2
+expect_err "branch with to = from" "equals from"
+
 finish

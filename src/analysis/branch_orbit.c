@@ -86,6 +86,8 @@ struct sc_orbit_branch {
   double *orb_a; /* scratch: the orbit on the known side of a DIB */
   double *orb_c; /* scratch: the orbit at the current point */
   double *orb_f; /* the orbit at the first point of the segment */
+  sc_shoot **shooters; /* multiple shooting by period, made on first use
+                          (max_period + 2 entries) */
   g_ctx ctx;
 };
 
@@ -148,8 +150,9 @@ int sc_orbit_branch_alloc(sc_map *m, const sc_orbit_branch_spec *spec,
   b->orb_a = calloc(np, sizeof *b->orb_a);
   b->orb_c = calloc(np, sizeof *b->orb_c);
   b->orb_f = calloc(np, sizeof *b->orb_f);
+  b->shooters = calloc(np, sizeof *b->shooters);
   if (!b->pts || !b->sps || !b->jobs || !b->starts || !b->orbit ||
-      !b->seed || !b->orb_a || !b->orb_c || !b->orb_f) {
+      !b->seed || !b->orb_a || !b->orb_c || !b->orb_f || !b->shooters) {
     sc_orbit_branch_free(b);
     return sc_fail(msg, SC_ENOMEM, "sc_orbit_branch_alloc: no memory for "
                                    "%zu points",
@@ -170,6 +173,10 @@ void sc_orbit_branch_free(sc_orbit_branch *b) {
   free(b->orb_a);
   free(b->orb_c);
   free(b->orb_f);
+  if (b->shooters)
+    for (int q = 0; q <= b->sp.max_period + 1; q++)
+      sc_shoot_free(b->shooters[q]);
+  free(b->shooters);
   free(b);
 }
 
@@ -290,13 +297,18 @@ static int push_job(sc_orbit_branch *b, int period, double p, double d,
  * (multiple shooting); the orbit into b->orbit. */
 static int shoot_at(sc_orbit_branch *b, int q, double p, const double *seed,
                     sc_shoot_result *res) {
-  if (set_p(b->m, b->sp.param, p)) return SC_EINVAL;
-  sc_shoot *s = NULL;
-  int st = sc_shoot_alloc(b->m, q, SC_SHOOT_MULTIPLE, NULL, &s, NULL);
-  if (st) return st;
-  st = sc_shoot_solve_orbit(s, seed, res, NULL);
-  if (st == SC_OK) memcpy(b->orbit, sc_shoot_orbit(s), (size_t)q * sizeof(double));
-  sc_shoot_free(s);
+  if (set_p(b->m, b->sp.param, p) || q < 1 || q > b->sp.max_period + 1)
+    return SC_EINVAL;
+  /* One shooting object per period, kept for the whole run. */
+  if (!b->shooters[q]) {
+    int st = sc_shoot_alloc(b->m, q, SC_SHOOT_MULTIPLE, NULL,
+                            &b->shooters[q], NULL);
+    if (st) return st;
+  }
+  sc_shoot *s = b->shooters[q];
+  int st = sc_shoot_solve_orbit(s, seed, res, NULL);
+  if (st == SC_OK)
+    memcpy(b->orbit, sc_shoot_orbit(s), (size_t)q * sizeof(double));
   return st;
 }
 
