@@ -199,6 +199,44 @@ static void check_brute_force(const sc_orbit_branch *b, sc_map *m,
   tu_int("stable points not reached by brute force within 1e-9", bad, 0);
 }
 
+/* The margin of a DIB recomputed at its located point (and across the
+ * bracket, where the degeneracy may sit on the far side). */
+static double margin_at(sc_map *m, size_t param, const sc_special_info *sp) {
+  double best = HUGE_VAL;
+  for (int side = -1; side <= 1; side++) {
+    sc_map_set_param(m, param, sp->p + side * sp->width, NULL);
+    sc_map_value v;
+    if (sc_map_iterate(m, sp->d, sp->period, SC_EVAL_DERIV, &v, NULL))
+      continue;
+    double x = sp->label == SC_PT_GR   ? v.graze_margin
+               : sp->label == SC_PT_CS ? v.gsp_gap
+                                       : v.dstar_dist;
+    best = fmin(best, fabs(x));
+  }
+  return best;
+}
+
+/* Every GR/CS/SW: degeneracy below SC_DIB_MARGIN_TOL, recomputed, and
+ * the parameter bracketed to the location tolerance. */
+static int check_dibs(const sc_orbit_branch *b, sc_map *m, size_t ia) {
+  int n = 0;
+  for (size_t i = 0; i < sc_orbit_branch_nspecial(b); i++) {
+    sc_special_info s;
+    sc_orbit_branch_special(b, i, &s);
+    if (s.label != SC_PT_GR && s.label != SC_PT_CS && s.label != SC_PT_SW)
+      continue;
+    char what[96];
+    snprintf(what, sizeof what, "%s at %.10g: recomputed margin",
+             sc_point_label_text(s.label), s.p);
+    tu_close(what, margin_at(m, ia, &s), 0, SC_DIB_MARGIN_TOL);
+    n++;
+    tu_true(s.width <= 1e-13 * (1 + fabs(s.p)) * 2,
+            "%s bracketed to %.3g in alpha", sc_point_label_text(s.label),
+            s.width);
+  }
+  return n;
+}
+
 static void test_fig58(void) {
   printf("--- bk2 frozen, beta = 2.5 (fig 5.8)\n");
   sc_map *m = bk2_frozen(2.5);
@@ -234,28 +272,13 @@ static void test_fig58(void) {
   for (int i = 0; i < n; i++)
     if (strstr(s[i].note, "closes on itself")) closed = 1;
   tu_true(closed, "the period-6 branch is a closed curve");
+  int ndib = check_dibs(b, m, ia);
+  tu_true(ndib >= 1, "%d GR/CS/SW located and checked", ndib);
   check_lp_pd(b);
   check_doubling(b);
   check_brute_force(b, m, ia);
   sc_orbit_branch_free(b);
   sc_map_free(m);
-}
-
-/* The margin of a DIB recomputed at its located point (and across the
- * bracket, where the degeneracy may sit on the far side). */
-static double margin_at(sc_map *m, size_t param, const sc_special_info *sp) {
-  double best = HUGE_VAL;
-  for (int side = -1; side <= 1; side++) {
-    sc_map_set_param(m, param, sp->p + side * sp->width, NULL);
-    sc_map_value v;
-    if (sc_map_iterate(m, sp->d, sp->period, SC_EVAL_DERIV, &v, NULL))
-      continue;
-    double x = sp->label == SC_PT_GR   ? v.graze_margin
-               : sp->label == SC_PT_CS ? v.gsp_gap
-                                       : v.dstar_dist;
-    best = fmin(best, fabs(x));
-  }
-  return best;
 }
 
 static void test_fig512(void) {
@@ -286,20 +309,7 @@ static void test_fig512(void) {
     tu_true(strstr(cs[0].note, "continues with period 1") != NULL,
             "after the CS the branch goes on with period 1: %s", cs[0].note);
   }
-  /* Every GR/CS/SW: degeneracy below SC_DIB_MARGIN_TOL, recomputed. */
-  for (size_t i = 0; i < sc_orbit_branch_nspecial(b); i++) {
-    sc_special_info s;
-    sc_orbit_branch_special(b, i, &s);
-    if (s.label != SC_PT_GR && s.label != SC_PT_CS && s.label != SC_PT_SW)
-      continue;
-    char what[96];
-    snprintf(what, sizeof what, "%s at %.10g: recomputed margin",
-             sc_point_label_text(s.label), s.p);
-    tu_close(what, margin_at(m, ia, &s), 0, SC_DIB_MARGIN_TOL);
-    tu_true(s.width <= 1e-13 * (1 + fabs(s.p)) * 2,
-            "%s bracketed to %.3g in alpha", sc_point_label_text(s.label),
-            s.width);
-  }
+  check_dibs(b, m, ia);
   check_lp_pd(b);
   check_brute_force(b, m, ia);
   sc_orbit_branch_free(b);
