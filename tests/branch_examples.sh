@@ -44,6 +44,11 @@ has fixed-point-fig58 orbits.csv '^6,-0\.0740754[0-9]*,yes,0\.0991157087'
 has fixed-point-fig58 orbits.csv '^6,2\.99815[0-9]*,no,0\.1019741644'
 png fixed-point-fig58 fixed-point.png
 
+example fixed-point-family
+expect_rows fixed-point-family "$TMP/fixed-point-family/orbits.csv" 4
+has fixed-point-family orbits.csv '^2,1,family,-0\.05882352941[0-9]*\.\.-0\.0506498017[0-9]*,1;2$'
+has fixed-point-family orbits.csv '^2,3\.969800275[0-9]*,no,'
+
 example branch-logistic
 expect_header branch-logistic "$TMP/branch-logistic/points.csv" \
   "label,parameter,value,d,period,multiplier,note"
