@@ -298,8 +298,8 @@ int sc_shoot_solve_orbit(sc_shoot *s, const double *d0, sc_shoot_result *res,
        * or flip) the residual is within tolerance but the steps, the
        * rounding of F amplified by the condition number, stop
        * shrinking: that is convergence too. */
-      int floor = fnorm <= ftol && last >= 0.5 * before;
-      if ((small && fnorm <= ftol) || stagnant || floor) {
+      int at_floor = fnorm <= ftol && last >= 0.5 * before;
+      if ((small && fnorm <= ftol) || stagnant || at_floor) {
         res->step = last;
         return finish(s, res, 0, msg);
       }
@@ -316,8 +316,9 @@ int sc_shoot_solve_orbit(sc_shoot *s, const double *d0, sc_shoot_result *res,
     if (st) return st;
     s->nnewton++;
     /* Damped Newton: halve a step that lands where the map is undefined
-     * or that does not decrease the max-norm of the residual (across a
-     * jump of f the full step can land on another piece, far away). */
+     * or that does not decrease the Euclidean norm of the residual
+     * (across a jump of f the full step can land on another piece, far
+     * away). */
     int tiny = 1; /* a step within tolerance is taken whatever it does */
     for (int i = 0; i < n; i++)
       if (sc_test_delta(s->dx[i], s->x[i], acc->newton_atol,
