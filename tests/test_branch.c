@@ -37,10 +37,10 @@ static sc_orbit_branch_spec spec0(size_t param, double from, double to,
 
 /* Special points of a label, in the order found. */
 static int collect(const sc_orbit_branch *b, sc_point_label l,
-                   sc_special_info *out, int max) {
+                   sc_orbit_special_info *out, int max) {
   int n = 0;
   for (size_t i = 0; i < sc_orbit_branch_nspecial(b) && n < max; i++) {
-    sc_special_info sp;
+    sc_orbit_special_info sp;
     sc_orbit_branch_special(b, i, &sp);
     if (sp.label == l) out[n++] = sp;
   }
@@ -49,7 +49,7 @@ static int collect(const sc_orbit_branch *b, sc_point_label l,
 
 /* Period of branch @p k (from its points), 0 if it has none. */
 static int branch_period(const sc_orbit_branch *b, int k) {
-  sc_branch_point_info pt;
+  sc_orbit_point_info pt;
   for (size_t i = 0; i < sc_orbit_branch_npoints(b); i++) {
     sc_orbit_branch_point(b, i, &pt);
     if (pt.branch == k) return pt.period;
@@ -58,7 +58,7 @@ static int branch_period(const sc_orbit_branch *b, int k) {
 }
 
 static void check_lp_pd(const sc_orbit_branch *b) {
-  sc_special_info sp[64];
+  sc_orbit_special_info sp[64];
   int n = collect(b, SC_PT_PD, sp, 64);
   for (int i = 0; i < n; i++)
     tu_close("multiplier at a located PD", sp[i].multiplier, -1, 1e-8);
@@ -72,12 +72,12 @@ static void check_doubling(const sc_orbit_branch *b) {
   int nb = sc_orbit_branch_nbranches(b), checked = 0;
   for (int k = 1; k < nb; k++) {
     /* A branch born at a flip starts within 1e-3 of that PD in p. */
-    sc_branch_point_info pt;
+    sc_orbit_point_info pt;
     for (size_t i = 0; i < sc_orbit_branch_npoints(b); i++) {
       sc_orbit_branch_point(b, i, &pt);
       if (pt.branch == k) break;
     }
-    sc_special_info sp[64];
+    sc_orbit_special_info sp[64];
     int n = collect(b, SC_PT_PD, sp, 64);
     for (int j = 0; j < n; j++)
       if (fabs(sp[j].p - pt.p) < 2e-3 * (1 + fabs(pt.p)) &&
@@ -103,7 +103,7 @@ static void test_logistic(void) {
   int st = sc_orbit_branch_alloc(m, &sp, &b, &msg);
   if (!st) st = sc_orbit_branch_run(b, &msg);
   tu_int("run: SC_OK", st, SC_OK);
-  sc_special_info pd[16];
+  sc_orbit_special_info pd[16];
   int n = collect(b, SC_PT_PD, pd, 16);
   tu_int("four flips (periods 1, 2, 4, 8)", n, 4);
   /* Sorted by period, they are the cascade r_1 .. r_4 (mpmath values,
@@ -139,7 +139,7 @@ static void test_logistic(void) {
   sc_orbit_branch_alloc(m, &sp, &b, &msg);
   st = sc_orbit_branch_run(b, &msg);
   tu_int("run: SC_OK", st, SC_OK);
-  sc_special_info lp[4];
+  sc_orbit_special_info lp[4];
   n = collect(b, SC_PT_LP, lp, 4);
   tu_int("one fold", n, 1);
   if (n) tu_close("period-3 fold at r = 1 + 2 sqrt 2", lp[0].p, 1 + 2 * sqrt(2),
@@ -168,12 +168,12 @@ static void check_brute_force(const sc_orbit_branch *b, sc_map *m,
   int checked = 0, bad = 0;
   double worst = 0;
   for (size_t i = 0; i < sc_orbit_branch_npoints(b); i += 7) {
-    sc_branch_point_info pt;
+    sc_orbit_point_info pt;
     sc_orbit_branch_point(b, i, &pt);
     if (!pt.stable || fabs(pt.multiplier) > 0.9) continue;
     int near = 0;
     for (size_t j = 0; j < sc_orbit_branch_nspecial(b); j++) {
-      sc_special_info sp;
+      sc_orbit_special_info sp;
       sc_orbit_branch_special(b, j, &sp);
       if (fabs(sp.p - pt.p) < 1e-3) near = 1;
     }
@@ -201,7 +201,7 @@ static void check_brute_force(const sc_orbit_branch *b, sc_map *m,
 
 /* The margin of a DIB recomputed at its located point (and across the
  * bracket, where the degeneracy may sit on the far side). */
-static double margin_at(sc_map *m, size_t param, const sc_special_info *sp) {
+static double margin_at(sc_map *m, size_t param, const sc_orbit_special_info *sp) {
   double best = HUGE_VAL;
   for (int side = -1; side <= 1; side++) {
     sc_map_set_param(m, param, sp->p + side * sp->width, NULL);
@@ -221,7 +221,7 @@ static double margin_at(sc_map *m, size_t param, const sc_special_info *sp) {
 static int check_dibs(const sc_orbit_branch *b, sc_map *m, size_t ia) {
   int n = 0;
   for (size_t i = 0; i < sc_orbit_branch_nspecial(b); i++) {
-    sc_special_info s;
+    sc_orbit_special_info s;
     sc_orbit_branch_special(b, i, &s);
     if (s.label != SC_PT_GR && s.label != SC_PT_CS && s.label != SC_PT_SW)
       continue;
@@ -250,7 +250,7 @@ static void test_fig58(void) {
   if (!st) st = sc_orbit_branch_add_start(b, 3.3, 0.0991, 6, &msg);
   if (!st) st = sc_orbit_branch_run(b, &msg);
   tu_int("run: SC_OK", st, SC_OK);
-  sc_special_info s[64];
+  sc_orbit_special_info s[64];
   int n = collect(b, SC_PT_PD, s, 64);
   tu_true(n >= 3, "the flip cascade: %d PDs", n);
   int first = 0;
@@ -293,7 +293,7 @@ static void test_fig512(void) {
   if (!st) st = sc_orbit_branch_add_start(b, 6.0, 0.1223, 3, &msg);
   if (!st) st = sc_orbit_branch_run(b, &msg);
   tu_int("run: SC_OK", st, SC_OK);
-  sc_special_info cs[8], gr[8], lp[8];
+  sc_orbit_special_info cs[8], gr[8], lp[8];
   int ncs = collect(b, SC_PT_CS, cs, 8), ngr = collect(b, SC_PT_GR, gr, 8),
       nlp = collect(b, SC_PT_LP, lp, 8);
   tu_true(ncs >= 1 && fabs(cs[0].p - 5.6488) < 1e-3,

@@ -148,7 +148,7 @@ typedef struct {
   double multiplier; /**< (f^m)'(d) */
   int stable;        /**< |multiplier| < 1 */
   const char *itinerary; /**< of f^m from d, iterates joined by '|' */
-} sc_branch_point_info;
+} sc_orbit_point_info;
 
 /** One special point. */
 typedef struct {
@@ -160,7 +160,7 @@ typedef struct {
                         LP, PD: multiplier -+ 1; EP: NaN */
   double width;      /**< DIB: final bisection bracket in p; else 0 */
   const char *note;  /**< which block and mode, what followed, reasons */
-} sc_special_info;
+} sc_orbit_special_info;
 
 typedef struct sc_orbit_branch sc_orbit_branch;
 
@@ -213,12 +213,12 @@ int sc_orbit_branch_run(sc_orbit_branch *b, sc_msg *msg);
 size_t sc_orbit_branch_npoints(const sc_orbit_branch *b);
 /** @brief Point @p i; SC_EINVAL for i out of range. */
 int sc_orbit_branch_point(const sc_orbit_branch *b, size_t i,
-                          sc_branch_point_info *pt);
+                          sc_orbit_point_info *pt);
 /** Special points, in the order they were found. */
 size_t sc_orbit_branch_nspecial(const sc_orbit_branch *b);
 /** @brief Special point @p i; SC_EINVAL for i out of range. */
 int sc_orbit_branch_special(const sc_orbit_branch *b, size_t i,
-                            sc_special_info *sp);
+                            sc_orbit_special_info *sp);
 /** Branch segments computed. */
 int sc_orbit_branch_nbranches(const sc_orbit_branch *b);
 /** @brief Release @p b; NULL is accepted. */

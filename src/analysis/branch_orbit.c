@@ -187,10 +187,10 @@ int sc_orbit_branch_nbranches(const sc_orbit_branch *b) {
 }
 
 int sc_orbit_branch_point(const sc_orbit_branch *b, size_t i,
-                          sc_branch_point_info *pt) {
+                          sc_orbit_point_info *pt) {
   if (i >= b->npts) return SC_EINVAL;
   const point_rec *r = &b->pts[i];
-  *pt = (sc_branch_point_info){.branch = r->branch, .period = r->period,
+  *pt = (sc_orbit_point_info){.branch = r->branch, .period = r->period,
                                .p = r->p, .d = r->d,
                                .multiplier = r->multiplier,
                                .stable = r->stable, .itinerary = r->itin};
@@ -198,10 +198,10 @@ int sc_orbit_branch_point(const sc_orbit_branch *b, size_t i,
 }
 
 int sc_orbit_branch_special(const sc_orbit_branch *b, size_t i,
-                            sc_special_info *sp) {
+                            sc_orbit_special_info *sp) {
   if (i >= b->nsp) return SC_EINVAL;
   const special_rec *r = &b->sps[i];
-  *sp = (sc_special_info){.label = r->label, .branch = r->branch,
+  *sp = (sc_orbit_special_info){.label = r->label, .branch = r->branch,
                           .period = r->period, .p = r->p, .d = r->d,
                           .multiplier = r->multiplier,
                           .degeneracy = r->degeneracy, .width = r->width,

@@ -149,7 +149,7 @@ static int write_points(sc_cli_run *r, const sc_orbit_branch *ob,
   FILE *f = sc_file_stream(csv);
   fputs("label,parameter,value,d,period,multiplier,note\n", f);
   for (size_t i = 0; i < sc_orbit_branch_nspecial(ob); i++) {
-    sc_special_info sp;
+    sc_orbit_special_info sp;
     sc_orbit_branch_special(ob, i, &sp);
     fprintf(f, "%s,%s,", sc_point_label_text(sp.label), pname);
     sc_csv_double(f, sp.p);
@@ -180,7 +180,7 @@ static int write_branch(sc_cli_run *r, const sc_orbit_branch *ob,
              "and point index k\n%s,d_stable,d_unstable,k,branch\n",
           pname);
   size_t n = sc_orbit_branch_npoints(ob);
-  sc_branch_point_info pt;
+  sc_orbit_point_info pt;
   for (size_t i = 0; i < n; i++) {
     sc_orbit_branch_point(ob, i, &pt);
     sc_csv_double(f, pt.p);
@@ -280,7 +280,7 @@ static int write_branch_plot(sc_cli_run *r, const sc_orbit_branch *ob,
   fputs("set key inside right top box opaque\n", f);
   /* Special points as labels. */
   for (size_t i = 0; i < sc_orbit_branch_nspecial(ob); i++) {
-    sc_special_info sp;
+    sc_orbit_special_info sp;
     sc_orbit_branch_special(ob, i, &sp);
     if (sp.label == SC_PT_EP) continue;
     fprintf(f, "set label %zu '%s' at %.17g,%.17g offset 0.6,0.6 front "
@@ -311,7 +311,7 @@ static int write_map_plot(sc_cli_run *r, const sc_orbit_branch *ob,
                           size_t param, const char *which, double *buf,
                           int maxq, char *chosen, size_t clen) {
   size_t ns = sc_orbit_branch_nspecial(ob);
-  sc_special_info sp;
+  sc_orbit_special_info sp;
   long idx = -1;
   int any = !which || strcmp(which, "first") == 0;
   for (size_t i = 0; idx < 0 && i < ns; i++) {
@@ -434,7 +434,7 @@ static int branch_run(sc_cli_run *r) {
           sc_orbit_branch_nbranches(ob), sc_orbit_branch_npoints(ob),
           sc_orbit_branch_nspecial(ob));
   for (size_t i = 0; i < sc_orbit_branch_nspecial(ob); i++) {
-    sc_special_info p;
+    sc_orbit_special_info p;
     sc_orbit_branch_special(ob, i, &p);
     fprintf(f, "  %s  %s = %.17g  d = %.17g  period %d  multiplier %.17g\n"
                "      branch %d: %s\n",
