@@ -387,6 +387,23 @@ static int locate_dib(sc_orbit_branch *b, int m, const char *itin,
 
 /* After a located DIB at [pa, pb] (orbit orb of period m on the pa side):
  * classify, record, and look for the orbit on the other side. */
+/* The first iterate whose itinerary differs between the f^m itineraries
+ * @p a and @p c ('|'-separated): "iterate K: A -> C", or "" if none. */
+static void first_change(const char *a, const char *c, char *out,
+                         size_t len) {
+  out[0] = '\0';
+  for (int k = 1; *a || *c; k++) {
+    size_t na = strcspn(a, "|"), nc = strcspn(c, "|");
+    if (na != nc || strncmp(a, c, na) != 0) {
+      snprintf(out, len, "iterate %d: %.*s -> %.*s", k, (int)na, a, (int)nc,
+               c);
+      return;
+    }
+    a += na + (a[na] == '|');
+    c += nc + (c[nc] == '|');
+  }
+}
+
 static int handle_dib(sc_orbit_branch *b, int branch, int m, const char *itin,
                       double pa, double pb, double *orb, int dir) {
   sc_map_value va, vb;
@@ -403,7 +420,11 @@ static int handle_dib(sc_orbit_branch *b, int branch, int m, const char *itin,
   char note[NOTE_LEN], what[NOTE_LEN];
   sc_point_label l = sc_dib_classify(ha ? &va : NULL, hb ? &vb : NULL, &deg,
                                      what, sizeof what);
-  snprintf(note, sizeof note, "%.300s; orbit itinerary %.200s", what, itin);
+  char change[160] = "";
+  if (hb) first_change(itin, vb.itinerary, change, sizeof change);
+  snprintf(note, sizeof note, "%.250s; orbit itinerary %.150s%s%.150s", what,
+           itin, change[0] ? "; f^m from it beyond the point: " : "",
+           change);
   special_rec *r = add_special(b, l, branch, m, pa, orb[0],
                                ha ? va.dfdd : NAN, deg);
   if (r) r->width = fabs(pb - pa);
