@@ -11,6 +11,8 @@
 #include "slipcont/hybrid.h"
 #include "slipcont/models.h"
 #include "slipcont/map.h"
+#include "slipcont/shooting.h"
+#include "slipcont/branch.h"
 #include "slipcont/analysis.h"
 #include "slipcont/chart.h"
 #include "slipcont/io.h"

@@ -148,3 +148,37 @@ int sc_cli_summary_begin(sc_cli_run *r, sc_file **out) {
   fputs("\nresults:\n", f);
   return SC_OK;
 }
+
+/* See tasks.h. */
+int sc_cli_write_map_graph(sc_cli_run *r, const char *name, int n,
+                           double from, double to, size_t steps) {
+  sc_file *csv = NULL;
+  int st = sc_cli_open(r, name, &csv);
+  if (st) return st;
+  FILE *f = sc_file_stream(csv);
+  fputs("d,f,itinerary\n", f);
+  char last[SC_ITIN_LEN] = "";
+  int have = 0;
+  sc_map_value v;
+  for (size_t i = 0; i < steps; i++) {
+    double d = from + (to - from) * (double)i / (double)(steps - 1);
+    int e = sc_map_iterate(r->map, d, n, SC_EVAL_ITINERARY, &v, NULL);
+    if (e == SC_EUNDEF || e == SC_ENONFINITE || e == SC_ENOCONV) {
+      if (have) fputc('\n', f);
+      have = 0;
+      continue;
+    }
+    if (e) {
+      sc_file_abort(csv);
+      return sc_fail(r->msg, e, "graph of f^%d at d = %.17g failed", n, d);
+    }
+    if (have && strcmp(last, v.itinerary) != 0) fputc('\n', f);
+    snprintf(last, sizeof last, "%s", v.itinerary);
+    have = 1;
+    sc_csv_double(f, d);
+    fputc(',', f);
+    sc_csv_double(f, v.f);
+    fprintf(f, ",%s\n", sc_cli_csv_text(v.itinerary));
+  }
+  return sc_cli_commit(r, name, csv);
+}

@@ -15,10 +15,6 @@
 #include "slipcont/analysis.h"
 #include "slipcont/branch.h"
 
-/* Defined in task_fixed_point.c (see there). */
-int sc_cli_write_map_graph(sc_cli_run *r, const char *name, int n,
-                           double from, double to, size_t steps);
-
 static const sc_key_info branch_keys[] = {
     {"parameter", SC_KEY_PARAM, 1, NULL, 0, 0, 0, 0, NULL,
      "the model parameter continued (bk2: alpha, beta, phi or v)"},

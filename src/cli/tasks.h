@@ -72,6 +72,16 @@ typedef struct sc_cli_task {
   int (*run)(sc_cli_run *r);
 } sc_cli_task;
 
+/**
+ * The graph of f^n over [from, to] on @p steps points into the CSV file
+ * @p name (columns d,f,itinerary), with an empty line wherever the
+ * itinerary changes so that gnuplot does not join the pieces across a
+ * jump.  Points where f^n is undefined are left out (and break the line).
+ * Used by the fixed-point and branch tasks (figs 5.9-5.11).
+ */
+int sc_cli_write_map_graph(sc_cli_run *r, const char *name, int n,
+                           double from, double to, size_t steps);
+
 /** Number of registered tasks; sc_cli_task_get(i) lists them. */
 size_t sc_cli_task_count(void);
 /** Registered task @p i, or NULL. */
