@@ -318,11 +318,53 @@ static void test_bad_input(void) {
   sc_map_free(m);
 }
 
+/* The extremes of every parameter: each evaluation returns a finite
+ * value (and finite derivatives, but at a tangential re-stick) or says
+ * the map is undefined, with a reason; nothing else (no NaN value, no
+ * internal error, no hang). */
+static void test_extremes(void) {
+  const double alphas[] = {1e-6, 3, 1e6}, betas[] = {1e-6, 2.5, 1e6};
+  const double phis[] = {1 + 1e-9, 1.25, 1e6}, vs[] = {0, 0.025, 100};
+  const char *drv[] = {"moving", "frozen"};
+  int bad = 0, undef = 0, total = 0;
+  for (int a = 0; a < 3; a++)
+    for (int b = 0; b < 3; b++)
+      for (int p = 0; p < 3; p++)
+        for (int v = 0; v < 3; v++)
+          for (int dr = 0; dr < 2; dr++) {
+            sc_map *m = make(alphas[a], betas[b], vs[v], drv[dr]);
+            sc_map_set_param_by_name(m, "phi", phis[p], NULL);
+            double ds = sc_bk2_dstar(alphas[a], betas[b]);
+            const double dv[] = {ds - 0.1, ds - 1e-3, ds + 1e-3, ds + 0.1};
+            for (int k = 0; k < 4; k++) {
+              sc_map_value r;
+              sc_msg msg = {""};
+              int st = sc_map_eval(m, dv[k], SC_EVAL_DERIV, &r, &msg);
+              total++;
+              if (st == SC_EUNDEF && msg.text[0]) undef++;
+              /* f' is NaN only where it does not exist: at a tangential
+               * re-stick (graze margin 0, derivations.md) */
+              else if (st || !isfinite(r.f) ||
+                       (!isfinite(r.dfdd) && r.graze_margin > 0)) {
+                bad++;
+                printf("  alpha %g beta %g phi %.10g v %g %s d %.17g: f %g df %g %s %s\n",
+                       alphas[a], betas[b], phis[p], vs[v], drv[dr], dv[k], r.f, r.dfdd,
+                       sc_strerror(st), msg.text);
+              }
+            }
+            sc_map_free(m);
+          }
+  tu_int("extreme parameters: evaluations neither finite nor undefined", bad,
+         0);
+  printf("(%d evaluations, %d undefined with a reason)\n", total, undef);
+}
+
 int main(void) {
   test_closed_forms();
   test_derivatives();
   test_properties();
   test_reference();
   test_bad_input();
+  test_extremes();
   return tu_finish();
 }
