@@ -459,17 +459,16 @@ static int chart_run(sc_cli_run *r) {
   if (rank == 0 && hook) stop_after = atol(hook);
   uint64_t hash = 0;
   long start = 0;
-  if (!text) {
+  /* Failures before the first collective call fall through to it, so
+   * that every rank learns of them. */
+  if (!text)
     st = sc_fail(r->msg, SC_ENOMEM, "chart: out of memory");
-    goto out;
-  }
-  if ((st = scene_text(r, &c, text, SCENE_TEXT_LEN))) {
-    sc_fail(r->msg, st, "chart: scene text longer than %d bytes",
-            SCENE_TEXT_LEN);
-    goto out;
-  }
-  hash = fnv1a(text);
-  if (rank == 0) {
+  else if (scene_text(r, &c, text, SCENE_TEXT_LEN))
+    st = sc_fail(r->msg, SC_EINTERNAL,
+                 "chart: scene text longer than %d bytes", SCENE_TEXT_LEN);
+  else
+    hash = fnv1a(text);
+  if (!st && rank == 0) {
     grid = malloc((size_t)(nx * ny) * sizeof *grid);
     if (size > 1) stage = malloc((size_t)(block * nx) * sizeof *stage);
     if (!grid || (size > 1 && !stage)) {
@@ -483,13 +482,18 @@ static int chart_run(sc_cli_run *r) {
                     CKPT_NAME, start, ny);
     }
   }
-  if (size > 1) {
+  if (!st && size > 1) {
     mine = malloc((size_t)((block + size - 1) / size * nx) * sizeof *mine);
     if (!mine)
       st = sc_fail(r->msg, SC_ENOMEM, "chart: out of memory (rank %d)", rank);
   }
 #ifdef SLIPCONT_MPI
-  st = sc_mpi_chart_min_status(st);
+  {
+    int all = sc_mpi_chart_min_status(st);
+    if (all && !st)
+      st = sc_fail(r->msg, all, "chart: another rank failed (%s)",
+                   sc_strerror(all));
+  }
   sc_mpi_chart_bcast_long(&start);
   sc_mpi_chart_bcast_long(&stop_after);
 #endif
@@ -544,10 +548,18 @@ static int chart_run(sc_cli_run *r) {
     int hooked = stop_after > 0 && done_rows == stop_after && done_rows < ny;
     if (rank == 0 && done_rows < ny &&
         (hooked || sc_progress_now() - last_ckpt >= CKPT_INTERVAL_S)) {
-      if ((st = ckpt_write(r->dir, text, hash, nx, done_rows, grid, r->msg)))
-        goto out;
+      st = ckpt_write(r->dir, text, hash, nx, done_rows, grid, r->msg);
       last_ckpt = sc_progress_now();
     }
+#ifdef SLIPCONT_MPI
+    {
+      int ck_all = sc_mpi_chart_min_status(st); /* rank 0's checkpoint */
+      if (ck_all && !st)
+        st = sc_fail(r->msg, ck_all, "chart: rank 0 failed (%s)",
+                     sc_strerror(ck_all));
+    }
+#endif
+    if (st) goto out;
     if (hooked) {
       sc_progress_finish(&bar);
       st = sc_fail(r->msg, SC_ECALLBACK,
