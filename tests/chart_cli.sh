@@ -110,7 +110,22 @@ cmp -s sig/chart.csv sigref/chart.csv &&
   pass "chart after SIGINT and rerun identical" ||
   fail "chart after SIGINT differs"
 
-# 5. Bad charts are refused before any work (exit 2, nothing written).
+# 5. Progress: a bar on a terminal (script(1) gives one), none with
+#    --quiet, none when stderr is a file.
+"$BIN" run small.ini --out nobar 2> nobar.err
+grep -q 'points/s' nobar.err && fail "progress bar written to a file" ||
+  pass "no progress bar when stderr is not a terminal"
+if command -v script > /dev/null 2>&1; then
+  script -qc "'$BIN' run small.ini --out bar" /dev/null > bar.out 2>&1
+  grep -q '100.0% 192/192 points, .* points/s, .* spent, 00:00 left' bar.out &&
+    pass "progress bar with rate and time left on a terminal" ||
+    fail "no progress bar on a terminal: $(tr '\r' '\n' < bar.out | tail -3)"
+  script -qc "'$BIN' run small.ini --out bar --quiet" /dev/null > quiet.out 2>&1
+  grep -q 'points/s' quiet.out && fail "progress bar despite --quiet" ||
+    pass "no progress bar with --quiet"
+fi
+
+# 6. Bad charts are refused before any work (exit 2, nothing written).
 bad() { # bad NEEDLE --set ...
   needle=$1
   shift
@@ -130,7 +145,7 @@ bad "grid points" --set task.x-steps=20000 --set task.y-steps=20000
 bad "alpha" --set task.x-from=-1
 bad "seed" --set task.seed=random
 
-# 6. The examples, on a coarse grid.
+# 7. The examples, on a coarse grid.
 for ex in "$SRC"/examples/chart-*.ini; do
   name=$(basename "$ex" .ini)
   if "$BIN" run "$ex" --quiet --out "ex-$name" --set task.x-steps=6 \

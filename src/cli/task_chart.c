@@ -545,6 +545,7 @@ static int chart_run(sc_cli_run *r) {
     }
     if (st) goto out;
     done_rows = r1;
+    sc_progress_update(&bar, done_rows * nx); /* all ranks' points */
     int hooked = stop_after > 0 && done_rows == stop_after && done_rows < ny;
     if (rank == 0 && done_rows < ny &&
         (hooked || sc_progress_now() - last_ckpt >= CKPT_INTERVAL_S)) {
