@@ -81,14 +81,18 @@ static double tol_at(double t, double atol, double rtol) {
   return atol + rtol * fabs(t);
 }
 
+/* min of two numbers that are never NaN here (checked on entry): libm's
+ * fmin is a call, for its NaN rules, in the hottest loop of the map. */
+static inline double min2(double a, double b) { return a < b ? a : b; }
+
 /* Minimum of sigma*(p0 + p1 s + p2 s^2/2) over s in [0, h]. */
 static double quad_min(double sigma, double p0, double p1, double p2,
                        double h) {
   p0 *= sigma, p1 *= sigma, p2 *= sigma;
-  double m = fmin(p0, p0 + p1 * h + 0.5 * p2 * h * h);
+  double m = min2(p0, p0 + p1 * h + 0.5 * p2 * h * h);
   if (p2 > 0) {
     double s = -p1 / p2;
-    if (s > 0 && s < h) m = fmin(m, p0 + 0.5 * p1 * s);
+    if (s > 0 && s < h) m = min2(m, p0 + 0.5 * p1 * s);
   }
   return m;
 }
@@ -218,8 +222,15 @@ int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
   if (g->n == 1 && g->c1 == 0 && closed_form(g, tmax, skip_start, out))
     return SC_OK;
   out->tangent = 0;
-  double M3 = sc_guard_m3(g);
-  guard_size z = guard_sizes(g);
+  /* Term sizes and the bound M3, from one amplitude per sinusoid. */
+  guard_size z = {fabs(g->c0), fabs(g->c1), 0, 0};
+  double M3 = 0;
+  for (int k = 0; k < g->n; k++) {
+    double r = hypot(g->a[k], g->b[k]), w = g->w[k];
+    z.amp += r;
+    z.wamp += r * w;
+    M3 += r * w * w * w;
+  }
   /* First trial step: a quarter of the fastest period, or all of tmax. */
   double h = wmax > 0 ? fmin(tmax, 0.5 * SC_PI / wmax) : tmax;
   double t = 0;
@@ -227,7 +238,7 @@ int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
   sc_guard_eval(g, 0, &g0, &g1, &g2);
   int at_start_root = skip_start;
   while (t < tmax) {
-    h = fmin(h, tmax - t);
+    h = min2(h, tmax - t);
     out->steps++;
     double E = round_at(&z, t + h);
     double sigma = g0 > 0 ? 1 : -1;
@@ -253,7 +264,7 @@ int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
     }
     /* (B) g strictly monotone on [t, t+h] */
     double d0 = g1, dh = g1 + g2 * h;
-    if ((d0 > 0) == (dh > 0) && fmin(fabs(d0), fabs(dh)) > M3 * h * h / 2) {
+    if ((d0 > 0) == (dh > 0) && min2(fabs(d0), fabs(dh)) > M3 * h * h / 2) {
       double ge, ge1, ge2;
       sc_guard_eval(g, t + h, &ge, &ge1, &ge2);
       if (!at_start_root && (ge * sigma <= 0 || fabs(ge) <= E)) {
