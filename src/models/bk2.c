@@ -60,6 +60,7 @@ static int bk2_setup(void *vinst, const double *p, const int *opt,
   b->w2 = sqrt(1 + 2 * b->alpha);
   b->vs = b->frozen ? 0 : b->v;
   b->dstar = sc_bk2_dstar(b->alpha, b->beta);
+  sc_bk2_dparams(b, 0, &b->p0); /* value-only evaluations start from it */
   if (b->vw && b->frozen)
     return sc_fail(msg, SC_EINVAL,
                    "bk2: friction = velocity-weakening with driver = frozen "
@@ -330,13 +331,18 @@ static int exact_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
    * stuck one. */
   sc_guard g[2];
   int kind[2], ng = 0; /* kind: 1, 2 re-stick of block i; 3 threshold */
-  if (mode == SC_BK2_SLIP1 || mode == SC_BK2_SLIP12) {
-    g[ng] = guard_restick(P, &f, 1);
-    kind[ng++] = 1;
-  }
-  if (mode == SC_BK2_SLIP2 || mode == SC_BK2_SLIP12) {
-    g[ng] = guard_restick(P, &f, 2);
-    kind[ng++] = 2;
+  /* Later guards are searched only up to the earliest root so far, so
+   * the likelier first event goes first: in SLIP12, the block that has
+   * slipped longer (not fresh) usually re-sticks first. */
+  int order[2] = {1, 2};
+  if (mode == SC_BK2_SLIP12 && (fresh & 1) && !(fresh & 2))
+    order[0] = 2, order[1] = 1;
+  for (int k = 0; k < 2; k++) {
+    int i = order[k];
+    if (mode == i || mode == SC_BK2_SLIP12) {
+      g[ng] = guard_restick(P, &f, i);
+      kind[ng++] = i;
+    }
   }
   if (mode != SC_BK2_SLIP12) {
     g[ng] = guard_threshold(P, &f);
@@ -490,7 +496,8 @@ static int bk2_eval(void *vinst, double d, unsigned flags, sc_map_value *out,
   const bk2_inst *b = vinst;
   bk2_dpar P;
   int nd = (flags & SC_EVAL_DERIV) ? 5 : 0;
-  sc_bk2_dparams(b, nd, &P);
+  if (nd) sc_bk2_dparams(b, nd, &P);
+  else P = b->p0;
   bk2_state x;
   return sc_bk2_iterate(b, &P, sc_dvar(d, 0, nd), flags, &x, out, NULL, NULL,
                         msg);

@@ -8,6 +8,12 @@
 
 typedef struct bk2_num bk2_num; /* numerical-flow workspace (GSL) */
 
+/* Parameters as duals: direction 0 is d, 1..4 are alpha, beta, phi, v. */
+typedef struct {
+  int nd;
+  sc_dual alpha, beta, mu, k1, k2, t2, v, vs, w1, w2;
+} bk2_dpar;
+
 typedef struct {
   double alpha, beta, phi, v;
   int frozen;    /* driver = frozen: Vs = 0 during slips */
@@ -16,13 +22,9 @@ typedef struct {
   sc_accuracy acc;
   double mu, w1, w2, vs, dstar; /* derived */
   bk2_num *num;                 /* owned; NULL for exact flows */
+  bk2_dpar p0;                  /* the parameters without derivatives */
 } bk2_inst;
 
-/* Parameters as duals: direction 0 is d, 1..4 are alpha, beta, phi, v. */
-typedef struct {
-  int nd;
-  sc_dual alpha, beta, mu, k1, k2, t2, v, vs, w1, w2;
-} bk2_dpar;
 
 /* Positions and velocities of the two blocks. */
 typedef struct {
