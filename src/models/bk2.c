@@ -281,6 +281,32 @@ void sc_bk2_event_shift(const bk2_dpar *P, sc_dual gval, double slope,
     for (int k = 0; k < nd; k++) xs[i]->d[k] += xdot[i] * dt[k];
 }
 
+int sc_bk2_take_event(const bk2_dpar *P, int mode, int kind, double slope,
+                      const double acc[2], bk2_state *x) {
+  int nd = P->nd;
+  if (nd) {
+    /* the guard on duals at fixed time: its sensitivity moves the event */
+    sc_dual gv;
+    if (kind == 1) gv = sc_dsub(x->u1, P->vs, nd);
+    else if (kind == 2) gv = sc_dsub(x->u2, P->vs, nd);
+    else if (mode == SC_BK2_SLIP1)
+      gv = sc_dsub(spring(P, x->y2, x->y1), P->t2, nd);
+    else
+      gv = sc_daddc(spring(P, x->y1, x->y2), -1);
+    sc_bk2_event_shift(P, gv, slope, acc, x);
+  }
+  switch (kind) {
+  case 1:
+    x->u1 = P->vs;
+    return mode == SC_BK2_SLIP1 ? SC_BK2_STICK : SC_BK2_SLIP2;
+  case 2:
+    x->u2 = P->vs;
+    return mode == SC_BK2_SLIP2 ? SC_BK2_STICK : SC_BK2_SLIP1;
+  default:
+    return SC_BK2_SLIP12;
+  }
+}
+
 static void itin_add(char *itin, size_t *len, int mode, unsigned flags) {
   if (!(flags & SC_EVAL_ITINERARY)) return;
   const char *tok = mode == SC_BK2_SLIP1 ? "1" : mode == SC_BK2_SLIP2 ? "2"
@@ -383,17 +409,6 @@ static int exact_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
   double t = r[first].t;
   double a2[2];
   flow_at(P, &f, t, x, a2);
-  /* The guard as a dual at fixed time, for the event-time sensitivity. */
-  if (P->nd) {
-    sc_dual gv;
-    if (kind[first] == 1) gv = sc_dsub(x->u1, P->vs, P->nd);
-    else if (kind[first] == 2) gv = sc_dsub(x->u2, P->vs, P->nd);
-    else if (mode == SC_BK2_SLIP1)
-      gv = sc_dsub(spring(P, x->y2, x->y1), P->t2, P->nd);
-    else
-      gv = sc_daddc(spring(P, x->y1, x->y2), -1);
-    sc_bk2_event_shift(P, gv, r[first].slope, a2, x);
-  }
   *duration = t;
   if (r[first].tangent) ev->tangent = 1;
   /* Grazing margin of a re-stick: the height slope^2 / (2 |g''|) that the
@@ -409,17 +424,8 @@ static int exact_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
       ev->graze_mode = mode;
     }
   }
-  if (both) return SC_BK2_STICK;
-  switch (kind[first]) {
-  case 1:
-    x->u1 = P->vs;
-    return mode == SC_BK2_SLIP1 ? SC_BK2_STICK : SC_BK2_SLIP2;
-  case 2:
-    x->u2 = P->vs;
-    return mode == SC_BK2_SLIP2 ? SC_BK2_STICK : SC_BK2_SLIP1;
-  default:
-    return SC_BK2_SLIP12;
-  }
+  int next = sc_bk2_take_event(P, mode, kind[first], r[first].slope, a2, x);
+  return both ? SC_BK2_STICK : next;
 }
 
 int sc_bk2_phase(const bk2_inst *b, const bk2_dpar *P, int mode, int fresh,

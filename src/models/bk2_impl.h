@@ -49,6 +49,13 @@ int sc_bk2_onset(const bk2_inst *b, const bk2_dpar *P, sc_dual d,
                  bk2_state *x);
 void sc_bk2_event_shift(const bk2_dpar *P, sc_dual gval, double slope,
                         const double acc[2], bk2_state *x);
+/* Take the event of guard `kind` (1, 2: re-stick of block i; 3: threshold
+ * of the stuck block) that ends a phase of `mode`, with x the state there
+ * at fixed time, slope the guard's g' and acc the accelerations: shift
+ * the sensitivities by the event time's, reset the velocity of a block
+ * that sticks, and return the next mode. */
+int sc_bk2_take_event(const bk2_dpar *P, int mode, int kind, double slope,
+                      const double acc[2], bk2_state *x);
 int sc_bk2_phase(const bk2_inst *b, const bk2_dpar *P, int mode, int fresh,
                  bk2_state *x, double *duration, bk2_events *ev,
                  sc_msg *msg);

@@ -246,38 +246,13 @@ static double fastest_period(const bk2_inst *b, int mode) {
 }
 
 /* The state at an event, its sensitivities shifted by the event time's,
- * and the mode that follows. */
-static int finish_event(const bk2_inst *b, const bk2_dpar *P, int mode,
-                        int kind, const double *yt, const double *dyt,
-                        double slope, bk2_state *x) {
-  int nd = P->nd;
-  (void)b;
-  unpack(yt, nd, x);
-  if (nd) {
-    sc_dual gv;
-    if (kind == 1) gv = sc_dsub(x->u1, P->vs, nd);
-    else if (kind == 2) gv = sc_dsub(x->u2, P->vs, nd);
-    else if (mode == SC_BK2_SLIP1)
-      gv = sc_dsub(
-          sc_dadd(x->y2, sc_dmul(P->alpha, sc_dsub(x->y2, x->y1, nd), nd), nd),
-          P->t2, nd);
-    else
-      gv = sc_daddc(
-          sc_dadd(x->y1, sc_dmul(P->alpha, sc_dsub(x->y1, x->y2, nd), nd), nd),
-          -1);
-    double acc2[2] = {dyt[2], dyt[3]};
-    sc_bk2_event_shift(P, gv, slope, acc2, x);
-  }
-  switch (kind) {
-  case 1:
-    x->u1 = P->vs;
-    return mode == SC_BK2_SLIP1 ? SC_BK2_STICK : SC_BK2_SLIP2;
-  case 2:
-    x->u2 = P->vs;
-    return mode == SC_BK2_SLIP2 ? SC_BK2_STICK : SC_BK2_SLIP1;
-  default:
-    return SC_BK2_SLIP12;
-  }
+ * and the mode that follows (the same rule as the exact flows). */
+static int finish_event(const bk2_dpar *P, int mode, int kind,
+                        const double *yt, const double *dyt, double slope,
+                        bk2_state *x) {
+  unpack(yt, P->nd, x);
+  double acc2[2] = {dyt[2], dyt[3]};
+  return sc_bk2_take_event(P, mode, kind, slope, acc2, x);
 }
 
 int sc_bk2_num_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
@@ -320,7 +295,7 @@ int sc_bk2_num_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
     double yt[DIM_MAX], dyt[DIM_MAX];
     memcpy(yt, y, sizeof y);
     memcpy(dyt, dy0, sizeof dy0);
-    return finish_event(b, P, mode, kinds[which0], yt, dyt, slope0, x);
+    return finish_event(P, mode, kinds[which0], yt, dyt, slope0, x);
   }
   while (t < tend) {
     double t0 = t;
@@ -372,7 +347,7 @@ int sc_bk2_num_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
         }
       }
       *duration = te;
-      return finish_event(b, P, mode, kinds[which], yt, dyt, slope, x);
+      return finish_event(P, mode, kinds[which], yt, dyt, slope, x);
     }
     memcpy(dy0, dy1, sizeof dy1);
   }
