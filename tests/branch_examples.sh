@@ -4,26 +4,6 @@
 # Usage: sh tests/branch_examples.sh PATH/TO/slipcont SOURCE_DIR
 . "$(dirname "$0")/cli_common.sh"
 
-plotset=
-if ! command -v gnuplot >/dev/null 2>&1; then plotset="--set output.plot=no"; fi
-limit=
-if command -v timeout >/dev/null 2>&1; then limit="timeout 240"; fi
-
-example() {
-  # shellcheck disable=SC2086
-  $limit "$BIN" run "$SRC/examples/$1.ini" --out "$TMP/$1" --quiet $plotset \
-    >"$TMP/stdout" 2>"$TMP/stderr"
-  RC=$?
-  ERR=$(cat "$TMP/stderr")
-  expect_rc "$1" 0
-  no_temporaries "$1" "$TMP/$1"
-  check "$1: summary.txt" test -s "$TMP/$1/summary.txt"
-}
-
-png() {
-  if [ -z "$plotset" ]; then check "$1: $2 rendered" test -s "$TMP/$1/$2"; fi
-}
-
 # has NAME FILE PATTERN (extended regular expression)
 has() {
   if grep -qE "$3" "$TMP/$1/$2"; then pass "$1: $2 has /$3/"
