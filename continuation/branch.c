@@ -72,6 +72,7 @@ void sc_cont_settings_default(sc_cont_settings *s) {
   s->test_atol = 1e-8;
   s->max_locate_iter = 60;
   s->linsolve = NULL;
+  s->start_free = 0;
 }
 
 int sc_cont_settings_check(const sc_cont_settings *s, sc_msg *msg) {
@@ -475,15 +476,27 @@ int sc_branch_set(sc_branch *b, const double *u0, sc_msg *msg) {
                    "%.17g]",
                    n, u0[n], b->set.pmin, b->set.pmax);
   point *p = &b->cur;
-  memcpy(p->u, u0, N * sizeof *u0);
-  /* Correct with the parameter fixed: border e_n. */
-  for (size_t i = 0; i < N; i++) b->border[i] = i == n;
-  int st = newton(b, p->u, b->border, u0[n], &p->newton_iter, msg);
+  /* Correct with the parameter fixed: border e_n.  Where F_x is nearly
+   * singular (close to a fold in u[n], or to a flip of the orbit a
+   * period-doubled branch starts from) that correction is ill
+   * conditioned; with start_free, fix another coordinate instead, as the
+   * tangent below does. */
+  int st = SC_CONTINUE;
+  size_t naxes = b->set.start_free ? N : 1;
+  for (size_t k = 0; k < naxes && st == SC_CONTINUE; k++) {
+    size_t axis = k == 0 ? n : k - 1;
+    memcpy(p->u, u0, N * sizeof *u0);
+    for (size_t i = 0; i < N; i++) b->border[i] = i == axis;
+    st = newton(b, p->u, b->border, u0[axis], &p->newton_iter, msg);
+    if (st == SC_ESING) st = SC_CONTINUE; /* singular with this border */
+    if (st < 0) return st;
+    if (st == SC_OK && !(p->u[n] >= b->set.pmin && p->u[n] <= b->set.pmax))
+      st = SC_CONTINUE;
+  }
   if (st == SC_CONTINUE)
     return sc_fail(msg, SC_ENOCONV,
                    "sc_branch_set: initial point not corrected (%s)",
                    sc_corr_reason_text(b->reason));
-  if (st) return st;
   /* Tangent from [F_u; e_j^T] t = e_N, with j = n first; at a turning
    * point in u[n] that matrix is singular, so try the other axes. */
   st = SC_CONTINUE;

@@ -583,6 +583,19 @@ static void test_diverging(void) {
   /* the start's tangent border is e_r: det [1/(1+x^2), -1; 0, 1] = 1 */
   tu_close("bordered log|det| at the start", logabs, 0, 1e-15);
   sc_branch_free(b);
+  /* start_free: where the correction at fixed r diverges, the start is
+   * corrected at fixed x instead and lands on the curve at r = atan 3. */
+  sc_cont_settings set;
+  sc_cont_settings_default(&set);
+  set.start_free = 1;
+  sc_branch_alloc(&pb, &set, &acc, &b, &msg);
+  st = sc_branch_set(b, u0, &msg);
+  tu_int("start_free: atan from x = 3: SC_OK", st, SC_OK);
+  tu_close("start_free: x kept", sc_branch_point(b)[0], 3, 0);
+  /* Newton in r on atan(3) - r: exact after one step up to rounding */
+  tu_close("start_free: r = atan(3)", sc_branch_point(b)[1], atan(3.0),
+           4e-16);
+  sc_branch_free(b);
 }
 
 

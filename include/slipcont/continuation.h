@@ -91,6 +91,13 @@ typedef struct {
   int max_locate_iter; /**< secant/bisection iterations per location (60) */
   /** Linear-solver backend for the bordered systems: NULL for dense. */
   const sc_linsolve_type *linsolve;
+  /** 0 (default): sc_branch_set() corrects the start with the parameter
+   * u[n] fixed, and fails if that Newton iteration fails.  1: if it
+   * fails, correct with each other coordinate fixed in turn, so the start
+   * may move in u[n] (within [pmin, pmax]).  For starts where F_x is
+   * nearly singular: next to a fold, or on a period-doubled branch next
+   * to the flip it was born in. */
+  int start_free;
 } sc_cont_settings;
 
 /** @brief Fill @p s with the defaults listed in sc_cont_settings. */

@@ -566,6 +566,9 @@ static int run_segment(sc_orbit_branch *b, const job *jb, int branch,
   set.direction = jb->direction;
   set.max_points = b->sp.max_points;
   set.linsolve = b->sp.linsolve;
+  /* Starts next to a flip or a switching are ill conditioned at fixed
+   * parameter: let the start move along the branch instead. */
+  set.start_free = 1;
   sc_branch *br = NULL;
   if ((st = sc_branch_alloc(&pb, &set, sc_map_accuracy(m), &br, msg)))
     return st;
@@ -581,8 +584,13 @@ static int run_segment(sc_orbit_branch *b, const job *jb, int branch,
     if (p1 < set.pmin || p1 > set.pmax || set_p(m, b->sp.param, p1)) break;
     if (iterate_orbit(b, jb->d, period, b->seed)) break;
     sc_shoot_result res;
+    /* The orbit found must still be of minimal period `period`: next to a
+     * flip the doubled period-m/2 orbit has the same itinerary and is a
+     * fixed point of f^period too, and continuing it would follow the
+     * old branch twice over. */
     if (shoot_at(b, period, p1, b->seed, &res) != SC_OK ||
-        strcmp(res.itinerary, b->ctx.itin) != 0)
+        strcmp(res.itinerary, b->ctx.itin) != 0 ||
+        minimal_period(b->orbit, period, 1e-9) != period)
       continue;
     u0[0] = b->orbit[0];
     u0[1] = p1;
