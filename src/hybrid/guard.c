@@ -81,6 +81,24 @@ static double tol_at(double t, double atol, double rtol) {
   return atol + rtol * fabs(t);
 }
 
+/* g, g', g'' at t, and each sinusoid's own value and slope (the march's
+ * interval tests bound each term separately). */
+typedef struct {
+  double g0, g1, g2;
+  double v[SC_GUARD_MAXFREQ], d[SC_GUARD_MAXFREQ];
+} guard_terms;
+
+static void eval_terms(const sc_guard *g, double t, guard_terms *e) {
+  e->g0 = g->c0 + g->c1 * t, e->g1 = g->c1, e->g2 = 0;
+  for (int k = 0; k < g->n; k++) {
+    double w = g->w[k], sn = sin(w * t), cs = cos(w * t);
+    double v = g->a[k] * cs + g->b[k] * sn;
+    double d = w * (g->b[k] * cs - g->a[k] * sn);
+    e->v[k] = v, e->d[k] = d;
+    e->g0 += v, e->g1 += d, e->g2 -= w * w * v;
+  }
+}
+
 /* min of two numbers that are never NaN here (checked on entry): libm's
  * fmin is a call, for its NaN rules, in the hottest loop of the map. */
 static inline double min2(double a, double b) { return a < b ? a : b; }
@@ -97,16 +115,59 @@ static double quad_min(double sigma, double p0, double p1, double p2,
   return m;
 }
 
+/* A lower bound of sigma g on [t, t+h] in which each sinusoid enters
+ * either by its Taylor quadratic with remainder m3_k h^3/6 or by its
+ * amplitude (sigma term_k >= -R_k), whichever bounds it better: a fast
+ * term of small amplitude then does not limit the step to a fraction of
+ * its period.  Always valid; tried when the plain test (A) fails. */
+static double amplitude_bound(const sc_guard *g, const guard_terms *e,
+                              const double *amp, const double *m3,
+                              double sigma, double t, double h) {
+  double q0 = sigma * (g->c0 + g->c1 * t), q1 = sigma * g->c1, q2 = 0;
+  double rem = 0, cst = 0, h3 = h * h * h / 6;
+  for (int k = 0; k < g->n; k++) {
+    double w2 = g->w[k] * g->w[k];
+    double mt = quad_min(sigma, e->v[k], e->d[k], -w2 * e->v[k], h) -
+                m3[k] * h3;
+    if (-amp[k] > mt) {
+      cst -= amp[k];
+    } else {
+      q0 += sigma * e->v[k], q1 += sigma * e->d[k];
+      q2 -= sigma * w2 * e->v[k];
+      rem += m3[k] * h3;
+    }
+  }
+  return quad_min(1, q0, q1, q2, h) - rem + cst;
+}
+
 /* Bracketed Newton on [lo, hi] where g(lo), g(hi) differ in sign and g is
  * monotone: start from the secant point; stop when g is within rounding of
  * zero, or when a Newton step inside the bracket is below the tolerance
  * (convergence is quadratic there, so the step itself bounds the error,
  * and the slope at the last point is the root's to O(step)). */
 static void refine(const sc_guard *g, const guard_size *z, double lo,
-                   double glo, double hi, double ghi, double atol,
-                   double rtol, sc_root *out) {
-  double t = lo - glo * (hi - lo) / (ghi - glo);
+                   double glo, double dlo, double hi, double ghi, double dhi,
+                   double atol, double rtol, sc_root *out) {
+  /* Start from the root of the cubic Hermite interpolant of g and g' at
+   * both ends (a few Newton steps on the cubic, no trigonometry), which
+   * is far closer than the secant point: one or two Newton steps on g
+   * then suffice. */
+  double h = hi - lo, t = lo - glo * h / (ghi - glo);
   if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);
+  {
+    double c1 = dlo, dg = ghi - glo;
+    double c2 = (3 * dg / h - 2 * dlo - dhi) / h;
+    double c3 = (dlo + dhi - 2 * dg / h) / (h * h);
+    double s = t - lo;
+    for (int it = 0; it < 4; it++) {
+      double p = glo + s * (c1 + s * (c2 + s * c3));
+      double dp = c1 + s * (2 * c2 + 3 * s * c3);
+      double sn = dp != 0 ? s - p / dp : s;
+      if (!(sn > 0 && sn < h)) break;
+      s = sn;
+    }
+    t = lo + s;
+  }
   double v = 0, d = 0, bracket = hi - lo;
   for (int it = 0; it < GUARD_MAX_REFINE; it++) {
     sc_guard_eval(g, t, &v, &d, NULL);
@@ -224,18 +285,21 @@ int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
   out->tangent = 0;
   /* Term sizes and the bound M3, from one amplitude per sinusoid. */
   guard_size z = {fabs(g->c0), fabs(g->c1), 0, 0};
-  double M3 = 0;
+  double M3 = 0, amp[SC_GUARD_MAXFREQ], m3[SC_GUARD_MAXFREQ];
   for (int k = 0; k < g->n; k++) {
     double r = hypot(g->a[k], g->b[k]), w = g->w[k];
+    amp[k] = r;
+    m3[k] = r * w * w * w;
     z.amp += r;
     z.wamp += r * w;
-    M3 += r * w * w * w;
+    M3 += m3[k];
   }
   /* First trial step: a quarter of the fastest period, or all of tmax. */
   double h = wmax > 0 ? fmin(tmax, 0.5 * SC_PI / wmax) : tmax;
   double t = 0;
-  double g0, g1, g2;
-  sc_guard_eval(g, 0, &g0, &g1, &g2);
+  guard_terms e;
+  eval_terms(g, 0, &e);
+  double g0 = e.g0, g1 = e.g1, g2 = e.g2;
   int at_start_root = skip_start;
   while (t < tmax) {
     h = min2(h, tmax - t);
@@ -254,19 +318,24 @@ int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
       out->tangent = fabs(g1) * tol_at(t, atol, rtol) <= E;
       return SC_OK;
     }
-    /* (A) no root in [t, t+h] */
+    /* (A) no root in [t, t+h]: the quadratic with the global remainder,
+     * or failing that (with several frequencies) the bound that takes
+     * some terms by their amplitude. */
     if (!at_start_root &&
-        quad_min(sigma, g0, g1, g2, h) - M3 * h * h * h / 6 > E) {
+        (quad_min(sigma, g0, g1, g2, h) - M3 * h * h * h / 6 > E ||
+         (g->n > 1 && amplitude_bound(g, &e, amp, m3, sigma, t, h) > E))) {
       t += h;
-      sc_guard_eval(g, t, &g0, &g1, &g2);
+      eval_terms(g, t, &e);
+      g0 = e.g0, g1 = e.g1, g2 = e.g2;
       h *= 2;
       continue;
     }
     /* (B) g strictly monotone on [t, t+h] */
     double d0 = g1, dh = g1 + g2 * h;
     if ((d0 > 0) == (dh > 0) && min2(fabs(d0), fabs(dh)) > M3 * h * h / 2) {
-      double ge, ge1, ge2;
-      sc_guard_eval(g, t + h, &ge, &ge1, &ge2);
+      guard_terms eh;
+      eval_terms(g, t + h, &eh);
+      double ge = eh.g0, ge1 = eh.g1, ge2 = eh.g2;
       if (!at_start_root && (ge * sigma <= 0 || fabs(ge) <= E)) {
         if (fabs(ge) <= E) {
           out->found = 1;
@@ -274,11 +343,12 @@ int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
           out->slope = ge1;
           return SC_OK;
         }
-        refine(g, &z, t, g0, t + h, ge, atol, rtol, out);
+        refine(g, &z, t, g0, g1, t + h, ge, ge1, atol, rtol, out);
         return SC_OK;
       }
       at_start_root = 0;
       t += h;
+      e = eh;
       g0 = ge, g1 = ge1, g2 = ge2;
       h *= 2;
       continue;
@@ -291,7 +361,8 @@ int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
         /* degenerate start (g' = 0 too): step past it */
         at_start_root = 0;
         t += h;
-        sc_guard_eval(g, t, &g0, &g1, &g2);
+        eval_terms(g, t, &e);
+        g0 = e.g0, g1 = e.g1, g2 = e.g2;
         continue;
       }
       out->found = 1;
