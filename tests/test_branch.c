@@ -343,10 +343,45 @@ static void test_errors(void) {
   sc_map_free(m);
 }
 
+/* A period-2 segment that runs into the flip it was born in must not go
+ * on along the period-1 orbit traversed twice (same itinerary, also a
+ * fixed point of f^2): it ends there and the period-1 branch is followed
+ * with its own period.  fig 5.8 below alpha = 3: the period-1 orbit
+ * flips near alpha = 2.825 and folds near 2.9925 (brute force: period 2
+ * below ~2.83, period 1 up to ~2.99). */
+static void test_collapse(void) {
+  printf("--- bk2 frozen, beta = 2.5, alpha in [2.8, 3]: period 2 -> 1\n");
+  sc_map *m = bk2_frozen(2.5);
+  size_t ia = (size_t)sc_map_param_index(m, "alpha");
+  sc_msg msg = {""};
+  sc_orbit_branch_spec sp = spec0(ia, 2.8, 3.0, 2, 0.2197);
+  sp.hmax = 0.01;
+  sc_orbit_branch *b;
+  int st = sc_orbit_branch_alloc(m, &sp, &b, &msg);
+  if (!st) st = sc_orbit_branch_run(b, &msg);
+  tu_int("run: SC_OK", st, SC_OK);
+  int pd1 = 0, lp1 = 0, lp2 = 0;
+  for (size_t i = 0; i < sc_orbit_branch_nspecial(b); i++) {
+    sc_orbit_special_info x;
+    sc_orbit_branch_special(b, i, &x);
+    if (x.label == SC_PT_PD && x.period == 1 && fabs(x.p - 2.8252) < 1e-3)
+      pd1++;
+    if (x.label == SC_PT_LP && x.period == 1 && fabs(x.p - 2.9925) < 1e-3)
+      lp1++;
+    if (x.label == SC_PT_LP && x.period == 2) lp2++;
+  }
+  tu_true(pd1 >= 1, "the period-1 flip near alpha = 2.8252 (%d)", pd1);
+  tu_true(lp1 >= 1, "the period-1 fold near alpha = 2.9925 (%d)", lp1);
+  tu_int("no fold reported as period 2 (the doubled period-1 orbit)", lp2, 0);
+  sc_orbit_branch_free(b);
+  sc_map_free(m);
+}
+
 int main(void) {
   setvbuf(stdout, NULL, _IOLBF, 0);
   test_logistic();
   test_fig58();
+  test_collapse();
   test_fig512();
   test_errors();
   return tu_finish();

@@ -612,8 +612,32 @@ static int run_segment(sc_orbit_branch *b, const job *jb, int branch,
     const double *u = sc_branch_point(br);
     set_p(m, b->sp.param, u[1]);
     double dmin = u[0];
-    if (!iterate_orbit(b, u[0], period, b->orb_c))
+    int have_orbit = !iterate_orbit(b, u[0], period, b->orb_c);
+    if (have_orbit)
       for (int k = 1; k < period; k++) dmin = fmin(dmin, b->orb_c[k]);
+    /* A period-m segment whose orbit has fallen to a divisor of m has
+     * left its branch for a lower-period one crossing it (the doubled
+     * orbit at a flip): stop rather than follow the old branch again. */
+    int q = have_orbit && period > 1
+                ? minimal_period(b->orb_c, period, 1e-9 * (1 + fabs(u[0])))
+                : period;
+    if (q < period) {
+      /* Follow the lower-period branch from here instead, both ways, with
+       * its own period (joins() stops it where it was computed before). */
+      char origin[96];
+      snprintf(origin, sizeof origin, "period-%d segment at %.10g", period,
+               u[1]);
+      int pushed = push_job(b, q, u[1], u[0], 1, 0, origin);
+      pushed += push_job(b, q, u[1], u[0], -1, 0, origin);
+      special_rec *r = add_special(b, SC_PT_EP, branch, period, u[1], u[0],
+                                   NAN, NAN);
+      if (r)
+        snprintf(r->note, sizeof r->note,
+                 "the orbit's minimal period fell to %d: the segment met the "
+                 "period-%d branch and ends here%s",
+                 q, q, pushed ? "; that branch is followed" : "");
+      break;
+    }
     set_p(m, b->sp.param, u[1]);
     if (sc_map_iterate(m, u[0], period, SC_EVAL_DERIV | SC_EVAL_ITINERARY, &v,
                        NULL) == SC_OK)
