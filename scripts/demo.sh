@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The main job: install, build, and run the symmetric-chaos analysis (the
 # chapter's fig 5.6: a period-doubling cascade to chaos as V decreases)
-# with its plot, then the asymmetric flip cascade of fig 5.8.
+# with its plot, then the asymmetric flip cascade of fig 5.8, brute force
+# and continued with its unstable orbits and special points.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/deps.sh
@@ -9,4 +10,5 @@ cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build -j"$(nproc)" --target slipcont_cli >/dev/null
 build/slipcont run examples/symmetric-chaos.ini --out out/symmetric-chaos
 build/slipcont run examples/fig58-sweep.ini --out out/fig58-sweep
-echo "plots: out/symmetric-chaos/*.png out/fig58-sweep/*.png"
+build/slipcont run examples/branch-fig58.ini --out out/branch-fig58
+echo "plots: out/symmetric-chaos/*.png out/fig58-sweep/*.png out/branch-fig58/*.png"
