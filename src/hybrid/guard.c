@@ -57,12 +57,13 @@ typedef struct {
   double c0, c1, amp, wamp;
 } guard_size;
 
-static guard_size guard_sizes(const sc_guard *g) {
+/* The sizes, and each sinusoid's amplitude into amp[] (one hypot each). */
+static guard_size guard_sizes(const sc_guard *g, double *amp) {
   guard_size z = {fabs(g->c0), fabs(g->c1), 0, 0};
   for (int k = 0; k < g->n; k++) {
-    double r = hypot(g->a[k], g->b[k]);
-    z.amp += r;
-    z.wamp += r * g->w[k];
+    amp[k] = hypot(g->a[k], g->b[k]);
+    z.amp += amp[k];
+    z.wamp += amp[k] * g->w[k];
   }
   return z;
 }
@@ -72,10 +73,6 @@ static double round_at(const guard_size *z, double t) {
          (z->c0 + z->amp + (z->c1 + z->wamp) * fabs(t));
 }
 
-static double round_bound(const sc_guard *g, double t) {
-  guard_size z = guard_sizes(g);
-  return round_at(&z, t);
-}
 
 static double tol_at(double t, double atol, double rtol) {
   return atol + rtol * fabs(t);
@@ -201,10 +198,10 @@ static void refine(const sc_guard *g, const guard_size *z, double lo,
  * R cos(w t - phi).  Ascending roots sit at w t = phi - theta, descending
  * ones at phi + theta (mod 2 pi), cos theta = -c0 / R.  Returns 0 when the
  * case is degenerate and the march should decide. */
-static int closed_form(const sc_guard *g, double tmax, int skip_start,
-                       sc_root *out) {
+static int closed_form(const sc_guard *g, const guard_size *z, double R,
+                       double tmax, int skip_start, sc_root *out) {
   double a = g->a[0], b = g->b[0], w = g->w[0], c0 = g->c0;
-  double R = hypot(a, b), E = round_bound(g, 0);
+  double E = round_at(z, 0);
   if (R <= E) return 0;
   double gap = R - fabs(c0);
   if (gap < -E) return 1; /* never reaches zero: out says not found */
@@ -266,40 +263,35 @@ int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
   /* A guard that starts within rounding of zero: a root at 0 if it moves
    * up through zero there (the events of MODEL.md are all upward
    * crossings), otherwise the start root is skipped. */
-  {
-    double s0, s1, s2;
-    sc_guard_eval(g, 0, &s0, &s1, &s2);
-    if (fabs(s0) <= round_bound(g, 0)) {
-      int upward = s1 > 0 || (s1 == 0 && s2 > 0);
-      if (!skip_start && upward) {
-        out->found = 1;
-        out->t = 0;
-        out->slope = s1;
-        return SC_OK;
-      }
-      skip_start = 1;
+  double amp[SC_GUARD_MAXFREQ];
+  guard_size z = guard_sizes(g, amp); /* once per search */
+  guard_terms e;
+  eval_terms(g, 0, &e);
+  double g0 = e.g0, g1 = e.g1, g2 = e.g2;
+  if (fabs(g0) <= round_at(&z, 0)) {
+    int upward = g1 > 0 || (g1 == 0 && g2 > 0);
+    if (!skip_start && upward) {
+      out->found = 1;
+      out->t = 0;
+      out->slope = g1;
+      return SC_OK;
     }
+    skip_start = 1;
   }
-  if (g->n == 1 && g->c1 == 0 && closed_form(g, tmax, skip_start, out))
+  if (g->n == 1 && g->c1 == 0 &&
+      closed_form(g, &z, amp[0], tmax, skip_start, out))
     return SC_OK;
   out->tangent = 0;
-  /* Term sizes and the bound M3, from one amplitude per sinusoid. */
-  guard_size z = {fabs(g->c0), fabs(g->c1), 0, 0};
-  double M3 = 0, amp[SC_GUARD_MAXFREQ], m3[SC_GUARD_MAXFREQ];
+  /* The bound M3 on the third derivative, term by term. */
+  double M3 = 0, m3[SC_GUARD_MAXFREQ];
   for (int k = 0; k < g->n; k++) {
-    double r = hypot(g->a[k], g->b[k]), w = g->w[k];
-    amp[k] = r;
-    m3[k] = r * w * w * w;
-    z.amp += r;
-    z.wamp += r * w;
+    double w = g->w[k];
+    m3[k] = amp[k] * w * w * w;
     M3 += m3[k];
   }
   /* First trial step: a quarter of the fastest period, or all of tmax. */
   double h = wmax > 0 ? fmin(tmax, 0.5 * SC_PI / wmax) : tmax;
   double t = 0;
-  guard_terms e;
-  eval_terms(g, 0, &e);
-  double g0 = e.g0, g1 = e.g1, g2 = e.g2;
   int at_start_root = skip_start;
   while (t < tmax) {
     h = min2(h, tmax - t);
