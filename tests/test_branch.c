@@ -24,6 +24,7 @@
 #include <string.h>
 
 #include "slipcont/branch.h"
+#include "slipcont/shooting.h"
 #include "test_util.h"
 
 static sc_orbit_branch_spec spec0(size_t param, double from, double to,
@@ -122,7 +123,10 @@ static void test_logistic(void) {
   }
   check_lp_pd(b);
   check_doubling(b);
-  tu_int("no DIB on a smooth map", collect(b, SC_PT_DI, pd, 16), 0);
+  int nb = 0;
+  for (int l = SC_PT_GR; l <= SC_PT_TT; l++)
+    nb += collect(b, (sc_point_label)l, pd, 16);
+  tu_int("no border point on a smooth map", nb, 0);
   sc_orbit_branch_free(b);
 
   printf("--- logistic: period-3 fold\n");
@@ -199,40 +203,106 @@ static void check_brute_force(const sc_orbit_branch *b, sc_map *m,
   tu_int("stable points not reached by brute force within 1e-9", bad, 0);
 }
 
-/* The margin of a DIB recomputed at its located point (and across the
- * bracket, where the degeneracy may sit on the far side). */
-static double margin_at(sc_map *m, size_t param, const sc_orbit_special_info *sp) {
-  double best = HUGE_VAL;
-  for (int side = -1; side <= 1; side++) {
-    sc_map_set_param(m, param, sp->p + side * sp->width, NULL);
-    sc_map_value v;
-    if (sc_map_iterate(m, sp->d, sp->period, SC_EVAL_DERIV, &v, NULL))
-      continue;
-    double x = sp->label == SC_PT_GR   ? v.graze_margin
-               : sp->label == SC_PT_CS ? v.gsp_gap
-                                       : v.dstar_dist;
-    best = fmin(best, fabs(x));
+/* A border point's border recomputed independently of the branch code:
+ * the orbit of the nearest accepted point of its segment is shot again
+ * from that point, its natural codes taken there (starting at the orbit
+ * point nearest s->d), and f^m evaluated from s->d at the located
+ * parameter along those codes: the border named s->border of the first
+ * iterate must vanish there, and the orbit must be periodic. */
+static double border_recomputed(sc_map *m, size_t ia,
+                                const sc_orbit_branch *b,
+                                const sc_orbit_special_info *sp,
+                                double *orbit_res) {
+  *orbit_res = HUGE_VAL;
+  const int q = sp->period;
+  sc_orbit_point_info near = {0}, pt;
+  double dist = HUGE_VAL;
+  for (size_t i = 0; i < sc_orbit_branch_npoints(b); i++) {
+    sc_orbit_branch_point(b, i, &pt);
+    if (pt.branch == sp->branch && pt.period == q &&
+        fabs(pt.p - sp->p) < dist)
+      dist = fabs(pt.p - sp->p), near = pt;
   }
-  return best;
+  if (!isfinite(dist) || q > 64) return HUGE_VAL;
+  sc_map_set_param(m, ia, near.p, NULL);
+  double o[64];
+  o[0] = near.d;
+  for (int k = 1; k < q; k++) {
+    sc_map_value w;
+    if (sc_map_eval(m, o[k - 1], SC_EVAL_VALUE, &w, NULL)) return HUGE_VAL;
+    o[k] = w.f;
+  }
+  int k0 = 0;
+  for (int k = 1; k < q; k++)
+    if (fabs(o[k] - sp->d) < fabs(o[k0] - sp->d)) k0 = k;
+  sc_itin_code codes[64];
+  sc_border bl[512];
+  sc_border_list l = {bl, 512, 0};
+  sc_map_value v;
+  if (sc_map_iterate_ex(m, o[k0], q, SC_EVAL_DERIV, NULL, codes, &l, &v,
+                        NULL))
+    return HUGE_VAL;
+  /* the border's own code for its iterate, where it has one (a grazing
+   * from the side where the guard fires: the event at the maximum) */
+  for (size_t i = 0; i < l.n && i < l.cap; i++)
+    if (bl[i].iterate == 0 && strcmp(bl[i].name, sp->border) == 0 &&
+        bl[i].alt.n > 0)
+      codes[0] = bl[i].alt;
+  sc_map_set_param(m, ia, sp->p, NULL);
+  l.n = 0;
+  if (sc_map_iterate_ex(m, sp->d, q, SC_EVAL_DERIV, codes, NULL, &l, &v,
+                        NULL))
+    return HUGE_VAL;
+  for (size_t i = 0; i < l.n && i < l.cap; i++)
+    if (bl[i].iterate == 0 && strcmp(bl[i].name, sp->border) == 0) {
+      *orbit_res = fabs(v.f - sp->d);
+      return fabs(bl[i].value);
+    }
+  return HUGE_VAL;
 }
 
-/* Every GR/CS/SW: degeneracy below SC_DIB_MARGIN_TOL, recomputed, and
- * the parameter bracketed to the location tolerance. */
-static int check_dibs(const sc_orbit_branch *b, sc_map *m, size_t ia) {
+/* Every border point (GR, CS, SW, BR, TT): located by Newton with a
+ * residual certificate, its border recomputed to zero, and for SW the
+ * point at d* itself. */
+static int check_borders(const sc_orbit_branch *b, sc_map *m, size_t ia,
+                         double beta) {
   int n = 0;
   for (size_t i = 0; i < sc_orbit_branch_nspecial(b); i++) {
     sc_orbit_special_info s;
     sc_orbit_branch_special(b, i, &s);
-    if (s.label != SC_PT_GR && s.label != SC_PT_CS && s.label != SC_PT_SW)
+    if (s.label == SC_PT_LP || s.label == SC_PT_PD || s.label == SC_PT_EP)
       continue;
-    char what[96];
-    snprintf(what, sizeof what, "%s at %.10g: recomputed margin",
-             sc_point_label_text(s.label), s.p);
-    tu_close(what, margin_at(m, ia, &s), 0, SC_DIB_MARGIN_TOL);
+    const char *l = sc_point_label_text(s.label);
     n++;
-    tu_true(s.width <= 1e-13 * (1 + fabs(s.p)) * 2,
-            "%s bracketed to %.3g in alpha", sc_point_label_text(s.label),
-            s.width);
+    tu_true(s.method == SC_LOC_NEWTON, "%s at %.12g located by Newton (%s)",
+            l, s.p, s.note);
+    if (s.method != SC_LOC_NEWTON) continue;
+    /* the defining system is scaled by the map (displacements of order
+     * 0.1): 1e-10 leaves room for f^m's conditioning */
+    tu_true(s.residual <= 1e-10, "%s at %.12g: residual %.3g <= 1e-10", l,
+            s.p, s.residual);
+    if (s.label == SC_PT_SW) {
+      /* the orbit through d* at the located parameter, with the model's
+       * own tie rule there (both blocks start): periodic */
+      double a = s.p; /* alpha is the continued parameter here */
+      tu_close("SW: the orbit point sits at d*", s.d, sc_bk2_dstar(a, beta),
+               1e-12);
+      sc_map_value v;
+      sc_map_set_param(m, ia, s.p, NULL);
+      int st = sc_map_iterate(m, s.d, s.period, SC_EVAL_VALUE, &v, NULL);
+      tu_true(!st && fabs(v.f - s.d) <= 1e-9,
+              "SW at %.12g: the orbit through d* is periodic there (%.3g)",
+              s.p, st ? HUGE_VAL : fabs(v.f - s.d));
+      continue;
+    }
+    double ores, mb = border_recomputed(m, ia, b, &s, &ores);
+    char what[128];
+    snprintf(what, sizeof what, "%s at %.12g: border '%s' recomputed", l,
+             s.p, s.border);
+    tu_close(what, mb, 0, 1e-9);
+    tu_true(ores <= 1e-9, "%s at %.12g: the orbit through d = %.12g is "
+                          "periodic there (%.3g)",
+            l, s.p, s.d, ores);
   }
   return n;
 }
@@ -272,8 +342,8 @@ static void test_fig58(void) {
   for (int i = 0; i < n; i++)
     if (strstr(s[i].note, "closes on itself")) closed = 1;
   tu_true(closed, "the period-6 branch is a closed curve");
-  int ndib = check_dibs(b, m, ia);
-  tu_true(ndib >= 1, "%d GR/CS/SW located and checked", ndib);
+  int ndib = check_borders(b, m, ia, 2.5);
+  tu_true(ndib >= 1, "%d border points located and checked", ndib);
   check_lp_pd(b);
   check_doubling(b);
   check_brute_force(b, m, ia);
@@ -298,8 +368,12 @@ static void test_fig512(void) {
       nlp = collect(b, SC_PT_LP, lp, 8);
   tu_true(ncs >= 1 && fabs(cs[0].p - 5.6488) < 1e-3,
           "crossing-sliding near alpha = 5.6488 (%d found)", ncs);
-  tu_true(ngr >= 1 && fabs(gr[0].p - 5.7494) < 1e-3,
-          "grazing-sliding near alpha = 5.7494 (%d found)", ngr);
+  int g1 = 0;
+  for (int i = 0; i < ngr; i++)
+    if (gr[i].period == 1 && fabs(gr[i].p - 5.7494) < 1e-3) g1++;
+  tu_true(g1 == 1, "grazing-sliding of the period-1 orbit near alpha = "
+                   "5.7494 (%d of %d GR)",
+          g1, ngr);
   int p3 = 0;
   for (int i = 0; i < nlp; i++)
     if (lp[i].period == 3 && fabs(lp[i].p - 5.6357) < 1e-3) p3 = 1;
@@ -309,7 +383,7 @@ static void test_fig512(void) {
     tu_true(strstr(cs[0].note, "continues with period 1") != NULL,
             "after the CS the branch goes on with period 1: %s", cs[0].note);
   }
-  check_dibs(b, m, ia);
+  check_borders(b, m, ia, 3.2);
   check_lp_pd(b);
   check_brute_force(b, m, ia);
   sc_orbit_branch_free(b);

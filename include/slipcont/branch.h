@@ -11,8 +11,8 @@
  * them with Newton's method.  Branches are continued with the
  * pseudo-arclength layer (continuation.h) on the fixed-point system of
  * f^m; their itinerary is watched at every accepted point, and where it
- * changes the discontinuity-induced bifurcation is located by bisection
- * in the parameter and classified from the degeneracy found there (see
+ * changes the discontinuity-induced bifurcation is located by Newton's
+ * method on its defining system with the model's border functions (see
  * docs/branches.md).
  *
  * The objects here borrow the caller's map and change its parameters
@@ -104,19 +104,24 @@ void sc_orbit_set_free(sc_orbit_set *s);
 /* ------------------------------------------------------------------ */
 /* Branches of periodic orbits in one parameter                          */
 
-/** Kinds of special points on an orbit branch (points.csv labels). */
+/** Kinds of special points on an orbit branch (points.csv labels).  The
+ * border labels are those of sc_border_label() (models.h). */
 typedef enum {
   SC_PT_LP = 0, /**< fold: multiplier +1 */
   SC_PT_PD,     /**< flip: multiplier -1 */
   SC_PT_GR,     /**< grazing-sliding: a re-stick guard tangent */
   SC_PT_CS,     /**< crossing-sliding: a global stick phase of length 0 */
-  SC_PT_SW,     /**< switching: a global stick phase at d* */
-  SC_PT_DI,     /**< an itinerary change with no degeneracy found */
+  SC_PT_SW,     /**< switching: an orbit point at a switching surface */
+  SC_PT_BR,     /**< both re-stick: two ending events at once */
+  SC_PT_TT,     /**< a threshold touched tangentially */
   SC_PT_EP,     /**< end point of a branch, with its reason */
 } sc_point_label;
 
-/** Label text: "LP", "PD", "GR", "CS", "SW", "DI", "EP". */
+/** Label text: "LP", "PD", "GR", "CS", "SW", "BR", "TT", "EP". */
 const char *sc_point_label_text(sc_point_label l);
+
+/** The special-point label of a border kind. */
+sc_point_label sc_point_label_of_border(sc_border_kind k);
 
 /** What sc_orbit_branch_run() continues. */
 typedef struct {
@@ -150,23 +155,49 @@ typedef struct {
   const char *itinerary; /**< of f^m from d, iterates joined by '|' */
 } sc_orbit_point_info;
 
+/** How a special point was found. */
+typedef enum {
+  SC_LOC_NEWTON = 0, /**< solution of its defining system by Newton's
+                          method (LP, PD: the continuation layer's
+                          location; borders: {f^m(d) = d, m_k = 0}) */
+  SC_LOC_BISECTION,  /**< fallback: bisection on a change of itinerary;
+                          the parameter is known to `error` only */
+  SC_LOC_FAILED,     /**< detected (a sign change) but not located: the
+                          row gives the bracket's end and the reason */
+  SC_LOC_NONE,       /**< an end point (EP) */
+} sc_location_method;
+
+/** Text of a location method: "newton", "bisection", "not-located", "". */
+const char *sc_location_method_text(sc_location_method l);
+
 /** One special point. */
 typedef struct {
   sc_point_label label;
   int branch;        /**< segment number */
   int period;        /**< period of the orbit at the point */
-  double p, d, multiplier;
-  double degeneracy; /**< GR: graze_margin, CS: gsp_gap, SW: dstar_dist;
-                        LP, PD: multiplier -+ 1; EP: NaN */
-  double width;      /**< DIB: final bisection bracket in p; else 0 */
+  double p;          /**< parameter value */
+  double d;          /**< LP, PD, EP: the continued orbit point; a border
+                          point: the orbit point where the border is met
+                          (SW: the point at d*) */
+  double multiplier; /**< (f^m)' there (NaN where not differentiable) */
+  double degeneracy; /**< the defining function at the point: LP, PD: the
+                          multiplier -+ 1; borders: the border m_k;
+                          EP: NaN */
+  double residual;   /**< certificate: max norm of the whole defining
+                          system at the returned point (NaN: not solved) */
+  double error;      /**< estimated error in p: the last Newton step
+                          (newton), the bracket (bisection, not located) */
+  sc_location_method method;
+  int iterations;    /**< Newton or location iterations */
+  const char *border; /**< the border's name (borders only, else "") */
   const char *note;  /**< which block and mode, what followed, reasons */
 } sc_orbit_special_info;
 
 typedef struct sc_orbit_branch sc_orbit_branch;
 
 /**
- * @brief Prepare a run: check @p spec and take all storage (max_points x
- * max_branches points, as many special points).
+ * @brief Prepare a run: check @p spec and take the storage that does not
+ * grow (points and special points grow as they come).
  * @return SC_OK; SC_EINVAL naming the bad field; SC_ENOMEM.
  */
 int sc_orbit_branch_alloc(sc_map *m, const sc_orbit_branch_spec *spec,
@@ -191,18 +222,27 @@ int sc_orbit_branch_add_start(sc_orbit_branch *b, double p, double d,
  *
  * Labels: LP and PD are the zeros of the fold and flip test functions of
  * the continuation layer, located until both the arclength step and the
- * test function are within tolerance.  A change of the itinerary of f^m
- * between two accepted points, or a corrector that can go no further,
- * starts a bisection in the parameter between the last point on the
- * known side (the orbit followed there by shooting) and the other side,
- * until the bracket is within newton_atol + newton_rtol |p|; the
- * located point is classified GR, CS or SW by the smallest of its
- * margins (graze_margin, gsp_gap, dstar_dist) when that is below
- * SC_DIB_MARGIN_TOL, DI otherwise.  The branch then continues on the
- * other side with the new itinerary when shooting finds an orbit there
+ * test function are within tolerance.  For a model with borders
+ * (sc_map_has_borders()), each segment follows the itinerary code of its
+ * first point (sc_map_iterate_ex()), so f^m is smooth along it, and every
+ * border of the orbit is watched as a test function: where one changes
+ * sign between two accepted points, the point is located by Newton's
+ * method on {f^m(d) - d = 0, m_k(d, p) = 0} in (d, p) with exact
+ * derivatives (a border in the state itself, such as d = d*, by Newton
+ * in p with the orbit started on it), labelled by the border's kind
+ * (sc_point_label_of_border()) and certified by its residual.  Points
+ * beyond it on the segment are not real orbits and are dropped, and
+ * special points found there are not reported.  A corrector that can go
+ * no further (a forced event that disappears: a grazing met from the side
+ * where the guard fires) falls back to a bisection in the parameter on a
+ * change of the itinerary code, after which the border that vanishes
+ * there is located by Newton from the other side.  The branch then
+ * continues on the other side when shooting finds an orbit there
  * (period m, or m -+ 1 after a crossing-sliding), and ends with a note
- * otherwise.  EP marks every end (interval end, max_points, a failure),
- * with the reason in its note.
+ * otherwise.  A sign change that could not be located, a rejected fold
+ * or flip test, a failed start: each is a special point with its reason.
+ * EP marks every end (interval end, max_points, a failure), with the
+ * reason in its note.
  * @return SC_OK (the branches ended; see the EP notes); SC_EINVAL,
  *         SC_ENOCONV or SC_ENEUTRAL when the starting orbit cannot be
  *         found; SC_ECALLBACK if progress stopped it; SC_ENOMEM.
@@ -223,30 +263,6 @@ int sc_orbit_branch_special(const sc_orbit_branch *b, size_t i,
 int sc_orbit_branch_nbranches(const sc_orbit_branch *b);
 /** @brief Release @p b; NULL is accepted. */
 void sc_orbit_branch_free(sc_orbit_branch *b);
-
-/**
- * A margin below this counts as the degeneracy of a located
- * discontinuity-induced bifurcation.  The location brackets the
- * parameter to about 1e-13.  Grazing and crossing margins vary linearly
- * with the parameter there; |d - d*| at a switching varies like the
- * square root of the distance in the parameter (f' grows like
- * |d - d*|^(-1/2), MODEL.md), so it is left at up to ~1e-7 (slope
- * factors included).  1e-6 is above both, and far below the margins of a
- * regular orbit (1e-3 and more).
- */
-#define SC_DIB_MARGIN_TOL 1e-6
-
-/**
- * @brief Classify a located itinerary change from the margins of f^m at
- * the orbit on either side (@p a, @p b: sc_map_iterate() values with
- * their margins): the smallest of graze_margin, gsp_gap and dstar_dist
- * over both, GR, CS or SW, when below SC_DIB_MARGIN_TOL; DI otherwise.
- * @p note receives which block and mode ("block 2 re-sticks ending slip
- * mode 12"), @p degeneracy the margin.
- * @return the label.
- */
-sc_point_label sc_dib_classify(const sc_map_value *a, const sc_map_value *b,
-                               double *degeneracy, char *note, size_t len);
 
 #ifdef __cplusplus
 }

@@ -100,9 +100,47 @@ int sc_map_eval(sc_map *m, double d, unsigned flags, sc_map_value *out,
 int sc_map_iterate(sc_map *m, double d, int n, unsigned flags,
                    sc_map_value *out, sc_msg *msg);
 
+/** 1 if the model of @p m declares borders and forced evaluation
+ * (sc_map_eval_ex() does more than sc_map_eval()); 0 for a smooth map. */
+int sc_map_has_borders(const sc_map *m);
+
+/**
+ * @brief One iterate with its itinerary code and borders, optionally
+ * forced along a given itinerary.
+ *
+ * With @p force NULL this is sc_map_eval() that also reports the code of
+ * the itinerary followed and the iterate's borders (see models.h).  With
+ * a code from an earlier evaluation, the model follows that itinerary
+ * whatever the events say: each event of the code is continued past the
+ * border where it would stop being the first (the value of f is then that
+ * of the smooth extension of the piece, and the borders passed are
+ * negative).  A model without borders ignores @p force and reports none.
+ * @param code receives the code followed; may be NULL.
+ * @param borders receives the borders (appended, see sc_border_list);
+ *        may be NULL.  Borders carry exact first derivatives.
+ * @return as sc_map_eval(); SC_EINVAL for a code the model cannot follow
+ *         (its message says why); SC_EUNDEF where a forced event does not
+ *         occur at all (a grazing passed from the side where it fires).
+ */
+int sc_map_eval_ex(sc_map *m, double d, unsigned flags,
+                   const sc_itin_code *force, sc_itin_code *code,
+                   sc_border_list *borders, sc_map_value *out, sc_msg *msg);
+
+/**
+ * @brief f^n(d) as sc_map_iterate(), with the codes of the n iterates
+ * (@p codes: n entries, or NULL), forced along @p force (n codes, or
+ * NULL), and the borders of every iterate (sc_border.iterate says which),
+ * their derivatives taken with respect to the d and parameters of f^n by
+ * the chain rule.
+ */
+int sc_map_iterate_ex(sc_map *m, double d, int n, unsigned flags,
+                      const sc_itin_code *force, sc_itin_code *codes,
+                      sc_border_list *borders, sc_map_value *out,
+                      sc_msg *msg);
+
 /**
  * A continuous trajectory sample: time tau (dimensionless), the model's
- * state (bk2: Y1, Y2, U1, U2) and its mode (models.h: SC_BK2_STICK ...).
+ * state (bk2: Y1, Y2, U1, U2) and its mode (the model's own numbering; bk2: 0 stick, 1, 2 one block slips, 3 both).
  * Return non-zero to stop.
  */
 typedef int (*sc_traj_fn)(void *ctx, double tau, const double *state,

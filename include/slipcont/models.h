@@ -25,7 +25,7 @@ extern "C" {
 
 /** One parameter of a model. */
 typedef struct {
-  const char *name;  /**< as in MODEL.md: "alpha", "beta", "phi", "v" */
+  const char *name;  /**< as in docs/model.md: "alpha", "beta", "phi", "v" */
   double def;        /**< default value */
   double lo, hi;     /**< valid range */
   int lo_open;       /**< 1: lo itself is excluded */
@@ -84,19 +84,103 @@ typedef struct {
                                    e.g. a start at d* with V_s = 0) */
   double dfdp[SC_MAXPARAM];   /**< df/dp_i, parameter order (SC_EVAL_DERIV) */
   int neutral;                /**< 1 if f' = 1 exactly: every iterate a
-                                   single-block slip (MODEL.md) */
+                                   single-block slip (docs/model.md) */
   int nphases;                /**< slip phases in the evaluation */
-  double gsp_gap;             /**< bk2: smallest threshold gap T_i - S_i at
-                                   the re-sticks (0 at crossing-sliding) */
-  double graze_margin;        /**< bk2: smallest |guard| at a local extremum
-                                   of a re-stick guard that did or did not
-                                   reach zero (0 at grazing-sliding) */
-  int graze_block;            /**< bk2: block (1, 2) of graze_margin; 0 none */
-  int graze_mode;             /**< bk2: slip mode it ended (SC_BK2_SLIP1..) */
-  int gap_block;              /**< bk2: block (1, 2) of gsp_gap */
-  double dstar_dist;          /**< bk2: smallest |d - d*| over the starts */
   char itinerary[SC_ITIN_LEN];/**< SC_EVAL_ITINERARY */
 } sc_map_value;
+
+/* ------------------------------------------------------------------ */
+/* Borders: where the map's itinerary changes                          */
+
+/**
+ * Kinds of border.  A border is a smooth function m(d, p) of the state at
+ * the start of an iterate and the parameters whose zero is a
+ * discontinuity-induced bifurcation of an orbit through d (see
+ * docs/branches.md for a picture of each).  The analysis layer knows
+ * borders by kind and name only.
+ */
+typedef enum {
+  SC_BORDER_GRAZING = 0, /**< GR: an event guard touches zero at a local
+                              maximum (bk2: a re-stick velocity that only
+                              just reaches V_s) */
+  SC_BORDER_CROSSING,    /**< CS: an ending event and another part's
+                              threshold at once (bk2: a global stick phase
+                              of length zero) */
+  SC_BORDER_SWITCHING,   /**< SW: the state on a switching surface of the
+                              map (bk2: a global stick phase at d*) */
+  SC_BORDER_BOTH,        /**< BR: two ending events at once (bk2: both
+                              blocks re-stick together) */
+  SC_BORDER_TOUCH,       /**< TT: a threshold guard touches zero without
+                              crossing (bk2: the stuck block's spring force
+                              just reaches its static threshold) */
+} sc_border_kind;
+
+/** Number of border kinds. */
+#define SC_BORDER_NKINDS 5
+
+/** Label of a border kind: "GR", "CS", "SW", "BR", "TT"; "??" otherwise. */
+const char *sc_border_label(sc_border_kind k);
+
+/** Longest itinerary code of one iterate. */
+#define SC_CODE_LEN 64
+
+/**
+ * The itinerary of one iterate as the model encodes it, opaque to the
+ * analysis layer: an evaluation reports the code it followed, and a
+ * forced evaluation follows a given code, continuing every event past
+ * the borders smoothly (the other events are watched, not taken).
+ * n = 0: no code (a model without borders, or more phases than fit).
+ */
+typedef struct {
+  int n;
+  unsigned char c[SC_CODE_LEN];
+} sc_itin_code;
+
+/** Longest border name, NUL included. */
+#define SC_BORDER_NAME 64
+
+/**
+ * One border of an evaluation, with exact first derivatives.
+ *
+ * Sign: value > 0 on the side of the itinerary that was followed, 0 on
+ * the border, < 0 beyond it (only a forced evaluation can get there: the
+ * natural itinerary changes at the border).
+ */
+typedef struct {
+  sc_border_kind kind;
+  int iterate;        /**< iterate of f^n it belongs to, from 0 */
+  double value;       /**< m */
+  double dd;          /**< dm/dd, d the argument of the evaluation */
+  double dp[SC_MAXPARAM]; /**< dm/dp_i, parameter order */
+  /** 1: the border is a surface in the state itself, m = +-(d_k - d_on(p))
+   * with d_k the start of its iterate: d_on and d_on_dp give the point on
+   * it.  The map may be singular there (bk2: f' grows like
+   * |d - d*|^(-1/2) with the driver frozen), so a point on such a border
+   * is located with the orbit started exactly on it. */
+  int on_state;
+  double d_on;
+  double d_on_dp[SC_MAXPARAM];
+  /** The code of this iterate to follow to stay on the border (n = 0:
+   * the iterate's own code serves): e.g. a grazing met from the side
+   * where the guard fires is followed with the event at the guard's
+   * maximum instead of its root, so the defining system stays smooth. */
+  sc_itin_code alt;
+  char name[SC_BORDER_NAME]; /**< what it is, e.g. "U2 - Vs max, phase 3
+                                  (slip 12)"; equal names on equal codes
+                                  are the same border */
+} sc_border;
+
+/**
+ * Where borders go: caller-owned storage of @p cap entries.  An evaluation
+ * appends; @p n counts every border, also those beyond @p cap (then only
+ * the first cap are stored: grow the storage and evaluate again).
+ */
+typedef struct {
+  sc_border *b;
+  size_t cap;
+  size_t n;
+} sc_border_list;
+
 
 /**
  * The model interface.  `inst` is a model-owned block of `inst_size`
@@ -123,13 +207,21 @@ typedef struct sc_model_type {
   /** One iterate: see sc_map_eval() in map.h. */
   int (*eval)(void *inst, double d, unsigned flags, sc_map_value *out,
               sc_msg *msg);
+  /** One iterate following @p force (NULL: the natural itinerary),
+   * reporting the code followed into @p code (may be NULL) and appending
+   * the iterate's borders to @p borders (may be NULL; their derivatives
+   * are filled whatever @p flags says).  NULL for a model without
+   * borders (a smooth map).  See sc_map_eval_ex(). */
+  int (*eval_ex)(void *inst, double d, unsigned flags,
+                 const sc_itin_code *force, sc_itin_code *code,
+                 sc_border_list *borders, sc_map_value *out, sc_msg *msg);
   /** Continuous motion (see sc_map_trajectory()); NULL if none. */
   int (*trajectory)(void *inst, double d, int iterations, double dtau,
                     int (*fn)(void *, double, const double *, int),
                     void *ctx, sc_msg *msg);
 } sc_model_type;
 
-/** The two-block Burridge-Knopoff model of MODEL.md. */
+/** The two-block Burridge-Knopoff model (docs/model.md). */
 extern const sc_model_type sc_model_bk2;
 /** The logistic map x -> r x (1 - x). */
 extern const sc_model_type sc_model_logistic;
@@ -143,7 +235,7 @@ const sc_model_type *sc_model_get(size_t i);
 /** Built-in model by name, or NULL. */
 const sc_model_type *sc_model_find(const char *name);
 
-/** bk2 modes (MODEL.md): the `mode` of trajectory samples. */
+/** bk2 modes (docs/model.md): the `mode` of trajectory samples. */
 enum {
   SC_BK2_STICK = 0,  /**< both blocks stuck: global stick phase */
   SC_BK2_SLIP1 = 1,  /**< block 1 slips, block 2 stuck */
@@ -152,7 +244,7 @@ enum {
 };
 
 /** d* = (beta - 1)/(1 + 2 alpha): below it block 1 reaches its
- * threshold first (MODEL.md). */
+ * threshold first (docs/model.md). */
 double sc_bk2_dstar(double alpha, double beta);
 
 #ifdef __cplusplus

@@ -218,20 +218,32 @@ int sc_map_set_accuracy(sc_map *m, const sc_accuracy *acc, sc_msg *msg) {
   return setup(m, msg);
 }
 
-int sc_map_eval(sc_map *m, double d, unsigned flags, sc_map_value *out,
-                sc_msg *msg) {
+int sc_map_has_borders(const sc_map *m) { return m->type->eval_ex != NULL; }
+
+int sc_map_eval_ex(sc_map *m, double d, unsigned flags,
+                   const sc_itin_code *force, sc_itin_code *code,
+                   sc_border_list *borders, sc_map_value *out, sc_msg *msg) {
   if (!isfinite(d))
     return sc_fail(msg, SC_EINVAL, "sc_map_eval: %s = %g is not finite",
                    m->type->state_name, d);
   memset(out, 0, sizeof *out);
-  out->gsp_gap = out->graze_margin = out->dstar_dist = HUGE_VAL;
+  if (code) code->n = 0;
   m->nevals++;
-  int st = m->type->eval(m->inst, d, flags, out, msg);
+  int st;
+  if (m->type->eval_ex && (force || code || borders))
+    st = m->type->eval_ex(m->inst, d, flags, force, code, borders, out, msg);
+  else
+    st = m->type->eval(m->inst, d, flags, out, msg);
   if (st) return st;
   if (!isfinite(out->f))
     return sc_fail(msg, SC_ENONFINITE, "sc_map_eval: f(%.17g) is not finite",
                    d);
   return SC_OK;
+}
+
+int sc_map_eval(sc_map *m, double d, unsigned flags, sc_map_value *out,
+                sc_msg *msg) {
+  return sc_map_eval_ex(m, d, flags, NULL, NULL, NULL, out, msg);
 }
 
 /* Append @p s to the itinerary text, cutting with "..." when full. */
@@ -244,20 +256,25 @@ static void itin_append(char *dst, const char *s) {
   }
 }
 
-int sc_map_iterate(sc_map *m, double d, int n, unsigned flags,
-                   sc_map_value *out, sc_msg *msg) {
+int sc_map_iterate_ex(sc_map *m, double d, int n, unsigned flags,
+                      const sc_itin_code *force, sc_itin_code *codes,
+                      sc_border_list *borders, sc_map_value *out,
+                      sc_msg *msg) {
   if (n < 1)
     return sc_fail(msg, SC_EINVAL, "sc_map_iterate: n = %d (valid: n >= 1)",
                    n);
   sc_map_value one;
   size_t np = m->type->nparam;
   double x = d;
+  /* The borders need the derivatives of the iterates to be chained. */
+  if (borders) flags |= SC_EVAL_DERIV;
   memset(out, 0, sizeof *out);
   out->dfdd = 1;
   out->neutral = 1;
-  out->gsp_gap = out->graze_margin = out->dstar_dist = HUGE_VAL;
   for (int k = 0; k < n; k++) {
-    int st = sc_map_eval(m, x, flags, &one, msg);
+    size_t b0 = borders ? borders->n : 0;
+    int st = sc_map_eval_ex(m, x, flags, force ? &force[k] : NULL,
+                            codes ? &codes[k] : NULL, borders, &one, msg);
     if (st) {
       if (n > 1 && msg) {
         char tail[SC_MSG_LEN];
@@ -265,6 +282,15 @@ int sc_map_iterate(sc_map *m, double d, int n, unsigned flags,
         sc_fail(msg, st, "iterate %d of %d from %.17g: %s", k + 1, n, d, tail);
       }
       return st;
+    }
+    /* Borders of iterate k are functions of (x_k, p); x_k = F_{k-1}(d, p)
+     * with derivatives out->dfdd, out->dfdp so far. */
+    for (size_t i = b0; borders && i < borders->n && i < borders->cap; i++) {
+      sc_border *bd = &borders->b[i];
+      bd->iterate = k;
+      double mx = bd->dd;
+      for (size_t j = 0; j < np; j++) bd->dp[j] += mx * out->dfdp[j];
+      bd->dd = mx * out->dfdd;
     }
     if (flags & SC_EVAL_DERIV) {
       /* Chain rule: F_k = f(F_{k-1}, p). */
@@ -278,21 +304,16 @@ int sc_map_iterate(sc_map *m, double d, int n, unsigned flags,
     }
     out->neutral = out->neutral && one.neutral;
     out->nphases += one.nphases;
-    if (one.gsp_gap < out->gsp_gap) {
-      out->gsp_gap = one.gsp_gap;
-      out->gap_block = one.gap_block;
-    }
-    if (one.graze_margin < out->graze_margin) {
-      out->graze_margin = one.graze_margin;
-      out->graze_block = one.graze_block;
-      out->graze_mode = one.graze_mode;
-    }
-    out->dstar_dist = fmin(out->dstar_dist, one.dstar_dist);
     x = one.f;
   }
   out->f = x;
   if (out->neutral && (flags & SC_EVAL_DERIV)) out->dfdd = 1;
   return SC_OK;
+}
+
+int sc_map_iterate(sc_map *m, double d, int n, unsigned flags,
+                   sc_map_value *out, sc_msg *msg) {
+  return sc_map_iterate_ex(m, d, n, flags, NULL, NULL, NULL, out, msg);
 }
 
 int sc_map_trajectory(sc_map *m, double d, int iterations, double dtau,

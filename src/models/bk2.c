@@ -1,4 +1,4 @@
-/* The two-block Burridge-Knopoff model of MODEL.md: exact closed-form
+/* The two-block Burridge-Knopoff model (docs/model.md): exact closed-form
  * flows in every mode, certified event location (src/hybrid/guard.c),
  * the event map f(d) with derivatives propagated through the flows and
  * across events in forward mode (src/hybrid/dual.h), and trajectories.
@@ -64,7 +64,7 @@ static int bk2_setup(void *vinst, const double *p, const int *opt,
   if (b->vw && b->frozen)
     return sc_fail(msg, SC_EINVAL,
                    "bk2: friction = velocity-weakening with driver = frozen "
-                   "is ill posed (a slip cannot start; MODEL.md): use "
+                   "is ill posed (a slip cannot start): use "
                    "driver = moving");
   if (b->vw)
     /* The numerical path integrates it, but its start (K = T at zero
@@ -273,7 +273,7 @@ void sc_bk2_event_shift(const bk2_dpar *P, sc_dual gval, double slope,
   if (nd == 0) return;
   double dt[SC_NDIR];
   /* g' = 0: the event time is not differentiable (f' is infinite there,
-   * MODEL.md: |d - d*|^(-1/2) at d* with V_s = 0): say so with NaN. */
+   * docs/model.md: |d - d*|^(-1/2) at d* with V_s = 0): say so with NaN. */
   for (int k = 0; k < nd; k++) dt[k] = slope != 0 ? -gval.d[k] / slope : NAN;
   double xdot[4] = {x->u1.v, x->u2.v, acc[0], acc[1]};
   sc_dual *xs[4] = {&x->y1, &x->y2, &x->u1, &x->u2};
@@ -324,29 +324,266 @@ static void itin_add(char *itin, size_t *len, int mode, unsigned flags) {
   *len += strlen(tok);
 }
 
-/* The state at the onset of the slip that ends the GSP of displacement d:
- * block 1 at threshold iff d < d* (MODEL.md "The event map"). */
-int sc_bk2_onset(const bk2_inst *b, const bk2_dpar *P, sc_dual d,
-                 bk2_state *x) {
+/* Onset modes and states of the slip that ends a GSP of displacement d:
+ * block 1 is at its threshold first iff d < d* (docs/model.md, "The event
+ * map"); at d* both are, and both start (the tie rule). */
+static int onset_mode(const bk2_inst *b, double d) {
+  return d < b->dstar ? SC_BK2_SLIP1 : d > b->dstar ? SC_BK2_SLIP2
+                                                    : SC_BK2_SLIP12;
+}
+
+static void onset_state(const bk2_dpar *P, sc_dual d, int mode,
+                        bk2_state *x) {
   int nd = P->nd;
-  int mode;
-  if (d.v < b->dstar) {
+  if (mode == SC_BK2_SLIP1) {
     x->y1 = sc_daddc(sc_dmul(P->alpha, d, nd), 1);
     x->y2 = sc_dadd(x->y1, d, nd);
-    mode = SC_BK2_SLIP1;
   } else {
     x->y2 = sc_dsub(P->beta, sc_dmul(P->alpha, d, nd), nd);
     x->y1 = sc_dsub(x->y2, d, nd);
-    mode = d.v > b->dstar ? SC_BK2_SLIP2 : SC_BK2_SLIP12;
   }
   x->u1 = x->u2 = P->vs;
+}
+
+int sc_bk2_onset(const bk2_inst *b, const bk2_dpar *P, sc_dual d,
+                 bk2_state *x) {
+  int mode = onset_mode(b, d.v);
+  onset_state(P, d, mode, x);
   return mode;
 }
 
-/* One slip phase with exact flows: find its end, the next mode, and the
- * state there.  `fresh` bit i-1: block i started slipping at this phase's
- * start (U_i = Vs by construction, so its re-stick guard starts at zero).
- * Returns the next mode, or a negative status. */
+/* ---- guards beyond their first root ------------------------------------ */
+
+/* Most roots of a guard's derivative walked through in one phase: a slip
+ * of both blocks lasts at most SLIP12_PERIODS slow periods, in which the
+ * fast mode (w2 / w1 times faster) turns a few dozen times for the
+ * parameter ranges of docs/model.md; past this the walk gives up and says
+ * so (a border is then missing from the list, and the code is dropped). */
+#define WALK_MAX 512
+
+/* g(t0 + s) as a guard in s (angle addition on each sinusoid). */
+static sc_guard guard_shift(const sc_guard *g, double t0) {
+  sc_guard h = *g;
+  h.c0 = g->c0 + g->c1 * t0;
+  for (int k = 0; k < g->n; k++) {
+    double s = sin(g->w[k] * t0), c = cos(g->w[k] * t0);
+    h.a[k] = g->a[k] * c + g->b[k] * s;
+    h.b[k] = g->b[k] * c - g->a[k] * s;
+  }
+  return h;
+}
+
+/* g' as a guard. */
+static sc_guard guard_prime(const sc_guard *g) {
+  sc_guard h = {0};
+  h.c0 = g->c1;
+  h.n = g->n;
+  for (int k = 0; k < g->n; k++) {
+    h.w[k] = g->w[k];
+    h.a[k] = g->w[k] * g->b[k];
+    h.b[k] = -g->w[k] * g->a[k];
+  }
+  return h;
+}
+
+/* The first root of g in (t0, tmax]; skip: g(t0) = 0 by construction.
+ * Returns 1 found, 0 none, < 0 for a malformed guard. */
+static int next_root(const sc_guard *g, double t0, double tmax, int skip,
+                     double atol, double rtol, sc_root *r) {
+  if (!(tmax > t0)) return 0;
+  sc_guard h = t0 > 0 ? guard_shift(g, t0) : *g;
+  if (sc_guard_first_root(&h, tmax - t0, skip, atol + rtol * t0, rtol, r))
+    return -1;
+  if (!r->found) return 0;
+  r->t += t0;
+  return 1;
+}
+
+/* The first root of g after t0 at which g rises through zero (or touches
+ * it): a guard's event.  Roots where g falls are passed. */
+static int upward_root(const sc_guard *g, double t0, double tmax, int skip,
+                       double atol, double rtol, sc_root *r) {
+  for (int it = 0; it < WALK_MAX; it++) {
+    int st = next_root(g, t0, tmax, skip, atol, rtol, r);
+    if (st <= 0) return st;
+    if (r->slope > 0 || r->tangent) return 1;
+    t0 = r->t;
+    skip = 1;
+  }
+  return -2;
+}
+
+/* The local maxima of g in (0, tend): returns their number (-1: malformed,
+ * -2: more than WALK_MAX), the time of the highest in *tbest (g there in
+ * *gbest) and of the n-th (from 1) in *tnth when nth > 0. */
+static int guard_maxima(const sc_guard *g, double tend, double atol,
+                        double rtol, int nth, double *tnth, double *tbest,
+                        double *gbest) {
+  sc_guard gp = guard_prime(g);
+  int n = 0, skip = 0;
+  double t = 0;
+  *gbest = -HUGE_VAL;
+  for (int it = 0; it < WALK_MAX; it++) {
+    sc_root r;
+    int st = next_root(&gp, t, tend, skip, atol, rtol, &r);
+    if (st < 0) return -1;
+    if (st == 0 || r.t >= tend) return n;
+    if (r.slope < 0) { /* g' falls through zero: a maximum of g */
+      double gv;
+      sc_guard_eval(g, r.t, &gv, NULL, NULL);
+      n++;
+      if (n == nth) *tnth = r.t;
+      if (gv > *gbest) *gbest = gv, *tbest = r.t;
+    }
+    t = r.t;
+    skip = 1;
+  }
+  return -2;
+}
+
+/* ---- borders ------------------------------------------------------------ */
+
+void sc_bk2_border_add(sc_border_list *l, sc_border_kind kind,
+                       const sc_dual *m, const char *name) {
+  if (l->n++ >= l->cap) return; /* counted: the caller grows and repeats */
+  sc_border *bd = &l->b[l->n - 1];
+  memset(bd, 0, sizeof *bd);
+  bd->kind = kind;
+  bd->value = m->v;
+  bd->dd = m->d[0];
+  for (int k = 0; k < 4; k++) bd->dp[k] = m->d[k + 1];
+  snprintf(bd->name, sizeof bd->name, "%s", name);
+}
+
+static const char *mode_name(int mode) {
+  return mode == SC_BK2_SLIP1 ? "1" : mode == SC_BK2_SLIP2 ? "2" : "12";
+}
+
+/* The guard of event kind k on duals at fixed time t: its sensitivity to
+ * d and the parameters there. */
+static sc_dual guard_dual(const bk2_dpar *P, const mode_flow *f, int kind,
+                          double t) {
+  int nd = P->nd;
+  bk2_state xs;
+  double a2[2];
+  flow_at(P, f, t, &xs, a2);
+  kind = BK2_GUARD_OF(kind);
+  if (kind == BK2_EV_RESTICK1) return sc_dsub(xs.u1, P->vs, nd);
+  if (kind == BK2_EV_RESTICK2) return sc_dsub(xs.u2, P->vs, nd);
+  if (f->mode == SC_BK2_SLIP1)
+    return sc_dsub(spring(P, xs.y2, xs.y1), P->t2, nd);
+  return sc_daddc(spring(P, xs.y1, xs.y2), -1);
+}
+
+/* An event time t (root of the guard of kind k, slope g') as a dual:
+ * dt = -dg / g' at fixed time. */
+static sc_dual event_time(const bk2_dpar *P, const mode_flow *f, int kind,
+                          double t, double slope) {
+  sc_dual g = guard_dual(P, f, kind, t), r = sc_dconst(t, P->nd);
+  for (int k = 0; k < P->nd; k++) r.d[k] = slope != 0 ? -g.d[k] / slope : NAN;
+  return r;
+}
+
+static const char *guard_text(int kind) {
+  return kind == BK2_EV_RESTICK1   ? "U1-Vs"
+         : kind == BK2_EV_RESTICK2 ? "U2-Vs"
+                                   : "S-T of stuck block";
+}
+
+/* The borders of one exact slip phase that ends at T by guard `first`:
+ * the highest local maximum of every guard before T (grazing of a
+ * re-stick, touch of a threshold), and for every other re-stick guard the
+ * time from the phase's event to its own first rise through zero
+ * (crossing-sliding against a threshold, both re-sticks at once against a
+ * re-stick).  The threshold gap after a re-stick is added by the caller
+ * for exact and numerical flows alike. */
+static void phase_borders(const bk2_dpar *P, const mode_flow *f, int fresh,
+                          const sc_guard *g, const int *kind, int ng,
+                          int first, int ekind, int atmax, int nbefore,
+                          const sc_root *re, double tmax, double atol,
+                          double rtol, bk2_events *ev) {
+  int nd = P->nd;
+  double T = re->t, tol = atol + rtol * T;
+  char name[2 * SC_BORDER_NAME];
+  const char *mn = mode_name(f->mode);
+  sc_dual Td = event_time(P, f, ekind, T, re->slope);
+  if (ekind == BK2_EV_RESTICK1 || ekind == BK2_EV_RESTICK2) {
+    /* The hump the re-stick guard climbs into: its maximum just after the
+     * root (at the root itself when the code ends the phase there).  It
+     * vanishes at a grazing met from the side where the guard fires; the
+     * border's own code ends the phase at that maximum, where the
+     * defining system stays smooth. */
+    double ta = T;
+    int ok = atmax;
+    if (!ok) {
+      sc_guard gp = guard_prime(&g[first]);
+      sc_root r;
+      for (int it = 0, skip = 0; it < WALK_MAX && !ok; it++, skip = 1) {
+        if (next_root(&gp, ta, ta + fmax(tmax, T), skip, atol, rtol, &r) != 1)
+          break;
+        ta = r.t;
+        ok = r.slope < 0;
+      }
+    }
+    if (ok) {
+      sc_dual m = guard_dual(P, f, ekind, ta);
+      snprintf(name, sizeof name, "%s max after the event, phase %d (slip %s)",
+               guard_text(ekind), ev->phase, mn);
+      sc_bk2_border_add(ev->borders, SC_BORDER_GRAZING, &m, name);
+      if (ev->borders->n <= ev->borders->cap && ev->npatch < 8) {
+        ev->patch[ev->npatch].idx = ev->borders->n - 1;
+        ev->patch[ev->npatch].phase = ev->phase;
+        ev->patch[ev->npatch].c0 = (unsigned char)(ekind | BK2_EV_ATMAX);
+        ev->patch[ev->npatch].c1 = (unsigned char)nbefore;
+        ev->patch[ev->npatch].drop_next = 0;
+        ev->npatch++;
+      }
+    }
+  }
+  for (int i = 0; i < ng; i++) {
+    double tn, tb, gb;
+    int nm = guard_maxima(&g[i], T - tol, atol, rtol, 0, &tn, &tb, &gb);
+    if (nm > 0) {
+      sc_dual m = sc_dscale(guard_dual(P, f, kind[i], tb), -1, nd);
+      snprintf(name, sizeof name, "%s max, phase %d (slip %s)",
+               guard_text(kind[i]), ev->phase, mn);
+      sc_bk2_border_add(ev->borders,
+                        kind[i] < 3 ? SC_BORDER_GRAZING : SC_BORDER_TOUCH,
+                        &m, name);
+    }
+    if (i == first || kind[i] >= 3) continue;
+    sc_root ri;
+    int st = upward_root(&g[i], 0, fmax(tmax, 2 * T), fresh & kind[i], atol,
+                         rtol, &ri);
+    if (st != 1 || ri.tangent || !(ri.slope > 0)) continue;
+    sc_dual m = sc_dsub(event_time(P, f, kind[i], ri.t, ri.slope), Td, nd);
+    snprintf(name, sizeof name, "%s rise after the event, phase %d (slip %s)",
+             guard_text(kind[i]), ev->phase, mn);
+    sc_bk2_border_add(ev->borders,
+                      ekind == BK2_EV_THRESHOLD ? SC_BORDER_CROSSING
+                                                : SC_BORDER_BOTH,
+                      &m, name);
+    /* Both re-sticks at once: the border's own code ends this phase with
+     * both blocks and drops the next one (the other block's slip alone,
+     * of length zero there), so the system is smooth on both sides. */
+    if (ekind != BK2_EV_THRESHOLD && !BK2_IS_BOTH(ekind) &&
+        ev->borders->n <= ev->borders->cap && ev->npatch < 8) {
+      ev->patch[ev->npatch].idx = ev->borders->n - 1;
+      ev->patch[ev->npatch].phase = ev->phase;
+      ev->patch[ev->npatch].c0 =
+          kind[first] == BK2_EV_RESTICK1 ? BK2_EV_BOTH : BK2_EV_BOTH2;
+      ev->patch[ev->npatch].c1 = 0;
+      ev->patch[ev->npatch].drop_next = 1;
+      ev->npatch++;
+    }
+  }
+}
+
+/* One slip phase with exact flows: find its end (the first event, or the
+ * event the code forces), the next mode, and the state there.  `fresh`
+ * bit i-1: block i started slipping at this phase's start (U_i = Vs by
+ * construction, so its re-stick guard starts at zero).  Returns the next
+ * mode, or a negative status. */
 static int exact_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
                        int fresh, bk2_state *x, double *duration,
                        bk2_events *ev, sc_msg *msg) {
@@ -356,7 +593,7 @@ static int exact_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
   /* Candidate events: re-stick of each slipping block, threshold of the
    * stuck one. */
   sc_guard g[2];
-  int kind[2], ng = 0; /* kind: 1, 2 re-stick of block i; 3 threshold */
+  int kind[2], ng = 0;
   /* Later guards are searched only up to the earliest root so far, so
    * the likelier first event goes first: in SLIP12, the block that has
    * slipped longer (not fresh) usually re-sticks first. */
@@ -372,60 +609,136 @@ static int exact_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
   }
   if (mode != SC_BK2_SLIP12) {
     g[ng] = guard_threshold(P, &f);
-    kind[ng++] = 3;
+    kind[ng++] = BK2_EV_THRESHOLD;
   }
   sc_root r[2];
   double tmax = 0;
   for (int i = 0; i < ng; i++) tmax = fmax(tmax, guard_horizon(&g[i]));
-  int first = -1;
-  for (int i = 0; i < ng; i++) {
-    int skip = kind[i] < 3 && (fresh & kind[i]);
-    double lim = first < 0 ? tmax : r[first].t + atol + rtol * r[first].t;
-    int st = sc_guard_first_root(&g[i], lim, skip, atol, rtol, &r[i]);
-    if (st)
-      return sc_fail(msg, SC_EINTERNAL,
-                     "bk2: malformed guard in mode %d (parameters out of "
-                     "range?)",
-                     mode);
-    ev->steps += r[i].steps;
-    if (r[i].found && (first < 0 || r[i].t < r[first].t)) first = i;
-  }
-  if (first < 0)
-    return sc_fail(msg, SC_EUNDEF,
-                   "no event within %.6g time units of slip mode %s: the "
-                   "slip does not end",
-                   tmax, mode == SC_BK2_SLIP12 ? "12" : mode == 1 ? "1" : "2");
-  /* Ties within the event tolerance: re-sticks go first (MODEL.md); two
-   * re-sticks at once end the slip of both blocks. */
-  int both = 0;
-  for (int i = 0; i < ng; i++) {
-    if (i == first || !r[i].found) continue;
-    double tol = atol + rtol * r[first].t;
-    if (fabs(r[i].t - r[first].t) <= tol) {
-      if (kind[first] == 3) first = i;
-      else if (kind[i] < 3) both = 1;
+  int first = -1, both = 0, atmax = 0;
+  if (!ev->force) {
+    for (int i = 0; i < ng; i++) {
+      int skip = kind[i] < 3 && (fresh & kind[i]);
+      double lim = first < 0 ? tmax : r[first].t + atol + rtol * r[first].t;
+      int st = sc_guard_first_root(&g[i], lim, skip, atol, rtol, &r[i]);
+      if (st)
+        return sc_fail(msg, SC_EINTERNAL,
+                       "bk2: malformed guard in mode %d (parameters out of "
+                       "range?)",
+                       mode);
+      ev->steps += r[i].steps;
+      if (r[i].found && (first < 0 || r[i].t < r[first].t)) first = i;
     }
+    if (first < 0)
+      return sc_fail(msg, SC_EUNDEF,
+                     "no event within %.6g time units of slip mode %s: the "
+                     "slip does not end",
+                     tmax, mode_name(mode));
+    /* Ties within the event tolerance: re-sticks go first (docs/model.md);
+     * two re-sticks at once end the slip of both blocks. */
+    for (int i = 0; i < ng; i++) {
+      if (i == first || !r[i].found) continue;
+      double tol = atol + rtol * r[first].t;
+      if (fabs(r[i].t - r[first].t) <= tol) {
+        if (kind[first] == BK2_EV_THRESHOLD) first = i;
+        else if (kind[i] < 3) both = 1;
+      }
+    }
+  } else {
+    /* Follow the code: the forced guard's first rise through zero after
+     * its first `skip` local maxima; the other guards are not taken. */
+    int want = ev->force[0] & ~BK2_EV_ATMAX, skip = ev->force[1];
+    atmax = (ev->force[0] & BK2_EV_ATMAX) != 0;
+    int gk = BK2_GUARD_OF(want);
+    for (int i = 0; i < ng; i++)
+      if (kind[i] == gk) first = i;
+    if (first < 0 || (BK2_IS_BOTH(want) && mode != SC_BK2_SLIP12))
+      return sc_fail(msg, SC_EINVAL,
+                     "bk2: the forced itinerary code does not fit slip mode "
+                     "%s (event %d)",
+                     mode_name(mode), want);
+    double ts = 0, tb, gb;
+    int sk = kind[first] < 3 && (fresh & kind[first]);
+    if (atmax) {
+      /* end at the guard's (skip + 1)-th maximum: a grazing's system */
+      int nm = kind[first] < 3 ? guard_maxima(&g[first], tmax, atol, rtol,
+                                              skip + 1, &ts, &tb, &gb)
+                               : -1;
+      if (nm < skip + 1)
+        return sc_fail(msg, SC_EUNDEF,
+                       "bk2: the forced grazing event of slip mode %s needs "
+                       "%d maxima of its guard, found %d",
+                       mode_name(mode), skip + 1, nm);
+      double g2;
+      sc_guard_eval(&g[first], ts, NULL, NULL, &g2);
+      r[first] = (sc_root){.found = 1, .t = ts, .slope = g2};
+    } else if (skip > 0) {
+      int nm = guard_maxima(&g[first], tmax, atol, rtol, skip, &ts, &tb, &gb);
+      if (nm < skip)
+        return sc_fail(msg, SC_EUNDEF,
+                       "bk2: the forced event of slip mode %s needs %d "
+                       "maxima of its guard, found %d",
+                       mode_name(mode), skip, nm);
+      sk = 0;
+    }
+    int st = atmax ? 1
+                   : upward_root(&g[first], ts, tmax, sk, atol, rtol,
+                                 &r[first]);
+    if (st < 0)
+      return sc_fail(msg, SC_EINTERNAL,
+                     "bk2: malformed guard in mode %d", mode);
+    if (st == 0)
+      return sc_fail(msg, SC_EUNDEF,
+                     "bk2: the forced event (%s reaching zero) does not "
+                     "occur in slip mode %s within %.6g time units",
+                     guard_text(kind[first]), mode_name(mode), tmax);
+    ev->steps += r[first].steps;
+    both = BK2_IS_BOTH(want);
   }
   double t = r[first].t;
+  int ekind = !both ? kind[first]
+              : kind[first] == BK2_EV_RESTICK1 ? BK2_EV_BOTH
+                                               : BK2_EV_BOTH2;
+  int nbefore = 0;
+  if (ev->want_code || ev->borders) {
+    double tn, tb, gb;
+    int nm = atmax ? ev->force[1]
+                   : guard_maxima(&g[first], t - (atol + rtol * t), atol,
+                                  rtol, 0, &tn, &tb, &gb);
+    nbefore = nm < 0 ? 255 : nm > 254 ? 255 : nm;
+    ev->rec[0] = (unsigned char)(ekind | (atmax ? BK2_EV_ATMAX : 0));
+    /* A root is recorded as the guard's first rise through zero (skip 0),
+     * not by the maxima before it: maxima below zero are born and die
+     * (where g' and g'' vanish together) without any change of the
+     * motion, and a count of them would change the code there. */
+    ev->rec[1] = (unsigned char)(atmax ? nbefore : 0);
+  }
+  if (ev->borders)
+    phase_borders(P, &f, fresh, g, kind, ng, first, ekind, atmax, nbefore,
+                  &r[first], tmax, atol, rtol, ev);
   double a2[2];
   flow_at(P, &f, t, x, a2);
   *duration = t;
   if (r[first].tangent) ev->tangent = 1;
-  /* Grazing margin of a re-stick: the height slope^2 / (2 |g''|) that the
-   * local maximum of U_i - Vs reaches above zero just after the root. */
-  if (kind[first] < 3) {
-    double gpp;
-    sc_guard_eval(&g[first], t, NULL, NULL, &gpp);
-    double h = gpp < 0 ? r[first].slope * r[first].slope / (2 * -gpp)
-                       : HUGE_VAL;
-    if (h < ev->graze_margin) {
-      ev->graze_margin = h;
-      ev->graze_block = kind[first];
-      ev->graze_mode = mode;
-    }
+  int next;
+  if (atmax) {
+    /* the event time solves g' = 0: dt = -dg'/g'' at fixed time, with
+     * g' = U_i' = K_i - S_i of the slipping block */
+    int nd = P->nd;
+    sc_dual gp = kind[first] == BK2_EV_RESTICK1
+                     ? sc_dsub(P->k1, spring(P, x->y1, x->y2), nd)
+                     : sc_dsub(P->k2, spring(P, x->y2, x->y1), nd);
+    sc_bk2_event_shift(P, gp, r[first].slope, a2, x);
+    bk2_dpar P0 = *P;
+    P0.nd = 0; /* shifted already */
+    next = sc_bk2_take_event(&P0, mode, kind[first], r[first].slope, a2, x);
+  } else {
+    next = sc_bk2_take_event(P, mode, kind[first], r[first].slope, a2, x);
   }
-  int next = sc_bk2_take_event(P, mode, kind[first], r[first].slope, a2, x);
-  return both ? SC_BK2_STICK : next;
+  if (both) {
+    x->u1 = x->u2 = P->vs;
+    return SC_BK2_STICK;
+  }
+  return next;
 }
 
 int sc_bk2_phase(const bk2_inst *b, const bk2_dpar *P, int mode, int fresh,
@@ -444,25 +757,144 @@ static int fresh_blocks(int mode, int next) {
   return 0;
 }
 
-/* Follow the motion from the GSP of displacement d to the next GSP. */
+/* The switching border of a GSP: the distance of d from d* on the side of
+ * the onset mode, a surface in the state (d_on = d*). */
+static void switch_border(const bk2_inst *b, const bk2_dpar *P, sc_dual d,
+                          int mode, sc_border_list *l) {
+  int nd = P->nd;
+  sc_dual ds = sc_ddiv(sc_daddc(P->beta, -1),
+                       sc_daddc(sc_dscale(P->alpha, 2, nd), 1), nd);
+  ds.v = b->dstar; /* the same number as the onset's comparison */
+  sc_dual m = mode == SC_BK2_SLIP1 ? sc_dsub(ds, d, nd) : sc_dsub(d, ds, nd);
+  if (mode == SC_BK2_SLIP12) m.v = 0;
+  sc_bk2_border_add(l, SC_BORDER_SWITCHING, &m,
+                    mode == SC_BK2_SLIP1   ? "d* - d at the onset (block 1)"
+                    : mode == SC_BK2_SLIP2 ? "d - d* at the onset (block 2)"
+                                           : "d = d* at the onset (both)");
+  if (l->n <= l->cap) {
+    sc_border *bd = &l->b[l->n - 1];
+    bd->on_state = 1;
+    bd->d_on = b->dstar;
+    for (int k = 0; k < 4; k++) bd->d_on_dp[k] = ds.d[k + 1];
+  }
+}
+
+/* The threshold gap of the block that stayed stuck through a one-block
+ * phase that ended by a re-stick: the length of the next global stick
+ * phase, times V (zero at crossing-sliding). */
+static void gap_border(const bk2_dpar *P, int mode, const bk2_state *x,
+                       int phase, sc_border_list *l) {
+  int nd = P->nd;
+  sc_dual m = mode == SC_BK2_SLIP1
+                  ? sc_dsub(P->t2, spring(P, x->y2, x->y1), nd)
+                  : sc_dsub(sc_dconst(1, nd), spring(P, x->y1, x->y2), nd);
+  char name[2 * SC_BORDER_NAME];
+  snprintf(name, sizeof name, "threshold gap of block %d, phase %d (slip %s)",
+           mode == SC_BK2_SLIP1 ? 2 : 1, phase, mode_name(mode));
+  sc_bk2_border_add(l, SC_BORDER_CROSSING, &m, name);
+}
+
+/* The borders' own codes, once the iterate's code is complete: a
+ * grazing met from the side where the guard fires ends its phase at the
+ * guard's maximum; a start at d* whose first phase ends at once at the
+ * other block's threshold is a start of both blocks without that phase. */
+static void border_codes(const sc_itin_code *code, size_t border0,
+                         const bk2_events *ev, sc_border_list *l) {
+  for (int k = 0; k < ev->npatch; k++) {
+    sc_border *bd = &l->b[ev->patch[k].idx];
+    int at = 1 + 2 * (ev->patch[k].phase - 1);
+    if (at + 1 >= code->n) continue;
+    if (ev->patch[k].drop_next) {
+      /* only when the next phase is the other block alone, ended by its
+       * re-stick (then it ends the iterate too) */
+      if (at + 3 >= code->n || code->c[at + 2] == BK2_EV_THRESHOLD) continue;
+    }
+    bd->alt = *code;
+    bd->alt.c[at] = ev->patch[k].c0;
+    bd->alt.c[at + 1] = ev->patch[k].c1;
+    if (ev->patch[k].drop_next) {
+      memmove(bd->alt.c + at + 2, bd->alt.c + at + 4,
+              (size_t)(code->n - at - 4));
+      bd->alt.n -= 2;
+    }
+  }
+  if (border0 < l->n && border0 < l->cap && code->n >= 3 &&
+      code->c[0] != SC_BK2_SLIP12 && code->c[1] == BK2_EV_THRESHOLD) {
+    sc_border *bd = &l->b[border0];
+    bd->alt.n = code->n - 2;
+    bd->alt.c[0] = SC_BK2_SLIP12;
+    memcpy(bd->alt.c + 1, code->c + 3, (size_t)(code->n - 3));
+  }
+}
+
 int sc_bk2_iterate(const bk2_inst *b, const bk2_dpar *P, sc_dual d,
                    unsigned flags, bk2_state *x, sc_map_value *out,
                    bk2_phase_fn fn, void *ctx, sc_msg *msg) {
+  return sc_bk2_iterate_ex(b, P, d, flags, NULL, NULL, NULL, x, out, fn, ctx,
+                           msg);
+}
+
+/* Follow the motion from the GSP of displacement d to the next GSP. */
+int sc_bk2_iterate_ex(const bk2_inst *b, const bk2_dpar *P, sc_dual d,
+                      unsigned flags, const sc_itin_code *force,
+                      sc_itin_code *code, sc_border_list *borders,
+                      bk2_state *x, sc_map_value *out, bk2_phase_fn fn,
+                      void *ctx, sc_msg *msg) {
   int nd = P->nd;
-  int mode = sc_bk2_onset(b, P, d, x);
+  const unsigned char *fc = force && force->n > 0 ? force->c : NULL;
+  int mode, fpos = 1;
+  sc_itin_code own; /* borders need the code for their own codes */
+  if (borders && !code) code = &own;
+  if (fc) {
+    mode = fc[0];
+    if (mode < SC_BK2_SLIP1 || mode > SC_BK2_SLIP12 || force->n % 2 == 0)
+      return sc_fail(msg, SC_EINVAL, "bk2: malformed itinerary code");
+    onset_state(P, d, mode, x);
+    /* Exactly on the switching surface a forced one-block start whose
+     * first phase ends at once at the other block's threshold is the
+     * start of both (the tie rule), and that phase has length zero. */
+    if (mode != SC_BK2_SLIP12 && d.v == b->dstar && force->n >= 3 &&
+        fc[1] == BK2_EV_THRESHOLD)
+      mode = SC_BK2_SLIP12, fpos = 3;
+  } else {
+    mode = sc_bk2_onset(b, P, d, x);
+  }
   int fresh = fresh_blocks(SC_BK2_STICK, mode);
-  bk2_events ev = {.graze_margin = HUGE_VAL};
+  bk2_events ev = {0};
+  ev.want_code = code != NULL;
+  ev.borders = borders;
   size_t ilen = 0;
   out->itinerary[0] = '\0';
-  out->dstar_dist = fabs(d.v - b->dstar);
+  if (code) code->n = 1, code->c[0] = (unsigned char)mode;
+  size_t border0 = borders ? borders->n : 0;
+  if (borders) switch_border(b, P, d, mode, borders);
   int first_mode = mode;
   for (int n = 0; n < b->acc.max_events; n++) {
     bk2_state x0 = *x;
     double dur;
     itin_add(out->itinerary, &ilen, mode, flags);
+    if (fc) {
+      if (fpos + 1 >= force->n)
+        return sc_fail(msg, SC_EINVAL,
+                       "bk2: the forced itinerary code ends before a global "
+                       "stick phase");
+      ev.force = fc + fpos;
+      fpos += 2;
+    }
+    ev.phase = n + 1;
     int next = sc_bk2_phase(b, P, mode, fresh, x, &dur, &ev, msg);
     if (next < 0) return next;
     out->nphases++;
+    if (code && code->n > 0) {
+      if (code->n + 2 <= SC_CODE_LEN) {
+        code->c[code->n++] = ev.rec[0];
+        code->c[code->n++] = ev.rec[1];
+      } else {
+        code->n = 0; /* too long to force: the caller is told by n = 0 */
+      }
+    }
+    if (borders && mode != SC_BK2_SLIP12 && next == SC_BK2_STICK)
+      gap_border(P, mode, x, n + 1, borders);
     if (fn) {
       int st = fn(ctx, mode, &x0, dur);
       if (st) return st;
@@ -474,16 +906,12 @@ int sc_bk2_iterate(const bk2_inst *b, const bk2_dpar *P, sc_dual d,
         out->dfdd = dn.d[0];
         for (int k = 0; k < 4; k++) out->dfdp[k] = dn.d[k + 1];
       }
-      /* One block slipping alone from a GSP: f(d) = d + c (MODEL.md),
+      /* One block slipping alone from a GSP: f(d) = d + c (docs/model.md),
        * f' = 1 exactly, whatever rounding says. */
       out->neutral = out->nphases == 1 && first_mode != SC_BK2_SLIP12;
       if (out->neutral && nd) out->dfdd = 1;
-      double s1 = spring(P, x->y1, x->y2).v, s2 = spring(P, x->y2, x->y1).v;
-      out->gsp_gap = fmin(1 - s1, b->beta - s2);
-      out->gap_block = 1 - s1 <= b->beta - s2 ? 1 : 2;
-      out->graze_margin = ev.graze_margin;
-      out->graze_block = ev.graze_block;
-      out->graze_mode = ev.graze_mode;
+      if (borders && code && code->n > 0) border_codes(code, border0, &ev,
+                                                       borders);
       return SC_OK;
     }
     fresh = fresh_blocks(mode, next);
@@ -507,6 +935,20 @@ static int bk2_eval(void *vinst, double d, unsigned flags, sc_map_value *out,
   bk2_state x;
   return sc_bk2_iterate(b, &P, sc_dvar(d, 0, nd), flags, &x, out, NULL, NULL,
                         msg);
+}
+
+static int bk2_eval_ex(void *vinst, double d, unsigned flags,
+                       const sc_itin_code *force, sc_itin_code *code,
+                       sc_border_list *borders, sc_map_value *out,
+                       sc_msg *msg) {
+  const bk2_inst *b = vinst;
+  bk2_dpar P;
+  int nd = (flags & SC_EVAL_DERIV) || borders ? 5 : 0;
+  if (nd) sc_bk2_dparams(b, nd, &P);
+  else P = b->p0;
+  bk2_state x;
+  return sc_bk2_iterate_ex(b, &P, sc_dvar(d, 0, nd), flags, force, code,
+                           borders, &x, out, NULL, NULL, msg);
 }
 
 /* ---- trajectories --------------------------------------------------- */
@@ -589,7 +1031,7 @@ static int bk2_trajectory(void *vinst, double d, int iterations, double dtau,
 
 const sc_model_type sc_model_bk2 = {
     .name = "bk2",
-    .doc = "two-block Burridge-Knopoff stick-slip model (MODEL.md)",
+    .doc = "two-block Burridge-Knopoff stick-slip model (docs/model.md)",
     .state_name = "d",
     .state_label = "Y_2 - Y_1",
     .nparam = 4,
@@ -600,5 +1042,6 @@ const sc_model_type sc_model_bk2 = {
     .setup = bk2_setup,
     .release = bk2_release,
     .eval = bk2_eval,
+    .eval_ex = bk2_eval_ex,
     .trajectory = bk2_trajectory,
 };

@@ -31,14 +31,48 @@ typedef struct {
   sc_dual y1, y2, u1, u2;
 } bk2_state;
 
-/* What the events of one iterate revealed. */
+/* What one slip phase is asked to do and what it reveals.  In: `force`
+ * (NULL: take the first event) is the phase's two code bytes, the ending
+ * event kind (1, 2: re-stick of block i; 3: threshold of the stuck block;
+ * 4, 5: both blocks re-stick, at block 1's, 2's root) and a count: 0 for
+ * a root (the guard's first rise through zero), the local maxima passed
+ * before the one that ends the phase with BK2_EV_ATMAX; `borders` (NULL: none wanted) receives the
+ * phase's borders, named after `phase`.  Out: `rec`, the code bytes of
+ * the phase followed (filled when `want_code`). */
 typedef struct {
-  double graze_margin; /* smallest re-stick margin (see models.h) */
-  int graze_block;     /* its block (1, 2) and slip mode */
-  int graze_mode;
   int tangent;         /* a guard only touched zero */
   long steps;          /* root-finding intervals */
+  const unsigned char *force;
+  int want_code;
+  unsigned char rec[2];
+  sc_border_list *borders;
+  int phase;
+  /* borders whose own code differs from the iterate's in one phase
+   * (sc_border.alt): filled in when the iterate's code is complete */
+  struct {
+    size_t idx;
+    int phase;
+    unsigned char c0, c1;
+    int drop_next; /* the next phase (of length zero on the border) goes */
+  } patch[8];
+  int npatch;
 } bk2_events;
+
+/* Event kinds of a code (see bk2_events).  BK2_EV_ATMAX on a re-stick:
+ * the phase ends at the guard's (skip + 1)-th local maximum instead of a
+ * root (a grazing's own defining system). */
+enum { BK2_EV_RESTICK1 = 1, BK2_EV_RESTICK2, BK2_EV_THRESHOLD, BK2_EV_BOTH,
+       BK2_EV_BOTH2, BK2_EV_ATMAX = 0x80 };
+/* BK2_EV_BOTH, BK2_EV_BOTH2: both blocks re-stick at the root of block
+ * 1's, block 2's guard. */
+#define BK2_IS_BOTH(k) ((k) == BK2_EV_BOTH || (k) == BK2_EV_BOTH2)
+#define BK2_GUARD_OF(k)                                                        \
+  ((k) == BK2_EV_BOTH ? BK2_EV_RESTICK1 : (k) == BK2_EV_BOTH2 ? BK2_EV_RESTICK2 \
+                                                               : (k))
+
+/* Append a border from a dual m (directions: d, alpha, beta, phi, v). */
+void sc_bk2_border_add(sc_border_list *l, sc_border_kind kind,
+                       const sc_dual *m, const char *name);
 
 /* Called after each slip phase with its mode, start state and duration. */
 typedef int (*bk2_phase_fn)(void *ctx, int mode, const bk2_state *x0,
@@ -62,6 +96,14 @@ int sc_bk2_phase(const bk2_inst *b, const bk2_dpar *P, int mode, int fresh,
 int sc_bk2_iterate(const bk2_inst *b, const bk2_dpar *P, sc_dual d,
                    unsigned flags, bk2_state *x, sc_map_value *out,
                    bk2_phase_fn fn, void *ctx, sc_msg *msg);
+/* As sc_bk2_iterate(), following the code `force` (NULL: natural),
+ * reporting the code followed into `code` and the borders into `borders`
+ * (each may be NULL; borders need P->nd = 5). */
+int sc_bk2_iterate_ex(const bk2_inst *b, const bk2_dpar *P, sc_dual d,
+                      unsigned flags, const sc_itin_code *force,
+                      sc_itin_code *code, sc_border_list *borders,
+                      bk2_state *x, sc_map_value *out, bk2_phase_fn fn,
+                      void *ctx, sc_msg *msg);
 
 /* Trajectory context helpers for the numerical sampler. */
 int sc_bk2_traj_emit(void *traj_ctx, double t, const double s[4], int mode);

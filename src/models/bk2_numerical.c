@@ -270,6 +270,25 @@ int sc_bk2_num_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
   if (slipping(mode, 1)) kinds[ng++] = 1;
   if (slipping(mode, 2)) kinds[ng++] = 2;
   if (mode != SC_BK2_SLIP12) kinds[ng++] = 3;
+  int both_forced = 0;
+  if (ev->force) {
+    /* Follow the code: only the forced guard ends the phase. */
+    int want = ev->force[0];
+    int gk = BK2_GUARD_OF(want), ok = 0;
+    for (int i = 0; i < ng; i++) ok |= kinds[i] == gk;
+    if (!ok || (BK2_IS_BOTH(want) && mode != SC_BK2_SLIP12))
+      return sc_fail(msg, SC_EINVAL,
+                     "bk2: the forced itinerary code does not fit slip mode "
+                     "%d (event %d)",
+                     mode, want);
+    if (ev->force[1] > 0)
+      return sc_fail(msg, SC_EINVAL,
+                     "bk2: numerical flows cannot follow a code that passes "
+                     "local maxima of a guard (flows = exact can)");
+    kinds[0] = gk;
+    ng = 1;
+    both_forced = BK2_IS_BOTH(want);
+  }
   double hmax = STEP_FRACTION * fastest_period(b, mode);
   double tend = PHASE_PERIODS * 2 * SC_PI; /* slow period is 2 pi */
   if (mode != SC_BK2_SLIP12 && b->vs > 0)
@@ -295,6 +314,8 @@ int sc_bk2_num_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
     double yt[DIM_MAX], dyt[DIM_MAX];
     memcpy(yt, y, sizeof y);
     memcpy(dyt, dy0, sizeof dy0);
+    ev->rec[0] = (unsigned char)kinds[which0];
+    ev->rec[1] = 0;
     return finish_event(P, mode, kinds[which0], yt, dyt, slope0, x);
   }
   while (t < tend) {
@@ -347,7 +368,26 @@ int sc_bk2_num_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
         }
       }
       *duration = te;
-      return finish_event(P, mode, kinds[which], yt, dyt, slope, x);
+      /* Two re-sticks within the event tolerance end the slip of both
+       * blocks, as with the exact flows (docs/model.md, tie rules). */
+      int both = both_forced;
+      for (int i = 0; i < ng && !both; i++) {
+        if (i == which || kinds[i] >= 3) continue;
+        double si, gi = guard(b, mode, kinds[i], yt, dyt, &si);
+        double tol = b->acc.event_atol + b->acc.event_rtol * te;
+        both = fabs(gi) <= tol * fabs(si) + round_guard(b, yt);
+      }
+      ev->rec[0] = (unsigned char)(!both ? kinds[which]
+                                   : kinds[which] == BK2_EV_RESTICK1
+                                       ? BK2_EV_BOTH
+                                       : BK2_EV_BOTH2);
+      ev->rec[1] = 0;
+      int next = finish_event(P, mode, kinds[which], yt, dyt, slope, x);
+      if (both) {
+        x->u1 = x->u2 = P->vs;
+        return SC_BK2_STICK;
+      }
+      return next;
     }
     memcpy(dy0, dy1, sizeof dy1);
   }
