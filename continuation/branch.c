@@ -361,6 +361,11 @@ static int factor_bordered(sc_branch *b, const double *u,
   return st;
 }
 
+/* Rounding level of a Newton step, in ulps of the size of u: steps of
+ * f^m-based systems stop shrinking at a few hundred ulps near folds and
+ * flips, where the bordered Jacobian amplifies the rounding of F. */
+#define NEWTON_NOISE_ULPS 256.0
+
 /* Newton on G(u) = [F(u); border.u - target] = 0 from u (in place).
  * Converged when |dx_i| <= newton_atol + newton_rtol |u_i| for every i
  * and |F|_inf <= newton_ftol at the point the last step started from.
@@ -389,19 +394,25 @@ static int newton(sc_branch *b, double *u, const double *border,
     double step = norm_inf(b->dx, N);
     double res = norm_inf(b->F, n);
     int small = 1;
+    /* A step at the rounding level of u is noise: Newton can do no
+     * better there, so a tolerance below what the arithmetic resolves
+     * (the "precise" preset) is met at that floor, and steps that wander
+     * within it are not a divergence. */
+    double noise = NEWTON_NOISE_ULPS * DBL_EPSILON * (1 + norm_inf(u, N));
     for (size_t i = 0; i < N; i++) {
       u[i] += b->dx[i];
       if (sc_test_delta(b->dx[i], u[i], b->acc.newton_atol,
-                        b->acc.newton_rtol) != SC_OK)
+                        b->acc.newton_rtol) != SC_OK &&
+          !(fabs(b->dx[i]) <= noise))
         small = 0;
     }
-    if (small && res <= b->acc.newton_ftol) {
+    if (small && (res <= b->acc.newton_ftol || step <= noise)) {
       b->reason = SC_CORR_CONVERGED;
       return SC_OK;
     }
     /* Newton's steps shrink (quadratically) inside its basin: a step
      * longer than the previous one means we are not in it. */
-    if (step > prev) {
+    if (step > prev && step > noise) {
       b->reason = SC_CORR_DIVERGING;
       sc_fail(msg, SC_CONTINUE,
               "continuation: Newton diverging at iteration %d (step %.3g > "

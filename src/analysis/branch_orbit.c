@@ -66,6 +66,12 @@ const char *sc_location_method_text(sc_location_method l) {
  * (the interpolated start is already inside). */
 #define BRACKET_SLACK 0.5
 
+/* How far (relative to 1 + |p|) a border located by Newton from the far
+ * side may lie from a bisection bracket and still be the border that
+ * bracket found: well below the distance between distinct special
+ * points of a branch (1e-4 and more on the chapter's examples). */
+#define BISECTION_REACH 1e-6
+
 /* Notes longer than this are cut. */
 #define NOTE_LEN 640
 
@@ -482,6 +488,19 @@ static const sc_border *find_border(const sc_border_list *l,
 /* ------------------------------------------------------------------ */
 /* Locating a border: Newton on its defining system                     */
 
+/* Rounding level of a Newton step on a border's system, in ulps of the
+ * unknown: f^m is computed to a few ulps and the system's Jacobian
+ * amplifies that near a grazing or a switching; a tolerance below it
+ * (the "precise" preset) is met at that floor. */
+#define BORDER_NOISE_ULPS 256.0
+
+/* A Newton step on a border's system that is within tolerance, or at
+ * the rounding floor. */
+static int step_done(double dx, double x, const sc_accuracy *acc) {
+  return sc_test_delta(dx, x, acc->newton_atol, acc->newton_rtol) == SC_OK ||
+         fabs(dx) <= BORDER_NOISE_ULPS * DBL_EPSILON * (1 + fabs(x));
+}
+
 /* What locate_border() found. */
 typedef struct {
   int ok;
@@ -543,8 +562,7 @@ static void newton_2d(sc_orbit_branch *b, int period, const sc_itin_code *codes,
     d -= dd;
     p -= dpp;
     fx->step = fabs(dpp);
-    if (fabs(dpp) <= acc->newton_atol + acc->newton_rtol * fabs(p) &&
-        fabs(dd) <= acc->newton_atol + acc->newton_rtol * fabs(d)) {
+    if (step_done(dpp, p, acc) && step_done(dd, d, acc)) {
       /* the certificate: the system at the returned point */
       if (border_at(b, period, d, p, codes, like, &bd, &v)) {
         snprintf(fx->why, sizeof fx->why,
@@ -608,8 +626,7 @@ static void newton_on_state(sc_orbit_branch *b, int period,
       return;
     }
     double dp = G / Gp;
-    if (fx->iterations > 0 && fabs(dp) <= acc->newton_atol +
-                                              acc->newton_rtol * fabs(p)) {
+    if (fx->iterations > 0 && step_done(dp, p, acc)) {
       fx->ok = 1;
       fx->p = p, fx->dk = don, fx->step = fabs(dp);
       fx->iterations = it + 1;
@@ -891,8 +908,13 @@ static void after_bisection(sc_orbit_branch *b, int branch, int m, double pa,
         double mb = -bbest.value; /* mirror: a bracket for the interpolation */
         locate_border(b, m, b->codes2, &bbest, pc, dc, bbest.value, pa,
                       orb[0], mb, &best);
-        if (best.ok && fabs(best.p - pa) > 1e3 * fabs(pb - pa) + 1e-9 *
-                                               (1 + fabs(pa))) {
+        /* Shooting fails next to a switching with the driver frozen (f'
+         * grows like |d - d*|^(-1/2)), so the bisection can stop short of
+         * the border by far more than its bracket: a certified solution
+         * of the border's system this close is that border. */
+        if (best.ok && fabs(best.p - pa) > 1e3 * fabs(pb - pa) +
+                                               BISECTION_REACH *
+                                                   (1 + fabs(pa))) {
           best.ok = 0;
           snprintf(best.why, sizeof best.why,
                    "Newton from the other side converged to %s = %.17g, "
