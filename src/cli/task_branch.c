@@ -54,7 +54,7 @@ static const sc_key_info branch_keys[] = {
     {"keep", SC_KEY_INT, 0, "150", 1, 100000000, 0, 0, NULL,
      "sweep: last iterates drawn (<= iterations)"},
     {"plot-at", SC_KEY_CHOICE, 0, "first", 0, 0, 0, 0,
-     "first|LP|PD|GR|CS|SW|DI",
+     "first|LP|PD|GR|CS|SW|BR|TT",
      "special point at which f^m is drawn against d (figs 5.9-5.11): the "
      "first one with that label, or the first of any label but EP"},
 };
@@ -143,7 +143,9 @@ static int write_points(sc_cli_run *r, const sc_orbit_branch *ob,
   int st = sc_cli_open(r, "points.csv", &csv);
   if (st) return st;
   FILE *f = sc_file_stream(csv);
-  fputs("label,parameter,value,d,period,multiplier,note\n", f);
+  fputs("label,parameter,value,d,period,multiplier,residual,error,method,"
+        "border,note\n",
+        f);
   for (size_t i = 0; i < sc_orbit_branch_nspecial(ob); i++) {
     sc_orbit_special_info sp;
     sc_orbit_branch_special(ob, i, &sp);
@@ -153,12 +155,63 @@ static int write_points(sc_cli_run *r, const sc_orbit_branch *ob,
     sc_csv_double(f, sp.d);
     fprintf(f, ",%d,", sp.period);
     sc_csv_double(f, sp.multiplier);
+    fputc(',', f);
+    sc_csv_double(f, sp.residual);
+    fputc(',', f);
+    sc_csv_double(f, sp.error);
+    char border[SC_BORDER_NAME];
+    snprintf(border, sizeof border, "%s", sp.border ? sp.border : "");
+    fprintf(f, ",%s,%s", sc_location_method_text(sp.method),
+            sc_cli_csv_text(border));
     char note[1024];
     snprintf(note, sizeof note, "branch %d: %s", sp.branch, sp.note);
     fprintf(f, ",%s\n", sc_cli_csv_text(note));
   }
   return sc_cli_commit(r, "points.csv", csv);
 }
+
+/* Every orbit point of every special point but the ends, numbered as in
+ * the plot's table: what the plot marks. */
+static int write_point_orbits(sc_cli_run *r, const sc_orbit_branch *ob,
+                              size_t param, double *buf, int maxq) {
+  sc_file *csv = NULL;
+  int st = sc_cli_open(r, "branch-points.csv", &csv);
+  if (st) return st;
+  FILE *f = sc_file_stream(csv);
+  fputs("number,label,parameter,d,first\n", f);
+  int num = 0;
+  for (size_t i = 0; i < sc_orbit_branch_nspecial(ob); i++) {
+    sc_orbit_special_info sp;
+    sc_orbit_branch_special(ob, i, &sp);
+    if (sp.label == SC_PT_EP) continue;
+    num++;
+    int q = sp.period <= maxq ? sp.period : 1;
+    if (orbit_points(r->map, param, sp.p, sp.d, q, buf)) q = 1, buf[0] = sp.d;
+    for (int k = 0; k < q; k++) {
+      fprintf(f, "%d,%s,", num, sc_point_label_text(sp.label));
+      sc_csv_double(f, sp.p);
+      fputc(',', f);
+      sc_csv_double(f, buf[k]);
+      fprintf(f, ",%d\n", k == 0);
+    }
+  }
+  return sc_cli_commit(r, "branch-points.csv", csv);
+}
+
+/* Marker and colour of each special-point label in the plot. */
+static const struct {
+  const char *label, *what;
+  int pt;
+  const char *rgb;
+} label_style[] = {
+    {"LP", "fold", 9, "#2ca02c"},
+    {"PD", "flip", 7, "#000000"},
+    {"GR", "grazing-sliding", 5, "#9467bd"},
+    {"CS", "crossing-sliding", 13, "#ff7f0e"},
+    {"SW", "switching (d = d*)", 11, "#17becf"},
+    {"BR", "both re-stick", 15, "#8c564b"},
+    {"TT", "threshold touched", 3, "#e377c2"},
+};
 
 static int write_branch(sc_cli_run *r, const sc_orbit_branch *ob,
                         const char *pname, size_t param, double *buf,
@@ -273,16 +326,34 @@ static int write_branch_plot(sc_cli_run *r, const sc_orbit_branch *ob,
   sc_plot_head(f, "branch.png", title, xl,
                sc_plot_label(m, sc_map_type(m)->state_name));
   fprintf(f, "set xrange [%.17g:%.17g]\n", fmin(from, to), fmax(from, to));
-  fputs("set key inside right top box opaque\n", f);
-  /* Special points as labels. */
+  /* Numbered markers on every orbit point a special point concerns, a
+   * marker per kind explained in the key, and the numbers' table in the
+   * right margin: no label can overlap another. */
+  fputs("set key outside bottom center horizontal maxrows 2 font 'Sans,10'\n", f);
+  fputs("set rmargin at screen 0.80\n", f);
+  int num = 0, nrow = 0;
   for (size_t i = 0; i < sc_orbit_branch_nspecial(ob); i++) {
     sc_orbit_special_info sp;
     sc_orbit_branch_special(ob, i, &sp);
     if (sp.label == SC_PT_EP) continue;
-    fprintf(f, "set label %zu '%s' at %.17g,%.17g offset 0.6,0.6 front "
-               "font 'Sans,11' tc rgb '#000000'\n",
-            i + 1, sc_point_label_text(sp.label), sp.p, sp.d);
+    num++;
+    if (nrow >= 40) continue; /* the table says how many are left out */
+    nrow++;
+    fprintf(f, "set label %d '%d  %s  %.10g  (%d)%s' at screen 0.81, "
+               "screen %.4f font 'Sans,9' tc rgb '#000000'\n",
+            nrow, num, sc_point_label_text(sp.label), sp.p, sp.period,
+            sp.method == SC_LOC_NEWTON ? "" : " *", 0.93 - 0.021 * nrow);
   }
+  fprintf(f, "set label %d 'no.  label  %s  (period)' at screen 0.81, "
+             "screen 0.93 font 'Sans,9' tc rgb '#000000'\n",
+          nrow + 1, pname);
+  if (num > nrow)
+    fprintf(f, "set label %d '... %d more in points.csv' at screen 0.81, "
+               "screen %.4f font 'Sans,9'\n",
+            nrow + 2, num - nrow, 0.93 - 0.021 * (nrow + 1));
+  fprintf(f, "set label %d '* not located by Newton (see points.csv)' at "
+             "screen 0.81, screen 0.05 font 'Sans,8'\n",
+          nrow + 3);
   fputs("plot ", f);
   if (with_sweep)
     fputs("'branch-sweep.csv' skip 1 using 1:2 with points pt 7 ps 0.2 lc rgb '#aaaaaa' "
@@ -292,10 +363,16 @@ static int write_branch_plot(sc_cli_run *r, const sc_orbit_branch *ob,
         "lc rgb '#1f4e9e' title 'stable', \\\n",
         f);
   fputs("     'branch-orbits.csv' skip 2 using 1:3 with lines lw 1.5 dt 2 "
-        "lc rgb '#d62728' title 'unstable', \\\n",
+        "lc rgb '#d62728' title 'unstable'",
         f);
-  fputs("     'points.csv' skip 1 using 3:(strcol(1) eq 'EP' ? NaN : $4) "
-        "with points pt 7 ps 1.3 lc rgb '#000000' title 'special points'\n",
+  for (size_t k = 0; k < sizeof label_style / sizeof label_style[0]; k++)
+    fprintf(f, ", \\\n     'branch-points.csv' skip 1 using 3:(strcol(2) eq "
+               "'%s' ? $4 : NaN) with points pt %d ps 1.4 lc rgb '%s' "
+               "title '%s %s'",
+            label_style[k].label, label_style[k].pt, label_style[k].rgb,
+            label_style[k].label, label_style[k].what);
+  fputs(", \\\n     'branch-points.csv' skip 1 using 3:($5 > 0 ? $4 : NaN):1 "
+        "with labels offset 0.9,0.7 font 'Sans,9' notitle\n",
         f);
   st = sc_cli_commit(r, "branch.gp", gp);
   if (st) return st;
@@ -407,6 +484,7 @@ static int branch_run(sc_cli_run *r) {
   unsigned long nev = sc_map_nevals(m) - ev0;
   if (st) goto done;
   if ((st = write_points(r, ob, pname))) goto done;
+  if ((st = write_point_orbits(r, ob, param, buf, sp.max_period))) goto done;
   if ((st = write_branch(r, ob, pname, param, buf, sp.max_period))) goto done;
   int with_sweep = sc_scene_flag(s, "sweep");
   double t1 = now();
@@ -429,13 +507,31 @@ static int branch_run(sc_cli_run *r) {
   fprintf(f, "  branches: %d, points: %zu, special points: %zu\n",
           sc_orbit_branch_nbranches(ob), sc_orbit_branch_npoints(ob),
           sc_orbit_branch_nspecial(ob));
+  int count[SC_PT_EP + 1] = {0}, nbis = 0, nfail = 0;
+  for (size_t i = 0; i < sc_orbit_branch_nspecial(ob); i++) {
+    sc_orbit_special_info p;
+    sc_orbit_branch_special(ob, i, &p);
+    if ((unsigned)p.label <= SC_PT_EP) count[p.label]++;
+    nbis += p.method == SC_LOC_BISECTION;
+    nfail += p.method == SC_LOC_FAILED;
+  }
+  fputs("  by label:", f);
+  for (int l = 0; l <= SC_PT_EP; l++)
+    if (count[l]) fprintf(f, " %s %d", sc_point_label_text(l), count[l]);
+  fprintf(f, "\n  located by Newton with a residual certificate: %zu; by "
+             "bisection (fallback): %d; detected but NOT located: %d\n",
+          sc_orbit_branch_nspecial(ob) - (size_t)(nbis + nfail) -
+              (size_t)count[SC_PT_EP],
+          nbis, nfail);
   for (size_t i = 0; i < sc_orbit_branch_nspecial(ob); i++) {
     sc_orbit_special_info p;
     sc_orbit_branch_special(ob, i, &p);
     fprintf(f, "  %s  %s = %.17g  d = %.17g  period %d  multiplier %.17g\n"
-               "      branch %d: %s\n",
+               "      %s%s residual %.3g, error %.3g; branch %d: %s\n",
             sc_point_label_text(p.label), pname, p.p, p.d, p.period,
-            p.multiplier, p.branch, p.note);
+            p.multiplier, sc_location_method_text(p.method),
+            p.method == SC_LOC_NONE ? "" : ":", p.residual, p.error, p.branch,
+            p.note);
   }
   fprintf(f, "  continuation: %.3f s, %lu map evaluations\n", elapsed, nev);
   if (with_sweep) fprintf(f, "  brute-force sweep: %.3f s\n", tsweep);
@@ -455,13 +551,16 @@ const sc_cli_task sc_cli_task_branch = {
     .type = {.kind = "branch",
              .doc = "continuation of a periodic orbit in one parameter: "
                     "folds (LP), flips (PD), grazing (GR), crossing-sliding "
-                    "(CS), switching (SW)",
+                    "(CS), switching (SW), both re-stick (BR), threshold "
+                    "touched (TT)",
              .keys = branch_keys,
              .nkeys = sizeof branch_keys / sizeof branch_keys[0],
              .check = branch_check},
     .outputs = "branch.csv (PARAMETER,d,multiplier,stable,itinerary,period,"
                "branch), points.csv (label,parameter,value,d,period,"
-               "multiplier,note), branch-orbits.csv, branch-sweep.csv, "
-               "summary.txt, branch.gp/png, branch-map.gp/png",
+               "multiplier,residual,error,method,border,note), "
+               "branch-points.csv (every orbit point of each special point), "
+               "branch-orbits.csv, branch-sweep.csv, summary.txt, "
+               "branch.gp/png, branch-map.gp/png",
     .run = branch_run,
 };
