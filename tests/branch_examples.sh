@@ -31,7 +31,7 @@ has fixed-point-family orbits.csv '^2,3\.969800275[0-9]*,no,'
 
 example branch-logistic
 expect_header branch-logistic "$TMP/branch-logistic/points.csv" \
-  "label,parameter,value,d,period,multiplier,note"
+  "label,parameter,value,d,period,multiplier,residual,error,method,border,note"
 expect_header branch-logistic "$TMP/branch-logistic/branch.csv" \
   "r,d,multiplier,stable,itinerary,period,branch"
 has branch-logistic points.csv '^PD,r,(2\.99999999999[0-9]*|3\.0000000000[0-9]*|3),'

@@ -7,3 +7,7 @@ add_test(NAME branch_examples
   COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/branch_examples.sh
           $<TARGET_FILE:slipcont_cli> ${PROJECT_SOURCE_DIR})
 set_tests_properties(branch_examples PROPERTIES TIMEOUT 300)
+add_test(NAME branch_presets
+  COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/branch_presets.sh
+          $<TARGET_FILE:slipcont_cli> ${PROJECT_SOURCE_DIR})
+set_tests_properties(branch_presets PROPERTIES TIMEOUT 300)

@@ -72,6 +72,12 @@ const char *sc_location_method_text(sc_location_method l) {
  * points of a branch (1e-4 and more on the chapter's examples). */
 #define BISECTION_REACH 1e-6
 
+/* A located fold or flip test is accepted within this many times the
+ * preset's residual tolerance (or the continuation layer's default,
+ * 1e-8, if larger): the multiplier carries the rounding of f^m times its
+ * own conditioning. */
+#define TEST_ATOL_FACTOR 1e3
+
 /* Notes longer than this are cut. */
 #define NOTE_LEN 640
 
@@ -665,8 +671,9 @@ static void locate_border(sc_orbit_branch *b, int period,
     newton_2d(b, period, codes, like, pa, da, ma, pb, db, mb, fx);
   if (!fx->ok) return;
   /* It must lie between the two points that bracket the sign change. */
-  double lo = fmin(pa, pb), hi = fmax(pa, pb), w = hi - lo;
-  if (fx->p < lo - BRACKET_SLACK * w || fx->p > hi + BRACKET_SLACK * w) {
+  double lo = fmin(pa, pb), hi = fmax(pa, pb);
+  double w = BRACKET_SLACK * (hi - lo) + BISECTION_REACH * (1 + fabs(pa));
+  if (fx->p < lo - w || fx->p > hi + w) {
     fx->ok = 0;
     snprintf(fx->why, sizeof fx->why,
              "Newton converged to %.17g, outside the bracket [%.17g, %.17g]",
@@ -1084,6 +1091,11 @@ static int segment_start(sc_orbit_branch *b, segment *S, sc_cont_problem *pb,
   set->direction = jb->direction;
   set->max_points = b->sp.max_points;
   set->linsolve = b->sp.linsolve;
+  /* A fold or flip test (a multiplier -+ 1) is known to the accuracy of
+   * the map's derivative, which the preset sets: a looser preset must
+   * not turn a fold into "not located". */
+  set->test_atol = fmax(set->test_atol,
+                        TEST_ATOL_FACTOR * sc_map_accuracy(m)->newton_ftol);
   /* Starts next to a flip or a switching are ill conditioned at fixed
    * parameter: let the start move along the branch instead. */
   set->start_free = 1;
