@@ -390,9 +390,99 @@ static void test_extremes(void) {
   printf("(%d evaluations, %d undefined with a reason)\n", total, undef);
 }
 
+/* The m-th border named like `x` in a forced evaluation at (d, p). */
+static int border_value(sc_map *m, double d, const sc_itin_code *code,
+                        const sc_border *x, double *val) {
+  sc_border bl[256];
+  sc_border_list l = {bl, 256, 0};
+  sc_map_value v;
+  if (sc_map_eval_ex(m, d, SC_EVAL_DERIV, code, NULL, &l, &v, NULL)) return 0;
+  for (size_t i = 0; i < l.n && i < l.cap; i++)
+    if (bl[i].kind == x->kind && strcmp(bl[i].name, x->name) == 0) {
+      *val = bl[i].value;
+      return 1;
+    }
+  return 0;
+}
+
+/* Every border's exact derivatives in d and in each parameter against
+ * central differences along the same code, at 40 points of each
+ * parameter set of the derivative test (both drivers, beta 1 and not).
+ * A difference quotient is trusted where those with h and h/2 agree
+ * (Richardson: the border is smooth there); a border evaluated right at
+ * one of its own kinks (a maximum that changes which hump is highest)
+ * is skipped and counted. */
+static void test_border_derivatives(void) {
+  int checked = 0, bad = 0, skipped = 0, nb = 0;
+  const char *pn[4] = {"alpha", "beta", "phi", "v"};
+  for (size_t s = 0; s < NSETS; s++) {
+    sc_map *m = make(sets[s].alpha, sets[s].beta, sets[s].v, sets[s].driver);
+    for (int i = 0; i < 40; i++) {
+      double d = -0.27 + 0.54 * i / 39 + 0.00123;
+      sc_border bl[256];
+      sc_border_list l = {bl, 256, 0};
+      sc_itin_code code;
+      sc_map_value v;
+      if (sc_map_eval_ex(m, d, SC_EVAL_DERIV, NULL, &code, &l, &v, NULL))
+        continue;
+      for (size_t k = 0; k < l.n && k < l.cap; k++) {
+        const sc_border *x = &bl[k];
+        nb++;
+        for (int dir = 0; dir < 5; dir++) {
+          double exact = dir == 0 ? x->dd : x->dp[dir - 1];
+          double q[2];
+          int ok = 1;
+          for (int hh = 0; hh < 2 && ok; hh++) {
+            double h = 1e-6 / (1 + hh), vp = NAN, vm = NAN;
+            if (dir == 0) {
+              ok = border_value(m, d + h, &code, x, &vp) &&
+                   border_value(m, d - h, &code, x, &vm);
+            } else {
+              double p0 = sc_map_get_param(m, (size_t)(dir - 1));
+              double hp = h * (1 + fabs(p0));
+              sc_map_set_param(m, (size_t)(dir - 1), p0 + hp, NULL);
+              ok = border_value(m, d, &code, x, &vp);
+              sc_map_set_param(m, (size_t)(dir - 1), p0 - hp, NULL);
+              ok = ok && border_value(m, d, &code, x, &vm);
+              sc_map_set_param(m, (size_t)(dir - 1), p0, NULL);
+              h = hp;
+            }
+            q[hh] = (vp - vm) / (2 * h);
+          }
+          if (!ok) continue;
+          double scale = 1 + fabs(q[1]);
+          if (fabs(q[0] - q[1]) > 1e-5 * scale) {
+            skipped++;
+            continue;
+          }
+          checked++;
+          if (fabs(exact - q[1]) > 1e-5 * scale) {
+            bad++;
+            if (bad <= 5)
+              printf("  %s: d(%s)/d%s = %.10g, difference %.10g (d = %g, "
+                     "set %zu)\n",
+                     x->name, sc_border_label(x->kind),
+                     dir ? pn[dir - 1] : "d", exact, q[1], d, s);
+          }
+        }
+      }
+    }
+    sc_map_free(m);
+  }
+  printf("(%d borders, %d derivatives checked, %d at a kink skipped)\n", nb,
+         checked, skipped);
+  tu_true(checked >= 1000, "at least 1000 border derivatives checked (%d)",
+          checked);
+  tu_int("border derivatives off their central difference by > 1e-5", bad,
+         0);
+  tu_true(skipped <= checked / 20, "kinks skipped: %d of %d (<= 5%%)",
+          skipped, checked);
+}
+
 int main(void) {
   test_closed_forms();
   test_derivatives();
+  test_border_derivatives();
   test_properties();
   test_reference();
   test_bad_input();

@@ -218,6 +218,11 @@ int sc_map_set_accuracy(sc_map *m, const sc_accuracy *acc, sc_msg *msg) {
   return setup(m, msg);
 }
 
+const char *sc_border_label(sc_border_kind k) {
+  static const char *t[SC_BORDER_NKINDS] = {"GR", "CS", "SW", "BR", "TT"};
+  return (unsigned)k < SC_BORDER_NKINDS ? t[k] : "??";
+}
+
 int sc_map_has_borders(const sc_map *m) { return m->type->eval_ex != NULL; }
 
 int sc_map_eval_ex(sc_map *m, double d, unsigned flags,
