@@ -259,6 +259,10 @@ size_t sc_orbit_branch_nspecial(const sc_orbit_branch *b);
 /** @brief Special point @p i; SC_EINVAL for i out of range. */
 int sc_orbit_branch_special(const sc_orbit_branch *b, size_t i,
                             sc_orbit_special_info *sp);
+/** Special points met again by another segment (a flip reached from the
+ * doubled branch, a closed curve from two starts): reported once, and
+ * counted here. */
+size_t sc_orbit_branch_nduplicate(const sc_orbit_branch *b);
 /** Branch segments computed. */
 int sc_orbit_branch_nbranches(const sc_orbit_branch *b);
 /** @brief Release @p b; NULL is accepted. */

@@ -100,6 +100,12 @@ int sc_map_eval(sc_map *m, double d, unsigned flags, sc_map_value *out,
 int sc_map_iterate(sc_map *m, double d, int n, unsigned flags,
                    sc_map_value *out, sc_msg *msg);
 
+/** The absolute accuracy of f as computed by @p m's model (0: rounding;
+ * numerical flows: about their integration tolerance).  Newton's methods
+ * on the map (branches, borders) use it as a floor under their
+ * tolerances: asking for more would chase noise. */
+double sc_map_precision(const sc_map *m);
+
 /** 1 if the model of @p m declares borders and forced evaluation
  * (sc_map_eval_ex() does more than sc_map_eval()); 0 for a smooth map. */
 int sc_map_has_borders(const sc_map *m);

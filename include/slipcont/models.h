@@ -215,6 +215,11 @@ typedef struct sc_model_type {
   int (*eval_ex)(void *inst, double d, unsigned flags,
                  const sc_itin_code *force, sc_itin_code *code,
                  sc_border_list *borders, sc_map_value *out, sc_msg *msg);
+  /** The absolute accuracy to which eval() computes f (and, relative to
+   * its size, f'): 0 for the rounding of closed forms; numerical flows
+   * report their integration tolerance.  Newton's methods built on the
+   * map ask for no more (sc_map_precision()).  May be NULL (0). */
+  double (*precision)(const void *inst);
   /** Continuous motion (see sc_map_trajectory()); NULL if none. */
   int (*trajectory)(void *inst, double d, int iterations, double dtau,
                     int (*fn)(void *, double, const double *, int),

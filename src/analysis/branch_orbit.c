@@ -125,6 +125,7 @@ struct sc_orbit_branch {
   point_rec *pts;
   special_rec *sps;
   int nomem;   /* a point or special point could not be stored */
+  size_t nduplicate; /* special points met again by another segment */
   job *jobs;
   int njobs, nbranches;
   job *starts; /* added starts (direction unused) */
@@ -139,6 +140,8 @@ struct sc_orbit_branch {
   sc_itin_code *codes3; /* scratch codes */
   sc_itin_code *codes4; /* a border's defining codes (its own code in) */
   sc_border_list bl_prev, bl_cur, bl_tmp; /* borders (grow as needed) */
+  sc_accuracy acc; /* the map's, its Newton tolerances no tighter than the
+                      map's precision (sc_map_precision()) */
   sc_shoot **shooters; /* multiple shooting by period, made on first use
                           (max_period + 2 entries) */
   g_ctx ctx;
@@ -361,9 +364,30 @@ static void add_point(sc_orbit_branch *b, int branch, int period, double p,
   snprintf(r->itin, sizeof r->itin, "%s", v->itinerary);
 }
 
+/* Orbits of the same period are the same within SAME_ORBIT_TOL (below),
+ * or, for a map known only to its precision P (numerical flows), this
+ * many times P. */
+#define SAME_ORBIT_PREC 100.0
+
+/* Two special points of one label and period this close in the
+ * parameter (relative to 1 + |p|, or the map's precision) are one point
+ * met by two branch segments: a flip reached again from the doubled
+ * branch, a closed curve traversed from two starts. */
+#define SAME_POINT_REL 1e-7
+
 static special_rec *add_special(sc_orbit_branch *b, sc_point_label l,
                                 int branch, int period, double p, double d,
                                 double mult, double deg) {
+  if (l != SC_PT_EP) {
+    double tol = SAME_POINT_REL * (1 + fabs(p)) + SAME_ORBIT_PREC *
+                                                      sc_map_precision(b->m);
+    for (size_t i = 0; i < b->nsp; i++)
+      if (b->sps[i].label == l && b->sps[i].period == period &&
+          fabs(b->sps[i].p - p) <= tol && b->sps[i].method != SC_LOC_FAILED) {
+        b->nduplicate++;
+        return NULL; /* reported once; the caller writes nothing more */
+      }
+  }
   if (!grow((void **)&b->sps, &b->cap_sp, b->nsp, sizeof *b->sps)) {
     b->nomem = 1;
     return NULL;
@@ -538,7 +562,7 @@ static int border_at(sc_orbit_branch *b, int period, double d, double p,
 static void newton_2d(sc_orbit_branch *b, int period, const sc_itin_code *codes,
                       const sc_border *like, double pa, double da, double ma,
                       double pb, double db, double mb, border_fix *fx) {
-  const sc_accuracy *acc = sc_map_accuracy(b->m);
+  const sc_accuracy *acc = &b->acc;
   size_t ip = b->sp.param;
   double t = ma / (ma - mb);
   if (!(t >= 0 && t <= 1)) t = 0.5;
@@ -595,7 +619,7 @@ static void newton_on_state(sc_orbit_branch *b, int period,
                             const sc_itin_code *codes, const sc_border *like,
                             double pa, double ma, double pb, double mb,
                             border_fix *fx) {
-  const sc_accuracy *acc = sc_map_accuracy(b->m);
+  const sc_accuracy *acc = &b->acc;
   size_t ip = b->sp.param;
   int k = like->iterate;
   for (int i = 0; i < period; i++) b->codes3[i] = codes[(i + k) % period];
@@ -838,7 +862,7 @@ static int on_piece(sc_orbit_branch *b, int m, double p, double *orb_a,
 static int locate_by_bisection(sc_orbit_branch *b, int m, double *pa,
                                double *pb, double *orb_a, double hmin,
                                int dir) {
-  const sc_accuracy *acc = sc_map_accuracy(b->m);
+  const sc_accuracy *acc = &b->acc;
   double p0 = *pa, pmin = fmin(b->sp.from, b->sp.to),
          pmax = fmax(b->sp.from, b->sp.to);
   sc_shoot_result res;
@@ -1010,6 +1034,15 @@ static int switch_flip(sc_orbit_branch *b, int m, double p, double d) {
  * below the distance between distinct orbits. */
 #define SAME_ORBIT_TOL 1e-8
 
+
+static double same_orbit_tol(const sc_orbit_branch *b) {
+  return fmax(SAME_ORBIT_TOL, SAME_ORBIT_PREC * sc_map_precision(b->m));
+}
+
+size_t sc_orbit_branch_nduplicate(const sc_orbit_branch *b) {
+  return b->nduplicate;
+}
+
 /* Whether the orbit at (p, b->orb_c) lies on a branch computed before
  * this one: returns that branch, or -1.  Points near this segment's
  * own start (within 2 hmax) are not compared, so that a start continued
@@ -1032,7 +1065,7 @@ static int joins(sc_orbit_branch *b, int branch, int period, double p,
       continue;
     sc_shoot_result res;
     if (shoot_at(b, period, p, b->seed, &res) != SC_OK) continue;
-    if (close_orbits(b->orbit, period, b->orb_c, period, SAME_ORBIT_TOL))
+    if (close_orbits(b->orbit, period, b->orb_c, period, same_orbit_tol(b)))
       return r->branch;
   }
   return -1;
@@ -1095,11 +1128,11 @@ static int segment_start(sc_orbit_branch *b, segment *S, sc_cont_problem *pb,
    * the map's derivative, which the preset sets: a looser preset must
    * not turn a fold into "not located". */
   set->test_atol = fmax(set->test_atol,
-                        TEST_ATOL_FACTOR * sc_map_accuracy(m)->newton_ftol);
+                        TEST_ATOL_FACTOR * b->acc.newton_ftol);
   /* Starts next to a flip or a switching are ill conditioned at fixed
    * parameter: let the start move along the branch instead. */
   set->start_free = 1;
-  if ((st = sc_branch_alloc(pb, set, sc_map_accuracy(m), &S->br, msg)))
+  if ((st = sc_branch_alloc(pb, set, &b->acc, &S->br, msg)))
     return st;
   double u0[2] = {jb->d, jb->p};
   st = sc_branch_set(S->br, u0, msg);
@@ -1269,7 +1302,7 @@ static int segment_accept(sc_orbit_branch *b, segment *S, const double *u) {
     sc_shoot_result res;
     memcpy(b->orb_a, b->orb_c, (size_t)period * sizeof *b->orb_a);
     if (shoot_at(b, period, S->p_first, b->orb_a, &res) == SC_OK &&
-        close_orbits(b->orbit, period, b->orb_f, period, SAME_ORBIT_TOL))
+        close_orbits(b->orbit, period, b->orb_f, period, same_orbit_tol(b)))
       jn = S->branch;
   }
   S->prev_p = u[1];
@@ -1543,6 +1576,11 @@ int sc_orbit_branch_run(sc_orbit_branch *b, sc_msg *msg) {
   b->npts = b->nsp = 0;
   b->njobs = b->nbranches = 0;
   b->nomem = 0;
+  b->nduplicate = 0;
+  b->acc = *sc_map_accuracy(m);
+  double prec = sc_map_precision(m);
+  b->acc.newton_atol = fmax(b->acc.newton_atol, prec);
+  b->acc.newton_ftol = fmax(b->acc.newton_ftol, prec);
   /* The starting orbit, polished by multiple shooting at p = from. */
   int st = sc_map_set_param(m, b->sp.param, b->sp.from, msg);
   if (st) return st;

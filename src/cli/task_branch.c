@@ -518,7 +518,9 @@ static int branch_run(sc_cli_run *r) {
   fputs("  by label:", f);
   for (int l = 0; l <= SC_PT_EP; l++)
     if (count[l]) fprintf(f, " %s %d", sc_point_label_text(l), count[l]);
-  fprintf(f, "\n  located by Newton with a residual certificate: %zu; by "
+  fprintf(f, "\n  met again by another segment (reported once): %zu\n",
+          sc_orbit_branch_nduplicate(ob));
+  fprintf(f, "  located by Newton with a residual certificate: %zu; by "
              "bisection (fallback): %d; detected but NOT located: %d\n",
           sc_orbit_branch_nspecial(ob) - (size_t)(nbis + nfail) -
               (size_t)count[SC_PT_EP],

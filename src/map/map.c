@@ -225,6 +225,10 @@ const char *sc_border_label(sc_border_kind k) {
 
 int sc_map_has_borders(const sc_map *m) { return m->type->eval_ex != NULL; }
 
+double sc_map_precision(const sc_map *m) {
+  return m->type->precision ? m->type->precision(m->inst) : 0;
+}
+
 int sc_map_eval_ex(sc_map *m, double d, unsigned flags,
                    const sc_itin_code *force, sc_itin_code *code,
                    sc_border_list *borders, sc_map_value *out, sc_msg *msg) {

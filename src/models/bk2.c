@@ -307,6 +307,30 @@ int sc_bk2_take_event(const bk2_dpar *P, int mode, int kind, double slope,
   }
 }
 
+int sc_bk2_take_event_at_max(const bk2_dpar *P, int mode, int kind,
+                             double g2, const double acc[2], bk2_state *x) {
+  /* the event time solves g' = 0: dt = -dg'/g'' at fixed time, with
+   * g' = U_i' = K_i - S_i of the slipping block */
+  int nd = P->nd;
+  sc_dual gp = kind == BK2_EV_RESTICK1
+                   ? sc_dsub(P->k1, spring(P, x->y1, x->y2), nd)
+                   : sc_dsub(P->k2, spring(P, x->y2, x->y1), nd);
+  sc_bk2_event_shift(P, gp, g2, acc, x);
+  bk2_dpar P0 = *P;
+  P0.nd = 0; /* shifted already */
+  return sc_bk2_take_event(&P0, mode, kind, g2, acc, x);
+}
+
+void sc_bk2_patch(bk2_events *ev, int c0, int c1, int drop_next) {
+  if (ev->borders->n > ev->borders->cap || ev->npatch >= 8) return;
+  ev->patch[ev->npatch].idx = ev->borders->n - 1;
+  ev->patch[ev->npatch].phase = ev->phase;
+  ev->patch[ev->npatch].c0 = (unsigned char)c0;
+  ev->patch[ev->npatch].c1 = (unsigned char)c1;
+  ev->patch[ev->npatch].drop_next = drop_next;
+  ev->npatch++;
+}
+
 static void itin_add(char *itin, size_t *len, int mode, unsigned flags) {
   if (!(flags & SC_EVAL_ITINERARY)) return;
   const char *tok = mode == SC_BK2_SLIP1 ? "1" : mode == SC_BK2_SLIP2 ? "2"
@@ -530,14 +554,7 @@ static void phase_borders(const bk2_dpar *P, const mode_flow *f, int fresh,
       snprintf(name, sizeof name, "%s max after the event, phase %d (slip %s)",
                guard_text(ekind), ev->phase, mn);
       sc_bk2_border_add(ev->borders, SC_BORDER_GRAZING, &m, name);
-      if (ev->borders->n <= ev->borders->cap && ev->npatch < 8) {
-        ev->patch[ev->npatch].idx = ev->borders->n - 1;
-        ev->patch[ev->npatch].phase = ev->phase;
-        ev->patch[ev->npatch].c0 = (unsigned char)(ekind | BK2_EV_ATMAX);
-        ev->patch[ev->npatch].c1 = (unsigned char)nbefore;
-        ev->patch[ev->npatch].drop_next = 0;
-        ev->npatch++;
-      }
+      sc_bk2_patch(ev, ekind | BK2_EV_ATMAX, nbefore, 0);
     }
   }
   for (int i = 0; i < ng; i++) {
@@ -566,16 +583,10 @@ static void phase_borders(const bk2_dpar *P, const mode_flow *f, int fresh,
     /* Both re-sticks at once: the border's own code ends this phase with
      * both blocks and drops the next one (the other block's slip alone,
      * of length zero there), so the system is smooth on both sides. */
-    if (ekind != BK2_EV_THRESHOLD && !BK2_IS_BOTH(ekind) &&
-        ev->borders->n <= ev->borders->cap && ev->npatch < 8) {
-      ev->patch[ev->npatch].idx = ev->borders->n - 1;
-      ev->patch[ev->npatch].phase = ev->phase;
-      ev->patch[ev->npatch].c0 =
-          kind[first] == BK2_EV_RESTICK1 ? BK2_EV_BOTH : BK2_EV_BOTH2;
-      ev->patch[ev->npatch].c1 = 0;
-      ev->patch[ev->npatch].drop_next = 1;
-      ev->npatch++;
-    }
+    if (ekind != BK2_EV_THRESHOLD && !BK2_IS_BOTH(ekind))
+      sc_bk2_patch(ev,
+                   kind[first] == BK2_EV_RESTICK1 ? BK2_EV_BOTH : BK2_EV_BOTH2,
+                   0, 1);
   }
 }
 
@@ -719,21 +730,10 @@ static int exact_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
   flow_at(P, &f, t, x, a2);
   *duration = t;
   if (r[first].tangent) ev->tangent = 1;
-  int next;
-  if (atmax) {
-    /* the event time solves g' = 0: dt = -dg'/g'' at fixed time, with
-     * g' = U_i' = K_i - S_i of the slipping block */
-    int nd = P->nd;
-    sc_dual gp = kind[first] == BK2_EV_RESTICK1
-                     ? sc_dsub(P->k1, spring(P, x->y1, x->y2), nd)
-                     : sc_dsub(P->k2, spring(P, x->y2, x->y1), nd);
-    sc_bk2_event_shift(P, gp, r[first].slope, a2, x);
-    bk2_dpar P0 = *P;
-    P0.nd = 0; /* shifted already */
-    next = sc_bk2_take_event(&P0, mode, kind[first], r[first].slope, a2, x);
-  } else {
-    next = sc_bk2_take_event(P, mode, kind[first], r[first].slope, a2, x);
-  }
+  int next = atmax ? sc_bk2_take_event_at_max(P, mode, kind[first],
+                                               r[first].slope, a2, x)
+                   : sc_bk2_take_event(P, mode, kind[first], r[first].slope,
+                                       a2, x);
   if (both) {
     x->u1 = x->u2 = P->vs;
     return SC_BK2_STICK;
@@ -937,6 +937,16 @@ static int bk2_eval(void *vinst, double d, unsigned flags, sc_map_value *out,
                         msg);
 }
 
+/* Numerical flows: the integration tolerance, times the growth of an
+ * error over a slip phase (a few oscillations): PRECISION_FACTOR. */
+#define PRECISION_FACTOR 10.0
+
+static double bk2_precision(const void *vinst) {
+  const bk2_inst *b = vinst;
+  if (!b->numerical) return 0;
+  return PRECISION_FACTOR * (b->acc.ode_atol + b->acc.ode_rtol);
+}
+
 static int bk2_eval_ex(void *vinst, double d, unsigned flags,
                        const sc_itin_code *force, sc_itin_code *code,
                        sc_border_list *borders, sc_map_value *out,
@@ -1043,5 +1053,6 @@ const sc_model_type sc_model_bk2 = {
     .release = bk2_release,
     .eval = bk2_eval,
     .eval_ex = bk2_eval_ex,
+    .precision = bk2_precision,
     .trajectory = bk2_trajectory,
 };

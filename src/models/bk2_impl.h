@@ -70,6 +70,15 @@ enum { BK2_EV_RESTICK1 = 1, BK2_EV_RESTICK2, BK2_EV_THRESHOLD, BK2_EV_BOTH,
   ((k) == BK2_EV_BOTH ? BK2_EV_RESTICK1 : (k) == BK2_EV_BOTH2 ? BK2_EV_RESTICK2 \
                                                                : (k))
 
+/* The event at a local maximum of re-stick guard `kind` (g' = 0, g'' =
+ * g2 there): shift the sensitivities by dt = -dg'/g'', stick the block,
+ * and return the next mode (a grazing's own defining system). */
+int sc_bk2_take_event_at_max(const bk2_dpar *P, int mode, int kind,
+                             double g2, const double acc[2], bk2_state *x);
+/* Give the border just added its own code: this phase's bytes replaced
+ * by (c0, c1), and the next phase dropped if drop_next. */
+void sc_bk2_patch(bk2_events *ev, int c0, int c1, int drop_next);
+
 /* Append a border from a dual m (directions: d, alpha, beta, phi, v). */
 void sc_bk2_border_add(sc_border_list *l, sc_border_kind kind,
                        const sc_dual *m, const char *name);

@@ -255,6 +255,282 @@ static int finish_event(const bk2_dpar *P, int mode, int kind,
   return sc_bk2_take_event(P, mode, kind, slope, acc2, x);
 }
 
+/* ---- borders along a numerical phase ---------------------------------- */
+
+/* g' and g'' of guard `kind` at state y with derivative dy (Coulomb
+ * friction: K_i does not depend on U_i, so U_i'' = -S_i'). */
+static double guard_prime(const bk2_inst *b, int mode, int kind,
+                          const double *y, const double *dy, double *g2) {
+  double a = b->alpha;
+  if (kind < 3) {
+    int i = kind - 1, j = 1 - i;
+    *g2 = -((1 + a) * y[2 + i] - a * y[2 + j]);
+    return dy[2 + i];
+  }
+  int j = mode == SC_BK2_SLIP1 ? 1 : 0, i = 1 - j;
+  *g2 = (1 + a) * dy[2 + j] - a * dy[2 + i];
+  return (1 + a) * dy[j] - a * dy[i];
+}
+
+/* The guard of `kind` on duals at a state y (sensitivities at fixed
+ * time), as the exact flows' guard_dual(). */
+static sc_dual guard_at(const bk2_dpar *P, int mode, int kind,
+                        const double *y) {
+  int nd = P->nd;
+  bk2_state xs;
+  unpack(y, nd, &xs);
+  kind = BK2_GUARD_OF(kind);
+  if (kind == BK2_EV_RESTICK1) return sc_dsub(xs.u1, P->vs, nd);
+  if (kind == BK2_EV_RESTICK2) return sc_dsub(xs.u2, P->vs, nd);
+  double a = P->alpha.v;
+  (void)a;
+  sc_dual s1 = sc_dadd(xs.y1, sc_dmul(P->alpha, sc_dsub(xs.y1, xs.y2, nd), nd),
+                       nd);
+  sc_dual s2 = sc_dadd(xs.y2, sc_dmul(P->alpha, sc_dsub(xs.y2, xs.y1, nd), nd),
+                       nd);
+  return mode == SC_BK2_SLIP1 ? sc_dsub(s2, P->t2, nd) : sc_daddc(s1, -1);
+}
+
+/* Refine a zero of w = g (order 0) or g' (order 1) of guard `kind` near
+ * tg in [t0, t1] by Newton's method on the true solution, integrating
+ * from (t0, y0) each time; the state there into yt, dyt. */
+static void refine(const bk2_inst *b, int w, gsl_odeiv2_system *sys,
+                   int mode, int kind, int order, double t0, const double *y0,
+                   double t1, double hmax, double *tg, double *yt,
+                   double *dyt) {
+  double te = *tg;
+  for (int it = 0; it < EVENT_NEWTON_MAX; it++) {
+    memcpy(yt, y0, DIM_MAX * sizeof *yt);
+    if (te > t0 && advance_to(b->num, w, sys, t0, te, hmax, yt)) break;
+    rhs(te, yt, dyt, sys->params);
+    double d1, d2, v = order ? guard_prime(b, mode, kind, yt, dyt, &d2)
+                             : guard(b, mode, kind, yt, dyt, &d1);
+    double slope = order ? d2 : d1;
+    if (slope == 0) break;
+    double dt = -v / slope, tn = fmin(fmax(te + dt, t0), t1);
+    double tol = b->acc.event_atol + b->acc.event_rtol * te;
+    te = tn;
+    if (fabs(dt) <= tol) break;
+  }
+  memcpy(yt, y0, DIM_MAX * sizeof *yt);
+  if (te > t0) advance_to(b->num, w, sys, t0, te, hmax, yt);
+  rhs(te, yt, dyt, sys->params);
+  *tg = te;
+}
+
+/* What a scan of a numerical phase finds for one guard. */
+typedef struct {
+  int kind;
+  int nmax;            /* maxima passed so far */
+  double gbest;        /* the highest maximum before the event */
+  double ybest[DIM_MAX];
+  double tnth;         /* the n-th maximum (ATMAX) */
+  double ynth[DIM_MAX], dynth[DIM_MAX];
+  int have_root;       /* its first rise through zero */
+  double troot, sroot;
+  double yroot[DIM_MAX];
+  int have_after;      /* its first maximum after the event */
+  double yafter[DIM_MAX];
+} scan_guard;
+
+/* Integrate a phase again from its start y0 and watch every guard:
+ * maxima (before tevent; the nth one, when nth > 0, ends the scan),
+ * first rises through zero, the first maximum after tevent.  The scan
+ * goes past tevent until what the borders need is found, or the horizon
+ * tmax. */
+static int num_scan(const bk2_inst *b, const bk2_dpar *P, int mode,
+                    int fresh, const double *ystart, double tevent,
+                    int ekind, double tmax, int nth, scan_guard *sg, int ng,
+                    sc_msg *msg) {
+  bk2_num *n = b->num;
+  int nd = P->nd, w = nd > 0;
+  rhs_ctx ctx = {b, mode, nd};
+  gsl_odeiv2_system sys = {rhs, NULL, w ? DIM_MAX : NSTATE, &ctx};
+  double y[DIM_MAX] = {0}, y0[DIM_MAX], dy0[DIM_MAX], dy1[DIM_MAX];
+  double yt[DIM_MAX], dyt[DIM_MAX];
+  memcpy(y, ystart, sizeof y);
+  double hmax = STEP_FRACTION * fastest_period(b, mode);
+  double t = 0, h = hmax * 0.1, tol = b->acc.event_atol;
+  gsl_odeiv2_evolve_reset(n->evol[w]);
+  gsl_odeiv2_step_reset(n->step[w]);
+  rhs(0, y, dy0, &ctx);
+  for (int k = 0; k < ng; k++) sg[k].gbest = -HUGE_VAL;
+  while (t < tmax) {
+    double t0 = t;
+    memcpy(y0, y, sizeof y);
+    double hc = fmin(h, hmax);
+    int st = gsl_odeiv2_evolve_apply(n->evol[w], n->ctrl[w], n->step[w], &sys,
+                                     &t, tmax, &hc, y);
+    if (st != GSL_SUCCESS)
+      return sc_fail(msg, SC_ENOCONV,
+                     "bk2: ODE integration failed in mode %d at tau = %.6g "
+                     "(GSL: %s)",
+                     mode, t, gsl_strerror(st));
+    h = hc;
+    rhs(t, y, dy1, &ctx);
+    int done = t > tevent;
+    for (int k = 0; k < ng; k++) {
+      scan_guard *q = &sg[k];
+      int ending = q->kind == BK2_GUARD_OF(ekind);
+      /* a maximum: g' falls through zero in this step */
+      double a0, a1, p0 = guard_prime(b, mode, q->kind, y0, dy0, &a0);
+      double p1 = guard_prime(b, mode, q->kind, y, dy1, &a1);
+      double r = hermite_root(p0, a0, p1, a1, t - t0, t0 == 0);
+      if (r >= 0 && p0 > 0 && !(p1 > 0)) {
+        double tm = t0 + r;
+        refine(b, w, &sys, mode, q->kind, 1, t0, y0, t, hmax, &tm, yt, dyt);
+        double s1, gv = guard(b, mode, q->kind, yt, dyt, &s1);
+        if (tm < tevent - tol) {
+          q->nmax++;
+          if (nth > 0 && ending && q->nmax == nth) {
+            q->tnth = tm;
+            memcpy(q->ynth, yt, sizeof yt);
+            memcpy(q->dynth, dyt, sizeof dyt);
+            return SC_OK;
+          }
+          if (gv > q->gbest) q->gbest = gv, memcpy(q->ybest, yt, sizeof yt);
+        } else if (ending && !q->have_after && tm > tevent + tol) {
+          q->have_after = 1;
+          memcpy(q->yafter, yt, sizeof yt);
+        }
+      }
+      /* its first rise through zero */
+      if (!ending && !q->have_root && q->kind < 3) {
+        double s0, s1, g0 = guard(b, mode, q->kind, y0, dy0, &s0);
+        double g1 = guard(b, mode, q->kind, y, dy1, &s1);
+        int skip = t0 == 0 && (fresh & q->kind);
+        double rr = hermite_root(g0, s0, g1, s1, t - t0, skip);
+        if (rr >= 0 && g1 > g0) {
+          double tr = t0 + rr;
+          refine(b, w, &sys, mode, q->kind, 0, t0, y0, t, hmax, &tr, yt, dyt);
+          double sl;
+          guard(b, mode, q->kind, yt, dyt, &sl);
+          q->have_root = 1, q->troot = tr, q->sroot = sl;
+          memcpy(q->yroot, yt, sizeof yt);
+        }
+      }
+      if (!ending && q->kind < 3 && !q->have_root) done = 0;
+      if (ending && q->kind < 3 && !q->have_after) done = 0;
+    }
+    /* the refinements restarted the integrator: go on from the step */
+    gsl_odeiv2_evolve_reset(n->evol[w]);
+    gsl_odeiv2_step_reset(n->step[w]);
+    memcpy(dy0, dy1, sizeof dy1);
+    if (done) break;
+  }
+  return SC_OK;
+}
+
+static const char *num_guard_text(int kind) {
+  return kind == BK2_EV_RESTICK1   ? "U1-Vs"
+         : kind == BK2_EV_RESTICK2 ? "U2-Vs"
+                                   : "S-T of stuck block";
+}
+
+static const char *num_mode_name(int mode) {
+  return mode == SC_BK2_SLIP1 ? "1" : mode == SC_BK2_SLIP2 ? "2" : "12";
+}
+
+/* The borders of a numerical phase, named and signed as the exact
+ * flows' (phase_borders() in bk2.c). */
+static int num_borders(const bk2_inst *b, const bk2_dpar *P, int mode,
+                       int fresh, const double *ystart, double te,
+                       int ekind, const sc_dual *Td, const double *yatmax,
+                       bk2_events *ev, sc_msg *msg) {
+  int nd = P->nd;
+  scan_guard sg[3];
+  int ng = 0;
+  memset(sg, 0, sizeof sg);
+  if (slipping(mode, 1)) sg[ng++].kind = 1;
+  if (slipping(mode, 2)) sg[ng++].kind = 2;
+  if (mode != SC_BK2_SLIP12) sg[ng++].kind = 3;
+  double tmax = te + PHASE_PERIODS * 2 * SC_PI;
+  int st = num_scan(b, P, mode, fresh, ystart, te, ekind, tmax, 0, sg, ng,
+                    msg);
+  if (st) return st;
+  char name[2 * SC_BORDER_NAME];
+  const char *mn = num_mode_name(mode);
+  int eg = BK2_GUARD_OF(ekind);
+  for (int k = 0; k < ng; k++) {
+    scan_guard *q = &sg[k];
+    if (q->kind == eg && eg < 3 && (q->have_after || yatmax) &&
+        !BK2_IS_BOTH(ekind)) {
+      sc_dual m = guard_at(P, mode, q->kind, yatmax ? yatmax : q->yafter);
+      snprintf(name, sizeof name, "%s max after the event, phase %d (slip %s)",
+               num_guard_text(q->kind), ev->phase, mn);
+      sc_bk2_border_add(ev->borders, SC_BORDER_GRAZING, &m, name);
+      sc_bk2_patch(ev, ekind | BK2_EV_ATMAX, q->nmax, 0);
+    }
+    if (q->gbest > -HUGE_VAL) {
+      sc_dual m = sc_dscale(guard_at(P, mode, q->kind, q->ybest), -1, nd);
+      snprintf(name, sizeof name, "%s max, phase %d (slip %s)",
+               num_guard_text(q->kind), ev->phase, mn);
+      sc_bk2_border_add(ev->borders,
+                        q->kind < 3 ? SC_BORDER_GRAZING : SC_BORDER_TOUCH, &m,
+                        name);
+    }
+    if (q->kind == eg || q->kind >= 3 || !q->have_root) continue;
+    sc_dual g = guard_at(P, mode, q->kind, q->yroot);
+    sc_dual m = sc_dconst(q->troot - te, nd);
+    for (int j = 0; j < nd; j++) m.d[j] = -g.d[j] / q->sroot - Td->d[j];
+    snprintf(name, sizeof name, "%s rise after the event, phase %d (slip %s)",
+             num_guard_text(q->kind), ev->phase, mn);
+    sc_bk2_border_add(ev->borders,
+                      ekind == BK2_EV_THRESHOLD ? SC_BORDER_CROSSING
+                                                : SC_BORDER_BOTH,
+                      &m, name);
+    if (ekind != BK2_EV_THRESHOLD && !BK2_IS_BOTH(ekind))
+      sc_bk2_patch(ev, eg == BK2_EV_RESTICK1 ? BK2_EV_BOTH : BK2_EV_BOTH2, 0,
+                   1);
+  }
+  return SC_OK;
+}
+
+/* A phase forced to end at the (skip + 1)-th local maximum of re-stick
+ * guard `kind` (a grazing's own code). */
+static int num_phase_at_max(const bk2_inst *b, const bk2_dpar *P, int mode,
+                            int fresh, const double *ystart, int kind,
+                            int skip, bk2_state *x, double *duration,
+                            bk2_events *ev, sc_msg *msg) {
+  if (kind >= 3)
+    return sc_fail(msg, SC_EINVAL,
+                   "bk2: a code that ends a slip at a threshold's maximum");
+  scan_guard sg;
+  memset(&sg, 0, sizeof sg);
+  sg.kind = kind;
+  double tmax = PHASE_PERIODS * 2 * SC_PI;
+  int st = num_scan(b, P, mode, fresh, ystart, tmax, kind, tmax, skip + 1,
+                    &sg, 1, msg);
+  if (st) return st;
+  if (sg.nmax < skip + 1)
+    return sc_fail(msg, SC_EUNDEF,
+                   "bk2: the forced grazing event of slip mode %d needs %d "
+                   "maxima of its guard, found %d",
+                   mode, skip + 1, sg.nmax);
+  double g2;
+  guard_prime(b, mode, kind, sg.ynth, sg.dynth, &g2);
+  *duration = sg.tnth;
+  ev->rec[0] = (unsigned char)(kind | BK2_EV_ATMAX);
+  ev->rec[1] = (unsigned char)skip;
+  if (ev->borders) {
+    sc_dual Td = sc_dconst(sg.tnth, P->nd); /* dt = -dg'/g'' */
+    bk2_state xs;
+    unpack(sg.ynth, P->nd, &xs);
+    sc_dual K = kind == 1 ? P->k1 : P->k2;
+    sc_dual yi = kind == 1 ? xs.y1 : xs.y2, yj = kind == 1 ? xs.y2 : xs.y1;
+    sc_dual S = sc_dadd(yi, sc_dmul(P->alpha, sc_dsub(yi, yj, P->nd), P->nd),
+                        P->nd);
+    sc_dual gp = sc_dsub(K, S, P->nd);
+    for (int j = 0; j < P->nd; j++) Td.d[j] = -gp.d[j] / g2;
+    st = num_borders(b, P, mode, fresh, ystart, sg.tnth, kind, &Td, sg.ynth,
+                     ev, msg);
+    if (st) return st;
+  }
+  unpack(sg.ynth, P->nd, x);
+  double acc2[2] = {sg.dynth[2], sg.dynth[3]};
+  return sc_bk2_take_event_at_max(P, mode, kind, g2, acc2, x);
+}
+
 int sc_bk2_num_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
                      int fresh, bk2_state *x, double *duration,
                      bk2_events *ev, sc_msg *msg) {
@@ -266,6 +542,8 @@ int sc_bk2_num_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
   double y[DIM_MAX] = {0}, y0[DIM_MAX], dy0[DIM_MAX], dy1[DIM_MAX];
   pack(x, nd, y);
   (void)dim;
+  double ystart[DIM_MAX];
+  memcpy(ystart, y, sizeof y);
   int kinds[3], ng = 0;
   if (slipping(mode, 1)) kinds[ng++] = 1;
   if (slipping(mode, 2)) kinds[ng++] = 2;
@@ -281,10 +559,13 @@ int sc_bk2_num_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
                      "bk2: the forced itinerary code does not fit slip mode "
                      "%d (event %d)",
                      mode, want);
+    if (ev->force[0] & BK2_EV_ATMAX)
+      return num_phase_at_max(b, P, mode, fresh, ystart, gk, ev->force[1],
+                              x, duration, ev, msg);
     if (ev->force[1] > 0)
       return sc_fail(msg, SC_EINVAL,
-                     "bk2: numerical flows cannot follow a code that passes "
-                     "local maxima of a guard (flows = exact can)");
+                     "bk2: a forced root with a count of maxima: not a code "
+                     "of this version");
     kinds[0] = gk;
     ng = 1;
     both_forced = BK2_IS_BOTH(want);
@@ -343,6 +624,27 @@ int sc_bk2_num_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
       int skip = t0 == 0 && ((kinds[i] < 3 && (fresh & kinds[i])) ||
                              fabs(g0) <= round_guard(b, y0));
       double r = hermite_root(g0, s0, g1, s1, step, skip);
+      /* A guard that rises and falls back inside the step, negative at
+       * both ends: its maximum, refined on the true solution, decides
+       * whether it touched zero (a grazing the interpolant may hide when
+       * the hump is lower than its error). */
+      if (r < 0 && g0 < 0 && g1 < 0 && s0 > 0 && s1 < 0) {
+        double a0, a1, ym[DIM_MAX], dym[DIM_MAX];
+        guard_prime(b, mode, kinds[i], y0, dy0, &a0);
+        guard_prime(b, mode, kinds[i], y, dy1, &a1);
+        double rm = hermite_root(s0, a0, s1, a1, step, 0);
+        if (rm >= 0) {
+          double tm = t0 + rm, sm;
+          refine(b, w, &sys, mode, kinds[i], 1, t0, y0, t, hmax, &tm, ym,
+                 dym);
+          double gm = guard(b, mode, kinds[i], ym, dym, &sm);
+          if (gm >= -round_guard(b, ym)) {
+            /* the root: on [t0, tm], where g rises from g0 < 0 */
+            double rr = hermite_root(g0, s0, gm, 0, tm - t0, 0);
+            r = rr >= 0 ? rr : tm - t0;
+          }
+        }
+      }
       if (r >= 0 && (troot < 0 || r < troot)) troot = r, which = i;
     }
     if (which >= 0) {
@@ -382,6 +684,15 @@ int sc_bk2_num_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
                                        ? BK2_EV_BOTH
                                        : BK2_EV_BOTH2);
       ev->rec[1] = 0;
+      if (ev->borders) {
+        /* the event time's sensitivity, dt = -dg / g' */
+        sc_dual gd = guard_at(P, mode, kinds[which], yt), Td = sc_dconst(te, nd);
+        for (int j = 0; j < nd; j++)
+          Td.d[j] = slope != 0 ? -gd.d[j] / slope : NAN;
+        int sb = num_borders(b, P, mode, fresh, ystart, te, ev->rec[0], &Td,
+                             NULL, ev, msg);
+        if (sb) return sb;
+      }
       int next = finish_event(P, mode, kinds[which], yt, dyt, slope, x);
       if (both) {
         x->u1 = x->u2 = P->vs;
