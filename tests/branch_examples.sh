@@ -87,11 +87,59 @@ starts = 3.2 0.5
 EOS
 run_sc run "$TMP/bad-br.ini" --out "$TMP/bad-br" --quiet
 expect_rc "branch with a malformed start" 2
-expect_err "branch with a malformed start" "[task] starts = 3.2 0.5"
+expect_err "branch with a malformed start" "[task] starts: cannot read 'P D M' in '3.2 0.5'"
 check "branch refused before writing anything" test ! -e "$TMP/bad-br/points.csv"
 sed 's/^starts = .*/to = 3/' "$TMP/bad-br.ini" | grep -v '^to = 3.5' >"$TMP/bad-br2.ini"
 run_sc run "$TMP/bad-br2.ini" --out "$TMP/bad-br2" --quiet
 expect_rc "branch with to = from" 2
 expect_err "branch with to = from" "equals from"
+
+# starts = auto: the fig 5.8 orbits of period <= 4 at alpha = 3.9, found
+# by the fixed-point search and continued without a typed guess: the
+# period-4 orbit that brute force shows between 3.86 and 3.94 is among
+# them, with its fold at 3.9400143891 and flip at 3.8747561536.
+cat >"$TMP/auto.ini" <<'EOS'
+[model]
+name = bk2
+driver = frozen
+beta = 2.5
+phi = 1.25
+[task]
+kind = branch
+parameter = alpha
+from = 2.8
+to = 4
+starts = auto
+auto-at = 3.9
+auto-period = 4
+max-period = 8
+hmax = 0.01
+sweep = no
+[output]
+plot = no
+EOS
+run_sc run "$TMP/auto.ini" --out "$TMP/auto" --quiet
+expect_rc "branch with starts = auto" 0
+has auto points.csv '^LP,alpha,3\.94001438911[0-9]*,[-0-9.e]*,4,'
+has auto points.csv '^PD,alpha,3\.87475615359[0-9]*,[-0-9.e]*,4,'
+has auto summary.txt 'starts = auto: 3 orbits found and started'
+
+# A start from a row of that points.csv (the period-4 fold), and one start
+# among several that fails: reported as an EP row, not fatal.
+row=$(awk -F, '$1 == "LP" && $5 == 4 { print NR - 1; exit }' "$TMP/auto/points.csv")
+sed -e "s|^starts = auto|starts = $TMP/auto/points.csv:$row\\
+d0 = 7.5\\
+period = 4|" -e 's/^auto-.*//' -e 's/^from = 2.8/from = 3.85/' \
+  "$TMP/auto.ini" >"$TMP/row.ini"
+run_sc run "$TMP/row.ini" --out "$TMP/row" --quiet
+expect_rc "branch from a points.csv row, with a failing d0" 0
+has row points.csv '^LP,alpha,3\.94001438911[0-9]*,[-0-9.e]*,4,'
+has row points.csv '^EP,alpha,3\.85[0-9]*,7\.5,4,.*start not found'
+run_sc check "$TMP/row.ini" --set task.starts="$TMP/auto/points.csv:999"
+expect_rc "a row past the end of points.csv" 2
+expect_err "a row past the end of points.csv" "has fewer than 999 rows"
+run_sc check "$TMP/row.ini" --set task.starts="3.9 0.2 99999999999"
+expect_rc "a start period above max-period" 2
+expect_err "a start period above max-period" "(valid: [1, max-period = 8])"
 
 finish

@@ -129,7 +129,10 @@ typedef struct {
   double from, to;   /**< start value and the other end of the interval */
   int period;        /**< period m of the starting orbit, >= 1 */
   double d0;         /**< guess of a point of the starting orbit; polished
-                          by multiple shooting at p = from */
+                          by multiple shooting at p = from.  NaN: no start
+                          at from (sc_orbit_branch_add_start() gives them);
+                          a start that fails is fatal only when it is the
+                          only one (else an EP row says why) */
   int switch_pd;     /**< 1: at each flip also continue the period-2m
                           branch (recursively, up to max_branches) */
   long max_points;   /**< accepted points per branch segment, >= 2 */

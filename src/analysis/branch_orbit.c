@@ -162,9 +162,10 @@ int sc_orbit_branch_alloc(sc_map *m, const sc_orbit_branch_spec *spec,
                    "sc_orbit_branch_alloc: from = %g, to = %g (valid: "
                    "finite, different)",
                    s->from, s->to);
-  if (!isfinite(s->d0))
+  if (isinf(s->d0))
     return sc_fail(msg, SC_EINVAL, "sc_orbit_branch_alloc: d0 = %g (valid: "
-                                   "finite)", s->d0);
+                                   "finite, or NaN for no start at from)",
+                   s->d0);
   if (s->period < 1 || s->period > 4096)
     return sc_fail(msg, SC_EINVAL,
                    "sc_orbit_branch_alloc: period = %d (valid: [1, 4096])",
@@ -1581,20 +1582,35 @@ int sc_orbit_branch_run(sc_orbit_branch *b, sc_msg *msg) {
   double prec = sc_map_precision(m);
   b->acc.newton_atol = fmax(b->acc.newton_atol, prec);
   b->acc.newton_ftol = fmax(b->acc.newton_ftol, prec);
-  /* The starting orbit, polished by multiple shooting at p = from. */
-  int st = sc_map_set_param(m, b->sp.param, b->sp.from, msg);
-  if (st) return st;
+  /* The starting orbit, polished by multiple shooting at p = from.  Its
+   * failure ends the run only when there is no other start. */
+  int st = SC_OK;
   sc_shoot *s = NULL;
   sc_shoot_result res;
-  st = sc_shoot_alloc(m, b->sp.period, SC_SHOOT_MULTIPLE, NULL, &s, msg);
-  if (!st) st = sc_shoot_solve(s, b->sp.d0, &res, msg);
-  sc_shoot_free(s);
-  if (st) {
+  if (!isnan(b->sp.d0)) {
+    st = sc_map_set_param(m, b->sp.param, b->sp.from, msg);
+    if (!st)
+      st = sc_shoot_alloc(m, b->sp.period, SC_SHOOT_MULTIPLE, NULL, &s, msg);
+    if (!st) st = sc_shoot_solve(s, b->sp.d0, &res, msg);
+    sc_shoot_free(s);
+    if (st && b->nstarts == 0) {
+      sc_map_set_param(m, b->sp.param, saved, NULL);
+      return st;
+    }
+    if (st) {
+      char why[SC_MSG_LEN];
+      snprintf(why, sizeof why, "%s", msg ? msg->text : "");
+      add_end(b, -1, b->sp.period, b->sp.from, b->sp.d0, NAN,
+              "start not found: %.300s%s", why, NULL);
+    } else {
+      push_job(b, b->sp.period, b->sp.from, res.d,
+               b->sp.to > b->sp.from ? 1 : -1, 0, "start");
+    }
+  } else if (b->nstarts == 0) {
     sc_map_set_param(m, b->sp.param, saved, NULL);
-    return st;
+    return sc_fail(msg, SC_EINVAL, "sc_orbit_branch_run: no start (d0 is "
+                                   "NaN and no start was added)");
   }
-  push_job(b, b->sp.period, b->sp.from, res.d, b->sp.to > b->sp.from ? 1 : -1,
-           0, "start");
   for (int k = 0; k < b->nstarts; k++) {
     const job *a = &b->starts[k];
     if (sc_map_set_param(m, b->sp.param, a->p, msg)) continue;

@@ -5,6 +5,7 @@
  * unstable orbits added). */
 #define _POSIX_C_SOURCE 200809L
 
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -24,12 +25,24 @@ static const sc_key_info branch_keys[] = {
      "other end of the parameter interval"},
     {"period", SC_KEY_INT, 0, "1", 1, 4096, 0, 0, NULL,
      "m: period of the starting orbit (fixed point of f^m)"},
-    {"d0", SC_KEY_REAL, 1, NULL, -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
+    {"d0", SC_KEY_REAL, 0, NULL, -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
      "guess of a point of the starting orbit, polished by multiple "
-     "shooting at from"},
+     "shooting at `at` (omit it to start from `starts` only)"},
+    {"at", SC_KEY_REAL, 0, NULL, -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
+     "parameter value of the d0 start, inside [from, to] (default: from; "
+     "inside, the branch is continued both ways)"},
     {"starts", SC_KEY_TEXT, 0, NULL, 0, 0, 0, 0, NULL,
-     "more starting orbits, each continued both ways: 'P D M; P D M ...' "
-     "(parameter value, guess of an orbit point, period)"},
+     "more starting orbits, each continued both ways, separated by ';': "
+     "'P D M' (parameter value, guess of an orbit point, period), "
+     "'FILE:N' (row N of a points.csv written by a branch task), or "
+     "'auto' (every orbit of period 1..auto-period at each auto-at value)"},
+    {"auto-at", SC_KEY_TEXT, 0, NULL, 0, 0, 0, 0, NULL,
+     "starts = auto: parameter values at which orbits are sought, "
+     "separated by spaces (default: from)"},
+    {"auto-period", SC_KEY_INT, 0, "8", 1, 4096, 0, 0, NULL,
+     "starts = auto: the highest period sought (<= max-period)"},
+    {"auto-d", SC_KEY_TEXT, 0, "-0.5 0.5", 0, 0, 0, 0, NULL,
+     "starts = auto: the interval of d scanned, 'LO HI'"},
     {"switch", SC_KEY_BOOL, 0, "no", 0, 0, 0, 0, NULL,
      "yes: at each flip (PD) also continue the period-2m branch"},
     {"max-points", SC_KEY_INT, 0, "2000", 2, 10000000, 0, 0, NULL,
@@ -59,6 +72,127 @@ static const sc_key_info branch_keys[] = {
      "first one with that label, or the first of any label but EP"},
 };
 
+/* What a start found by parse_starts() is given to. */
+typedef int (*start_fn)(void *ctx, double p, double d, int period);
+
+/* Row n (from 1) of a points.csv of a branch task continued in the same
+ * parameter: its parameter value, orbit point and period. */
+static int points_row(const sc_scene *s, const char *file, long n, double *p,
+                      double *d, int *period, char *why, size_t len) {
+  FILE *f = fopen(file, "r");
+  if (!f) {
+    snprintf(why, len, "cannot open '%.200s'", file);
+    return 0;
+  }
+  char line[4096], lab[16], par[64];
+  int ok = fgets(line, sizeof line, f) &&
+           strncmp(line, "label,parameter,value,d,period", 30) == 0;
+  if (!ok) snprintf(why, len, "'%.200s' is not a branch task's points.csv", file);
+  for (long k = 1; ok && k <= n; k++)
+    if (!fgets(line, sizeof line, f)) {
+      ok = 0;
+      snprintf(why, len, "'%.200s' has fewer than %ld rows", file, n);
+    }
+  fclose(f);
+  if (!ok) return 0;
+  if (sscanf(line, "%15[^,],%63[^,],%lf,%lf,%d", lab, par, p, d, period) != 5 ||
+      !isfinite(*p) || !isfinite(*d)) {
+    snprintf(why, len, "row %ld of '%.200s' cannot be read", n, file);
+    return 0;
+  }
+  if (strcmp(par, sc_scene_text(s, "parameter")) != 0) {
+    snprintf(why, len, "row %ld of '%.200s' is a point in %.40s, not %.40s", n, file,
+             par, sc_scene_text(s, "parameter"));
+    return 0;
+  }
+  return 1;
+}
+
+/* Read `starts`: triples, points.csv rows and `auto` (*is_auto set);
+ * each start within [from, to] with a period in [1, max-period] is given
+ * to fn (NULL: only check). */
+static int parse_starts(const sc_scene *s, start_fn fn, void *ctx,
+                        sc_msg *msg) {
+  const char *starts = sc_scene_text(s, "starts");
+  double from = sc_scene_real(s, "from"), to = sc_scene_real(s, "to");
+  long maxp = sc_scene_int(s, "max-period");
+  for (const char *q = starts; q && *q;) {
+    while (*q == ' ' || *q == ';') q++;
+    if (!*q) break;
+    size_t len = strcspn(q, ";");
+    char item[512];
+    snprintf(item, sizeof item, "%.*s", (int)(len < 511 ? len : 511), q);
+    for (size_t e = strlen(item); e && item[e - 1] == ' '; e--)
+      item[e - 1] = '\0';
+    double p = NAN, d = NAN;
+    int per = 0, used = 0;
+    char why[1024] = "";
+    const char *colon = strrchr(item, ':');
+    if (strcmp(item, "auto") == 0) {
+      q += len;
+      continue; /* handled by the run (needs the map) */
+    } else if (colon && colon != item) {
+      char file[512];
+      char *end;
+      long n = strtol(colon + 1, &end, 10);
+      snprintf(file, sizeof file, "%.*s", (int)(colon - item), item);
+      if (*end || n < 1)
+        snprintf(why, sizeof why, "'%.200s': N must be a row number >= 1", item);
+      else
+        points_row(s, file, n, &p, &d, &per, why, sizeof why);
+    } else {
+      /* strtod/strtol: sscanf's %d is undefined past INT_MAX */
+      char *e1, *e2, *e3;
+      p = strtod(item, &e1);
+      d = strtod(e1, &e2);
+      errno = 0;
+      long lp = strtol(e2, &e3, 10);
+      while (*e3 == ' ') e3++;
+      (void)used;
+      if (e1 == item || e2 == e1 || e3 == e2 || *e3)
+        snprintf(why, sizeof why, "cannot read 'P D M' in '%.200s'", item);
+      else if (errno == ERANGE || lp < 1 || lp > maxp)
+        snprintf(why, sizeof why, "'%.200s': period %s (valid: [1, "
+                                  "max-period = %ld])",
+                 item, e2, maxp);
+      else
+        per = (int)lp;
+    }
+    if (!why[0] && !(isfinite(p) && isfinite(d) && (from - p) * (to - p) <= 0))
+      snprintf(why, sizeof why, "'%.200s': P = %g, D = %g (valid: P inside "
+                                "[from, to], D finite)",
+               item, p, d);
+    if (!why[0] && (per < 1 || per > maxp))
+      snprintf(why, sizeof why, "'%.200s': period %d (valid: [1, max-period = "
+                                "%ld])",
+               item, per, maxp);
+    if (why[0])
+      return sc_scene_fail_key(s, "task", "starts", msg,
+                               "starts: %s (valid: 'P D M', 'FILE:N' or "
+                               "'auto', separated by ';')",
+                               why);
+    if (fn) {
+      int st = fn(ctx, p, d, per);
+      if (st) return st;
+    }
+    q += len;
+  }
+  return SC_OK;
+}
+
+static int has_auto(const sc_scene *s) {
+  const char *q = sc_scene_text(s, "starts");
+  while (q && *q) {
+    while (*q == ' ' || *q == ';') q++;
+    size_t len = strcspn(q, ";");
+    size_t k = len;
+    while (k && q[k - 1] == ' ') k--;
+    if (k == 4 && strncmp(q, "auto", 4) == 0) return 1;
+    q += len;
+  }
+  return 0;
+}
+
 static int branch_check(const sc_scene *s, sc_msg *msg) {
   const sc_map *m = sc_scene_map(s);
   const char *name = sc_scene_text(s, "parameter");
@@ -84,22 +218,25 @@ static int branch_check(const sc_scene *s, sc_msg *msg) {
                              "(valid: [1, iterations])",
                              sc_scene_int(s, "keep"),
                              sc_scene_int(s, "iterations"));
-  const char *starts = sc_scene_text(s, "starts");
-  for (const char *q = starts; q && *q;) {
-    double p, d;
-    int per, used = 0;
-    while (*q == ' ' || *q == ';') q++;
-    if (!*q) break;
-    if (sscanf(q, "%lf %lf %d%n", &p, &d, &per, &used) != 3 || per < 1 ||
-        !isfinite(p) || !isfinite(d) ||
-        (sc_scene_real(s, "from") - p) * (sc_scene_real(s, "to") - p) > 0)
-      return sc_scene_fail_key(s, "task", "starts", msg,
-                               "starts = %s: cannot read 'P D M' at '%.40s' "
-                               "(valid: P inside [from, to], D finite, M >= 1, "
-                               "triples separated by ';')",
-                               starts, q);
-    q += used;
+  int st = parse_starts(s, NULL, NULL, msg);
+  if (st) return st;
+  if (!sc_scene_text(s, "d0") && !sc_scene_text(s, "starts"))
+    return sc_scene_fail_key(s, "task", "d0", msg,
+                             "no start: give d0 (a guess of an orbit point at "
+                             "`at`) or starts");
+  if (sc_scene_text(s, "at")) {
+    double at = sc_scene_real(s, "at");
+    if ((sc_scene_real(s, "from") - at) * (sc_scene_real(s, "to") - at) > 0)
+      return sc_scene_fail_key(s, "task", "at", msg,
+                               "at = %s outside [from, to]",
+                               sc_scene_text(s, "at"));
   }
+  if (sc_scene_int(s, "auto-period") > sc_scene_int(s, "max-period"))
+    return sc_scene_fail_key(s, "task", "auto-period", msg,
+                             "auto-period = %ld is above max-period = %ld "
+                             "(valid: [1, max-period])",
+                             sc_scene_int(s, "auto-period"),
+                             sc_scene_int(s, "max-period"));
   if (sc_scene_int(s, "max-period") < sc_scene_int(s, "period"))
     return sc_scene_fail_key(s, "task", "max-period", msg,
                              "max-period = %ld is below period = %ld "
@@ -443,6 +580,64 @@ static int write_map_plot(sc_cli_run *r, const sc_orbit_branch *ob,
   return sc_cli_add_plot(r, "branch-map.gp", "branch-map.png");
 }
 
+static int add_start(void *ctx, double p, double d, int period) {
+  return sc_orbit_branch_add_start(ctx, p, d, period, NULL);
+}
+
+/* starts = auto: every orbit of period 1..auto-period with a point in
+ * auto-d, at each auto-at value (the fixed-point search, branch.h), is a
+ * start; orbits on one branch are joined by the run. */
+static int auto_starts(sc_cli_run *r, sc_orbit_branch *ob, size_t param,
+                       size_t *n, size_t *lost) {
+  const sc_scene *s = r->scene;
+  sc_map *m = r->map;
+  double lo = -0.5, hi = 0.5;
+  if (sscanf(sc_scene_text(s, "auto-d"), "%lf %lf", &lo, &hi) != 2 ||
+      !(lo < hi))
+    return sc_scene_fail_key(s, "task", "auto-d", r->msg,
+                             "auto-d = %s (valid: 'LO HI', LO < HI)",
+                             sc_scene_text(s, "auto-d"));
+  const char *list = sc_scene_text(s, "auto-at");
+  char from[64];
+  if (!list) snprintf(from, sizeof from, "%.17g", sc_scene_real(s, "from"));
+  const char *q = list ? list : from;
+  int maxq = (int)sc_scene_int(s, "auto-period");
+  double saved = sc_map_get_param(m, param);
+  for (;;) {
+    char *end;
+    double p = strtod(q, &end);
+    if (end == q) break;
+    q = end;
+    double a = sc_scene_real(s, "from"), b = sc_scene_real(s, "to");
+    if (!isfinite(p) || (a - p) * (b - p) > 0 ||
+        sc_map_set_param(m, param, p, NULL))
+      return sc_scene_fail_key(s, "task", "auto-at", r->msg,
+                               "auto-at: %.17g outside [from, to]", p);
+    for (int per = 1; per <= maxq; per++) {
+      sc_fixed_points_spec fs = {.period = per, .from = lo, .to = hi,
+                                 .steps = 2000};
+      sc_orbit_set *set = NULL;
+      int st = sc_fixed_points_find(m, &fs, &set, r->msg);
+      if (st) {
+        sc_map_set_param(m, param, saved, NULL);
+        return st;
+      }
+      for (size_t i = 0; i < sc_orbit_set_count(set); i++) {
+        sc_orbit_info o;
+        sc_orbit_set_get(set, i, &o);
+        if (o.neutral) continue; /* a family: no isolated orbit to follow */
+        if (sc_orbit_branch_add_start(ob, p, o.d[0], per, NULL) == SC_OK)
+          (*n)++;
+        else
+          (*lost)++;
+      }
+      sc_orbit_set_free(set);
+    }
+  }
+  sc_map_set_param(m, param, saved, NULL);
+  return SC_OK;
+}
+
 static int branch_run(sc_cli_run *r) {
   const sc_scene *s = r->scene;
   sc_map *m = r->map;
@@ -453,7 +648,7 @@ static int branch_run(sc_cli_run *r) {
       .from = sc_scene_real(s, "from"),
       .to = sc_scene_real(s, "to"),
       .period = (int)sc_scene_int(s, "period"),
-      .d0 = sc_scene_real(s, "d0"),
+      .d0 = sc_scene_text(s, "d0") ? sc_scene_real(s, "d0") : NAN,
       .switch_pd = sc_scene_flag(s, "switch"),
       .max_points = sc_scene_int(s, "max-points"),
       .max_branches = (int)sc_scene_int(s, "max-branches"),
@@ -470,15 +665,17 @@ static int branch_run(sc_cli_run *r) {
   if (!buf) return sc_fail(r->msg, SC_ENOMEM, "branch: out of memory");
   double t0 = now();
   unsigned long ev0 = sc_map_nevals(m);
+  /* d0 at `at` inside the interval: a start continued both ways */
+  double at = sc_scene_text(s, "at") ? sc_scene_real(s, "at") : sp.from;
+  double d0 = sp.d0;
+  if (at != sp.from) sp.d0 = NAN;
   int st = sc_orbit_branch_alloc(m, &sp, &ob, r->msg);
-  for (const char *q = sc_scene_text(s, "starts"); !st && q && *q;) {
-    double p, d;
-    int per, used = 0;
-    while (*q == ' ' || *q == ';') q++;
-    if (!*q || sscanf(q, "%lf %lf %d%n", &p, &d, &per, &used) != 3) break;
-    st = sc_orbit_branch_add_start(ob, p, d, per, r->msg);
-    q += used;
-  }
+  if (!st && at != sp.from && isfinite(d0))
+    st = sc_orbit_branch_add_start(ob, at, d0, sp.period, r->msg);
+  if (!st) st = parse_starts(s, add_start, ob, r->msg);
+  size_t nauto = 0, nauto_lost = 0;
+  if (!st && has_auto(s))
+    st = auto_starts(r, ob, param, &nauto, &nauto_lost);
   if (!st) st = sc_orbit_branch_run(ob, r->msg);
   double elapsed = now() - t0;
   unsigned long nev = sc_map_nevals(m) - ev0;
@@ -518,6 +715,10 @@ static int branch_run(sc_cli_run *r) {
   fputs("  by label:", f);
   for (int l = 0; l <= SC_PT_EP; l++)
     if (count[l]) fprintf(f, " %s %d", sc_point_label_text(l), count[l]);
+  if (has_auto(s))
+    fprintf(f, "\n  starts = auto: %zu orbits found and started%s%zu not "
+               "started (max-branches)",
+            nauto, nauto_lost ? "; " : "; ", nauto_lost);
   fprintf(f, "\n  met again by another segment (reported once): %zu\n",
           sc_orbit_branch_nduplicate(ob));
   fprintf(f, "  located by Newton with a residual certificate: %zu; by "
