@@ -1,0 +1,301 @@
+/* Fold and flip curves of a model's period-m orbits in two parameters:
+ * the defining system of continuation/curve.c on g = f^m with exact
+ * second and third derivatives (SC_EVAL_DERIV2), continued both ways by
+ * pseudo-arclength (continuation/branch.c), with CP / GPD / TP located by
+ * Newton on the extended system (docs/curves.md). */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "slipcont/curve.h"
+
+void sc_curve_settings_default(sc_curve_settings *s) {
+  memset(s, 0, sizeof *s);
+  s->type = SC_CURVE_FOLD;
+  s->period = 1;
+  s->ix = 0;
+  s->iy = 1;
+  s->xlo = s->ylo = -HUGE_VAL;
+  s->xhi = s->yhi = HUGE_VAL;
+  s->h0 = 1e-3;
+  s->hmax = 2e-2;
+  s->max_points = 2000;
+}
+
+typedef struct {
+  sc_map *m;
+  int period, ix, iy;
+  char itin[SC_ITIN_LEN]; /* of the last evaluation */
+  sc_msg emsg;            /* of the last failed evaluation */
+} map_ctx;
+
+static int jet_fn(double x, const double *p, sc_curve_jet *j, void *user) {
+  map_ctx *c = user;
+  if (sc_map_set_param(c->m, (size_t)c->ix, p[c->ix], &c->emsg) ||
+      sc_map_set_param(c->m, (size_t)c->iy, p[c->iy], &c->emsg))
+    return 1; /* outside the parameters' range: shrink the step */
+  sc_map_value v;
+  if (sc_map_iterate(c->m, x, c->period, SC_EVAL_DERIV2 | SC_EVAL_ITINERARY,
+                     &v, &c->emsg))
+    return 1;
+  snprintf(c->itin, sizeof c->itin, "%s", v.itinerary);
+  j->g = v.f;
+  j->gx = v.dfdd;
+  j->gxx = v.d2fdd2;
+  j->gxxx = v.d3fdd3;
+  size_t np = sc_map_nparam(c->m);
+  for (size_t i = 0; i < np; i++) {
+    j->gp[i] = v.dfdp[i];
+    j->gxp[i] = v.d2fddp[i];
+    j->gxxp[i] = v.d3fdd2p[i];
+  }
+  /* NaN: an event with zero slope, f not twice differentiable */
+  return isfinite(j->gx) && isfinite(j->gxx) && isfinite(j->gxxx) ? 0 : 1;
+}
+
+typedef struct {
+  const sc_curve_settings *set;
+  const sc_curve_output *out;
+  sc_curve_stats *stats;
+  sc_curve_system cs;
+  sc_curve_map1d sys;
+  map_ctx mc;
+  const sc_accuracy *acc;
+  char itin0[SC_ITIN_LEN];
+  double u0[3];
+  int closed;
+} trace;
+
+static int emit_special(trace *T, const char *label, const double *u,
+                        double coef, double residual, const char *note) {
+  sc_curve_special s;
+  memset(&s, 0, sizeof s);
+  s.label = label;
+  s.d = u[0], s.x = u[1], s.y = u[2];
+  s.coefficient = coef;
+  s.residual = residual;
+  snprintf(s.note, sizeof s.note, "%s", note);
+  if (strcmp(label, "EP")) T->stats->nspecial++;
+  if (T->out && T->out->special && T->out->special(T->out->ctx, &s))
+    return SC_ECALLBACK;
+  return SC_OK;
+}
+
+static int emit_point(trace *T, const double *u, int branch) {
+  sc_curve_jet j;
+  double F[2];
+  /* jet at u with the free parameters from u */
+  double p[SC_MAP1D_MAXPARAM];
+  memcpy(p, T->sys.p, sizeof p);
+  p[T->set->ix] = u[1];
+  p[T->set->iy] = u[2];
+  if (jet_fn(u[0], p, &j, &T->mc)) return SC_OK; /* cannot happen here */
+  F[0] = j.g - u[0];
+  F[1] = j.gx - (T->set->type == SC_CURVE_FOLD ? 1 : -1);
+  T->stats->max_residual =
+      fmax(T->stats->max_residual, fmax(fabs(F[0]), fabs(F[1])));
+  sc_curve_point pt = {u[1], u[2], u[0], j.gx,
+                       sc_curve_coefficient(T->set->type, &j), branch,
+                       T->mc.itin};
+  T->stats->npoints++;
+  if (T->out && T->out->point && T->out->point(T->out->ctx, &pt))
+    return SC_ECALLBACK;
+  return SC_OK;
+}
+
+/* Locate the zero of test k between the points a and b (psi values pa,
+ * pb of opposite signs) and report it. */
+static int locate(trace *T, size_t k, const double *a, const double *b,
+                  double pa, double pb) {
+  double w = pa / (pa - pb), u[3];
+  for (int i = 0; i < 3; i++) u[i] = a[i] + w * (b[i] - a[i]);
+  sc_curve_cert cert;
+  sc_msg msg;
+  int st = sc_curve_locate(&T->cs, k, u, T->acc, &cert, &msg);
+  char note[128];
+  const char *label = T->cs.labels[k];
+  if (st) {
+    double mid[3];
+    for (int i = 0; i < 3; i++) mid[i] = a[i] + w * (b[i] - a[i]);
+    snprintf(note, sizeof note, "not located: %.100s", msg.text);
+    return emit_special(T, label, mid, NAN, cert.residual, note);
+  }
+  double psi[3];
+  if (T->cs.test(u, psi, T->cs.user)) return SC_OK;
+  const char *xn = sc_map_type(T->mc.m)->params[T->set->ix].name;
+  const char *yn = sc_map_type(T->mc.m)->params[T->set->iy].name;
+  if (k == 0) {
+    if (T->set->type == SC_CURVE_FOLD)
+      snprintf(note, sizeof note, "cusp: the fold's quadratic coefficient "
+                                  "changes sign");
+    else
+      snprintf(note, sizeof note, "generalized flip: %s",
+               pa > 0 ? "supercritical to subcritical"
+                      : "subcritical to supercritical");
+    return emit_special(T, label, u, psi[0], cert.residual, note);
+  }
+  /* A turning point where the normal-form coefficient also vanishes is
+   * the cusp (reported by its own test): the coefficient tells them
+   * apart.  "Vanishes": within 100 residual tolerances, the accuracy to
+   * which the located point satisfies the system. */
+  if (fabs(psi[0]) <= 100 * T->acc->newton_ftol) return SC_OK;
+  int ip = k == 1 ? 1 : 2;
+  int max = u[ip] >= a[ip] && u[ip] >= b[ip];
+  snprintf(note, sizeof note, "%s %s", k == 1 ? xn : yn, max ? "max" : "min");
+  return emit_special(T, label, u, psi[0], cert.residual, note);
+}
+
+static int end_point(trace *T, const double *u, const char *why) {
+  sc_curve_jet j;
+  double p[SC_MAP1D_MAXPARAM];
+  memcpy(p, T->sys.p, sizeof p);
+  p[T->set->ix] = u[1];
+  p[T->set->iy] = u[2];
+  double coef = jet_fn(u[0], p, &j, &T->mc) ? NAN
+                                           : sc_curve_coefficient(
+                                                 T->set->type, &j);
+  return emit_special(T, "EP", u, coef, NAN, why);
+}
+
+static double dist_inf(const double *a, const double *b) {
+  double m = 0;
+  for (int i = 0; i < 3; i++) m = fmax(m, fabs(a[i] - b[i]));
+  return m;
+}
+
+/* One direction from the corrected start. */
+static int run(trace *T, int dir, int branch, sc_msg *msg) {
+  const sc_curve_settings *s = T->set;
+  sc_cont_settings cset;
+  sc_cont_settings_default(&cset);
+  cset.h0 = s->h0;
+  cset.hmax = s->hmax;
+  cset.hmin = fmin(cset.hmin, s->h0);
+  cset.pmin = s->ylo;
+  cset.pmax = s->yhi;
+  cset.direction = dir;
+  cset.max_points = s->max_points;
+  sc_branch *b;
+  int st = sc_branch_alloc(&T->cs.pb, &cset, T->acc, &b, msg);
+  if (st) return st;
+  st = sc_branch_set(b, T->u0, msg);
+  if (st) {
+    sc_branch_free(b);
+    return st;
+  }
+  double prev[3], psi_prev[3], psi[3];
+  memcpy(prev, sc_branch_point(b), sizeof prev);
+  if (branch == 0) {
+    memcpy(T->u0, prev, sizeof prev);
+    /* the start's itinerary: the curve follows this one */
+    double p[SC_MAP1D_MAXPARAM];
+    sc_curve_jet j;
+    memcpy(p, T->sys.p, sizeof p);
+    p[s->ix] = prev[1], p[s->iy] = prev[2];
+    jet_fn(prev[0], p, &j, &T->mc);
+    snprintf(T->itin0, sizeof T->itin0, "%s", T->mc.itin);
+    if ((st = emit_point(T, prev, 0))) goto done;
+  }
+  if (T->cs.test(prev, psi_prev, T->cs.user)) {
+    st = sc_fail(msg, SC_ENOCONV, "curve: test functions fail at the start");
+    goto done;
+  }
+  double far = 0;
+  for (;;) {
+    sc_msg bm;
+    int bs = sc_branch_step(b, &bm);
+    const double *u = sc_branch_point(b);
+    if (bs < 0) {
+      char why[128];
+      snprintf(why, sizeof why, "stopped: %.110s", bm.text);
+      st = end_point(T, prev, why);
+      break;
+    }
+    double cur[3];
+    memcpy(cur, u, sizeof cur);
+    /* the orbit must keep its itinerary: a change is a border */
+    double p[SC_MAP1D_MAXPARAM];
+    sc_curve_jet j;
+    memcpy(p, T->sys.p, sizeof p);
+    p[s->ix] = cur[1], p[s->iy] = cur[2];
+    if (jet_fn(cur[0], p, &j, &T->mc) == 0 && strcmp(T->mc.itin, T->itin0)) {
+      char why[128];
+      snprintf(why, sizeof why, "border: itinerary %.40s -> %.40s", T->itin0,
+               T->mc.itin);
+      st = end_point(T, prev, why);
+      break;
+    }
+    if (T->cs.test(cur, psi, T->cs.user) == 0) {
+      for (size_t k = 0; k < 3; k++)
+        if ((psi_prev[k] > 0 && psi[k] < 0) || (psi_prev[k] < 0 && psi[k] > 0))
+          if ((st = locate(T, k, prev, cur, psi_prev[k], psi[k]))) goto done;
+      memcpy(psi_prev, psi, sizeof psi);
+    }
+    if (cur[1] < s->xlo || cur[1] > s->xhi) {
+      st = end_point(T, prev, "the box's edge in x");
+      break;
+    }
+    if ((st = emit_point(T, cur, branch))) goto done;
+    memcpy(prev, cur, sizeof prev);
+    if (bs == SC_END) {
+      st = end_point(T, cur,
+                     cur[2] <= s->ylo || cur[2] >= s->yhi
+                         ? "the box's edge in y"
+                         : "max-points reached");
+      break;
+    }
+    /* closed: back within one step of the start after going away */
+    double dist = dist_inf(cur, T->u0);
+    far = fmax(far, dist);
+    if (far > 4 * s->hmax && dist < 1.5 * sc_branch_step_size(b)) {
+      T->closed = 1;
+      st = end_point(T, cur, "the curve closes on itself");
+      break;
+    }
+  }
+done:
+  sc_branch_free(b);
+  return st;
+}
+
+int sc_curve_trace(sc_map *m, const sc_curve_settings *set, double d0,
+                   const sc_curve_output *out, sc_curve_stats *stats,
+                   sc_msg *msg) {
+  size_t np = sc_map_nparam(m);
+  memset(stats, 0, sizeof *stats);
+  if (set->period < 1 || set->ix < 0 || set->iy < 0 ||
+      (size_t)set->ix >= np || (size_t)set->iy >= np || set->ix == set->iy ||
+      !(set->h0 > 0) || !(set->hmax >= set->h0) || set->max_points < 1 ||
+      !(set->xlo < set->xhi) || !(set->ylo < set->yhi))
+    return sc_fail(msg, SC_EINVAL,
+                   "sc_curve_trace: bad settings (period %d >= 1, x, y "
+                   "distinct parameters, 0 < h0 <= hmax, lo < hi)",
+                   set->period);
+  trace T;
+  memset(&T, 0, sizeof T);
+  T.set = set;
+  T.out = out;
+  T.stats = stats;
+  T.acc = sc_map_accuracy(m);
+  T.mc.m = m;
+  T.mc.period = set->period;
+  T.mc.ix = set->ix;
+  T.mc.iy = set->iy;
+  T.sys.fn = jet_fn;
+  T.sys.user = &T.mc;
+  T.sys.type = set->type;
+  T.sys.np = np;
+  for (size_t i = 0; i < np; i++) T.sys.p[i] = sc_map_get_param(m, i);
+  T.sys.ifree[0] = set->ix;
+  T.sys.ifree[1] = set->iy;
+  double x0 = T.sys.p[set->ix], y0 = T.sys.p[set->iy];
+  int st = sc_curve_map1d_system(&T.sys, &T.cs, msg);
+  if (st) return st;
+  T.u0[0] = d0, T.u0[1] = x0, T.u0[2] = y0;
+  st = run(&T, +1, 0, msg);
+  if (st == SC_OK && !T.closed) st = run(&T, -1, 1, msg);
+  stats->closed = T.closed;
+  sc_map_set_param(m, (size_t)set->ix, x0, NULL);
+  sc_map_set_param(m, (size_t)set->iy, y0, NULL);
+  return st;
+}

