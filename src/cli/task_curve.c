@@ -1,0 +1,256 @@
+/* Task `curve`: the fold or flip curve of a period-m orbit in two
+ * parameters, its codimension-two points (CP, GPD, TP) and where it ends
+ * (sc_curve_trace, curve.h; docs/curves.md). */
+#define _POSIX_C_SOURCE 200809L
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "cli/tasks.h"
+#include "slipcont/curve.h"
+
+static const sc_key_info curve_keys[] = {
+    {"type", SC_KEY_CHOICE, 1, NULL, 0, 0, 0, 0, "fold|flip",
+     "fold: multiplier +1 (f^m(d) = d, (f^m)' = 1); flip: (f^m)' = -1"},
+    {"x", SC_KEY_PARAM, 1, NULL, 0, 0, 0, 0, NULL,
+     "the parameter the start was located in (horizontal axis)"},
+    {"y", SC_KEY_PARAM, 1, NULL, 0, 0, 0, 0, NULL,
+     "the second parameter (vertical axis); the start is corrected at the "
+     "model's value of y"},
+    {"x-from", SC_KEY_REAL, 1, NULL, -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
+     "the box: lower end of x"},
+    {"x-to", SC_KEY_REAL, 1, NULL, -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
+     "the box: upper end of x (> x-from)"},
+    {"y-from", SC_KEY_REAL, 1, NULL, -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
+     "the box: lower end of y"},
+    {"y-to", SC_KEY_REAL, 1, NULL, -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
+     "the box: upper end of y (> y-from)"},
+    {"period", SC_KEY_INT, 0, "1", 1, 4096, 0, 0, NULL,
+     "m: the orbit is a fixed point of f^m (single shooting)"},
+    {"d0", SC_KEY_REAL, 1, NULL, -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
+     "guess of an orbit point at the start"},
+    {"h0", SC_KEY_REAL, 0, "0", 0, HUGE_VAL, 0, 1, NULL,
+     "initial arclength step in (d, x, y) (0: hmax / 10)"},
+    {"hmax", SC_KEY_REAL, 0, "0", 0, HUGE_VAL, 0, 1, NULL,
+     "largest arclength step (0: the box's smaller side / 50)"},
+    {"max-points", SC_KEY_INT, 0, "5000", 2, 10000000, 0, 0, NULL,
+     "accepted points per direction"},
+};
+
+static int curve_check(const sc_scene *s, sc_msg *msg) {
+  const sc_map *m = sc_scene_map(s);
+  const char *xn = sc_scene_text(s, "x"), *yn = sc_scene_text(s, "y");
+  if (strcmp(xn, yn) == 0)
+    return sc_scene_fail_key(s, "task", "y", msg,
+                             "y = %s is the same parameter as x (valid: "
+                             "another parameter of the model)",
+                             yn);
+  const char *lo[2] = {"x-from", "y-from"}, *hi[2] = {"x-to", "y-to"};
+  const char *nm[2] = {xn, yn};
+  for (int k = 0; k < 2; k++) {
+    if (!(sc_scene_real(s, lo[k]) < sc_scene_real(s, hi[k])))
+      return sc_scene_fail_key(s, "task", hi[k], msg,
+                               "%s = %s is not above %s = %s (valid: > %s)",
+                               hi[k], sc_scene_text(s, hi[k]), lo[k],
+                               sc_scene_text(s, lo[k]), lo[k]);
+    double v = sc_map_get_param(m, (size_t)sc_map_param_index(m, nm[k]));
+    if (v < sc_scene_real(s, lo[k]) || v > sc_scene_real(s, hi[k]))
+      return sc_scene_fail_key(
+          s, "task", lo[k], msg,
+          "the start's %s = %.17g (the [model] value) lies outside [%s, %s] "
+          "(valid: inside the box)",
+          nm[k], v, sc_scene_text(s, lo[k]), sc_scene_text(s, hi[k]));
+  }
+  return SC_OK;
+}
+
+typedef struct {
+  FILE *curve, *points;
+  int period;
+  int last_branch;
+  sc_curve_special *sp;
+  size_t nsp, cap;
+  int oom;
+} out_ctx;
+
+static int on_point(void *vc, const sc_curve_point *p) {
+  out_ctx *c = vc;
+  if (p->branch != c->last_branch) fputc('\n', c->curve);
+  c->last_branch = p->branch;
+  sc_csv_double(c->curve, p->x);
+  fputc(',', c->curve);
+  sc_csv_double(c->curve, p->y);
+  fputc(',', c->curve);
+  sc_csv_double(c->curve, p->d);
+  fprintf(c->curve, ",%d,", c->period);
+  sc_csv_double(c->curve, p->multiplier);
+  fputc(',', c->curve);
+  sc_csv_double(c->curve, p->coefficient);
+  char itin[SC_ITIN_LEN];
+  snprintf(itin, sizeof itin, "%s", p->itinerary);
+  fprintf(c->curve, ",%s\n", sc_cli_csv_text(itin));
+  return sc_cli_interrupted();
+}
+
+static int on_special(void *vc, const sc_curve_special *s) {
+  out_ctx *c = vc;
+  fprintf(c->points, "%s,", s->label);
+  sc_csv_double(c->points, s->x);
+  fputc(',', c->points);
+  sc_csv_double(c->points, s->y);
+  fputc(',', c->points);
+  sc_csv_double(c->points, s->d);
+  char note[sizeof s->note];
+  snprintf(note, sizeof note, "%s", s->note);
+  fprintf(c->points, ",%d,%s,", c->period, sc_cli_csv_text(note));
+  sc_csv_double(c->points, s->coefficient);
+  fputc(',', c->points);
+  sc_csv_double(c->points, s->residual);
+  fputc('\n', c->points);
+  if (c->nsp == c->cap) {
+    size_t cap = c->cap ? 2 * c->cap : 16;
+    sc_curve_special *n = realloc(c->sp, cap * sizeof *n);
+    if (!n) {
+      c->oom = 1;
+      return 1;
+    }
+    c->sp = n, c->cap = cap;
+  }
+  c->sp[c->nsp++] = *s;
+  return 0;
+}
+
+static double now(void) {
+  struct timespec t;
+  clock_gettime(CLOCK_MONOTONIC, &t);
+  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+static int curve_run(sc_cli_run *r) {
+  const sc_scene *s = r->scene;
+  sc_map *m = r->map;
+  const char *xn = sc_scene_text(s, "x"), *yn = sc_scene_text(s, "y");
+  sc_curve_settings set;
+  sc_curve_settings_default(&set);
+  set.type = strcmp(sc_scene_text(s, "type"), "flip") == 0 ? SC_CURVE_FLIP
+                                                            : SC_CURVE_FOLD;
+  set.period = (int)sc_scene_int(s, "period");
+  set.ix = sc_map_param_index(m, xn);
+  set.iy = sc_map_param_index(m, yn);
+  set.xlo = sc_scene_real(s, "x-from"), set.xhi = sc_scene_real(s, "x-to");
+  set.ylo = sc_scene_real(s, "y-from"), set.yhi = sc_scene_real(s, "y-to");
+  set.hmax = sc_scene_real(s, "hmax");
+  if (set.hmax == 0) set.hmax = fmin(set.xhi - set.xlo, set.yhi - set.ylo) / 50;
+  set.h0 = sc_scene_real(s, "h0");
+  if (set.h0 == 0) set.h0 = set.hmax / 10;
+  if (set.h0 > set.hmax) set.hmax = set.h0;
+  set.max_points = sc_scene_int(s, "max-points");
+  double d0 = sc_scene_real(s, "d0");
+
+  out_ctx c = {0};
+  c.period = set.period;
+  sc_file *cf = NULL, *pf = NULL, *sum = NULL, *gp = NULL;
+  int st;
+  if ((st = sc_cli_open(r, "curve.csv", &cf))) goto done;
+  if ((st = sc_cli_open(r, "points.csv", &pf))) goto done;
+  c.curve = sc_file_stream(cf);
+  c.points = sc_file_stream(pf);
+  fprintf(c.curve, "%s,%s,%s,period,multiplier,coefficient,itinerary\n", xn,
+          yn, sc_map_type(m)->state_name);
+  fprintf(c.points, "label,%s,%s,%s,period,note,coefficient,residual\n", xn,
+          yn, sc_map_type(m)->state_name);
+  sc_curve_output out = {on_point, on_special, &c};
+  sc_curve_stats stats;
+  unsigned long ev0 = sc_map_nevals(m);
+  double t0 = now();
+  st = sc_curve_trace(m, &set, d0, &out, &stats, r->msg);
+  double elapsed = now() - t0;
+  if (st == SC_ECALLBACK && (c.oom || sc_cli_interrupted()))
+    sc_fail(r->msg, st, "curve: %s", c.oom ? "out of memory" : "interrupted");
+  if (st) goto done;
+  if ((st = sc_cli_commit(r, "curve.csv", cf))) {
+    cf = NULL;
+    goto done;
+  }
+  cf = NULL;
+  if ((st = sc_cli_commit(r, "points.csv", pf))) {
+    pf = NULL;
+    goto done;
+  }
+  pf = NULL;
+
+  if ((st = sc_cli_summary_begin(r, &sum))) goto done;
+  FILE *f = sc_file_stream(sum);
+  fprintf(f, "  %s curve of the period-%d orbit in (%s, %s): %ld points%s\n",
+          set.type == SC_CURVE_FOLD ? "fold" : "flip", set.period, xn, yn,
+          stats.npoints, stats.closed ? ", closed" : "");
+  fprintf(f, "  largest residual of the defining system over the points: "
+             "%.3g\n",
+          stats.max_residual);
+  fprintf(f, "  codimension-two points: %ld\n", stats.nspecial);
+  for (size_t i = 0; i < c.nsp; i++)
+    fprintf(f, "    %-3s %s = %.17g, %s = %.17g, %s = %.17g, coefficient "
+               "%.6g, residual %.3g: %s\n",
+            c.sp[i].label, xn, c.sp[i].x, yn, c.sp[i].y,
+            sc_map_type(m)->state_name, c.sp[i].d, c.sp[i].coefficient,
+            c.sp[i].residual, c.sp[i].note);
+  fprintf(f, "  map evaluations: %lu; time %.3f s\n", sc_map_nevals(m) - ev0,
+          elapsed);
+  st = sc_cli_commit(r, "summary.txt", sum);
+  sum = NULL;
+  if (st) goto done;
+
+  if ((st = sc_cli_open(r, "curve.gp", &gp))) goto done;
+  f = sc_file_stream(gp);
+  char title[512], full[640];
+  sc_plot_title(m, NULL, title, sizeof title);
+  snprintf(full, sizeof full, "%s curve, period %d (%s)",
+           set.type == SC_CURVE_FOLD ? "fold" : "flip", set.period, title);
+  sc_plot_head(f, "curve.png", full, sc_plot_label(m, xn),
+               sc_plot_label(m, yn));
+  fprintf(f, "set xrange [%.17g:%.17g]\nset yrange [%.17g:%.17g]\n", set.xlo,
+          set.xhi, set.ylo, set.yhi);
+  fputs("set datafile separator ','\nset key inside right top box opaque\n",
+        f);
+  fputs("lab(l) = strcol(1) eq l ? column(3) : NaN\n", f);
+  fprintf(f, "plot 'curve.csv' skip 1 using 1:2 with lines lw 2 lc rgb "
+             "'#1f4e9e' title '%s curve', \\\n",
+          set.type == SC_CURVE_FOLD ? "fold" : "flip");
+  const char *labels[4] = {"CP", "GPD", "TP", "EP"};
+  const char *colors[4] = {"#d62728", "#9467bd", "#2ca02c", "#777777"};
+  int pts[4] = {7, 5, 9, 6};
+  for (int k = 0; k < 4; k++)
+    fprintf(f, "     'points.csv' skip 1 using 2:(lab('%s')) with points pt "
+               "%d ps 2 lc rgb '%s' title '%s'%s\n",
+            labels[k], pts[k], colors[k], labels[k], k < 3 ? ", \\" : "");
+  st = sc_cli_commit(r, "curve.gp", gp);
+  gp = NULL;
+  if (st) goto done;
+  st = sc_cli_add_plot(r, "curve.gp", "curve.png");
+  sc_cli_note(r, "%ld curve points, %ld codimension-two points in %.3f s",
+              stats.npoints, stats.nspecial, elapsed);
+done:
+  sc_file_abort(cf);
+  sc_file_abort(pf);
+  sc_file_abort(sum);
+  sc_file_abort(gp);
+  free(c.sp);
+  return st;
+}
+
+const sc_cli_task sc_cli_task_curve = {
+    .type = {.kind = "curve",
+             .doc = "fold or flip curve of a period-m orbit in two "
+                    "parameters, with its cusps (CP), generalized flips "
+                    "(GPD) and turning points (TP)",
+             .keys = curve_keys,
+             .nkeys = sizeof curve_keys / sizeof curve_keys[0],
+             .check = curve_check},
+    .outputs = "curve.csv (x,y,d,period,multiplier,coefficient,itinerary), "
+               "points.csv (label,x,y,d,period,note,coefficient,residual), "
+               "summary.txt, curve.gp, curve.png",
+    .run = curve_run,
+};
