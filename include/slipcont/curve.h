@@ -167,6 +167,10 @@ typedef struct {
   long nspecial;  /**< CP, GPD, TP located */
   int closed;     /**< 1 if the curve closed on itself */
   double max_residual; /**< largest |F| over the reported points */
+  double ftol;         /**< the residual tolerance used: the accuracy's
+                            newton_ftol, or 4 times the rounding floor of
+                            the system at the start where that is larger
+                            (at most 1e-9) */
 } sc_curve_stats;
 
 /**

@@ -190,6 +190,7 @@ static int curve_run(sc_cli_run *r) {
   fprintf(f, "  largest residual of the defining system over the points: "
              "%.3g\n",
           stats.max_residual);
+  fprintf(f, "  residual tolerance used: %.3g\n", stats.ftol);
   fprintf(f, "  codimension-two points: %ld\n", stats.nspecial);
   for (size_t i = 0; i < c.nsp; i++)
     fprintf(f, "    %-3s %s = %.17g, %s = %.17g, %s = %.17g, coefficient "
