@@ -162,8 +162,83 @@ static void test_locate(void) {
           msg.text);
 }
 
+/* bk2, fig 5.8's period-6 window (driver frozen): the fold curve of f^6
+ * closes on itself; each point, re-evaluated independently, satisfies
+ * f^6(d) = d and (f^6)' = 1 to 1e-10; the turning points are not cusps
+ * (coefficient far from 0) and the curve has no cusp. */
+typedef struct {
+  sc_map *m;
+  double worst;
+  long n;
+  int ntp, ncp;
+  double tp_min_coef;
+} bk2c;
+
+static int bk2_point(void *ctx, const sc_curve_point *p) {
+  bk2c *c = ctx;
+  sc_map *m2;
+  sc_map_clone(c->m, &m2, NULL);
+  sc_map_set_param_by_name(m2, "alpha", p->x, NULL);
+  sc_map_set_param_by_name(m2, "beta", p->y, NULL);
+  sc_map_value v;
+  if (sc_map_iterate(m2, p->d, 6, SC_EVAL_DERIV, &v, NULL) == SC_OK)
+    c->worst = fmax(c->worst, fmax(fabs(v.f - p->d), fabs(v.dfdd - 1)));
+  else
+    c->worst = HUGE_VAL;
+  sc_map_free(m2);
+  c->n++;
+  return 0;
+}
+
+static int bk2_special(void *ctx, const sc_curve_special *s) {
+  bk2c *c = ctx;
+  printf("  %s alpha %.17g beta %.17g d %.17g coef %.6g res %.3g: %s\n",
+         s->label, s->x, s->y, s->d, s->coefficient, s->residual, s->note);
+  if (!strcmp(s->label, "TP")) {
+    c->ntp++;
+    c->tp_min_coef = fmin(c->tp_min_coef, fabs(s->coefficient));
+    tu_true(s->residual <= 1e-10, "TP residual %g <= 1e-10", s->residual);
+  }
+  if (!strcmp(s->label, "CP")) c->ncp++;
+  return 0;
+}
+
+static void test_bk2_period6(void) {
+  sc_map *m;
+  sc_map_alloc("bk2", NULL, &m, NULL);
+  sc_map_set_option(m, "driver", "frozen", NULL);
+  sc_map_set_param_by_name(m, "alpha", 3.2196, NULL);
+  sc_map_set_param_by_name(m, "beta", 2.5, NULL);
+  sc_curve_settings s;
+  sc_curve_settings_default(&s);
+  s.period = 6;
+  s.ix = 0, s.iy = 1;
+  s.xlo = 2, s.xhi = 4.5, s.ylo = 1.5, s.yhi = 4;
+  s.hmax = 0.05, s.h0 = 0.005;
+  bk2c c = {0};
+  c.m = m;
+  c.tp_min_coef = HUGE_VAL;
+  sc_curve_output out = {bk2_point, bk2_special, &c};
+  sc_curve_stats st;
+  sc_msg msg;
+  int rc = sc_curve_trace(m, &s, 0.10512, &out, &st, &msg);
+  tu_int("bk2 period-6 fold curve status", rc, SC_OK);
+  tu_true(st.closed, "the period-6 fold curve closes (%ld points)", c.n);
+  tu_true(c.n >= 100, "at least 100 points (%ld)", c.n);
+  tu_close("bk2 fold curve: worst |f^6(d) - d|, |(f^6)' - 1|", c.worst, 0,
+           1e-10);
+  tu_true(c.ntp >= 2, "turning points located: %d", c.ntp);
+  /* the quadratic coefficient at the turning points is O(100): no cusp */
+  tu_true(c.tp_min_coef > 1, "TP coefficients far from 0 (min %g)",
+          c.tp_min_coef);
+  tu_int("no cusp on the period-6 fold curve", c.ncp, 0);
+  /* the start is the fold of the branch task (docs/branches.md) */
+  sc_map_free(m);
+}
+
 int main(void) {
   test_locate();
+  test_bk2_period6();
   test_cubic();
   test_gpd();
   return tu_finish();
