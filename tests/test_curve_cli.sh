@@ -1,0 +1,42 @@
+# The curve task through the program: the example scenes write what the
+# task promises and their known answers, and bad input is refused before
+# any work with a message naming the key.
+. "$(dirname "$0")/cli_common.sh"
+
+run_sc run "$SRC/examples/curve-cubic.ini" --out "$TMP/cubic" --quiet
+expect_rc "curve-cubic" 0
+expect_header "curve-cubic" "$TMP/cubic/curve.csv" \
+  "mu1,mu2,x,period,multiplier,coefficient,itinerary"
+expect_header "curve-cubic" "$TMP/cubic/points.csv" \
+  "label,mu1,mu2,x,period,note,coefficient,residual"
+# the cusp at the origin, exact to 1e-12
+cp=$(grep '^CP,' "$TMP/cubic/points.csv")
+check "curve-cubic: one CP row ($cp)" test "$(grep -c '^CP,' "$TMP/cubic/points.csv")" -eq 1
+check "curve-cubic: CP at the origin to 1e-12" awk -F, -v l="$cp" 'BEGIN {
+  split(l, f, ","); for (i = 2; i <= 4; i++) if (f[i] > 1e-12 || f[i] < -1e-12) exit 1 }'
+# every curve point on 27 mu1^2 = 4 mu2^3 (relative to the terms' size)
+check "curve-cubic: points on 27 mu1^2 = 4 mu2^3" awk -F, 'NR > 1 && NF > 1 {
+  a = 27 * $1 * $1; b = 4 * $2 * $2 * $2; e = a - b; if (e < 0) e = -e;
+  if (e > 1e-12 * (1 + a)) exit 1 }' "$TMP/cubic/curve.csv"
+check "curve-cubic: summary names the cusp" grep -q "CP  mu1 = 0" "$TMP/cubic/summary.txt"
+
+run_sc run "$SRC/examples/curve-gpd.ini" --out "$TMP/gpd" --quiet
+expect_rc "curve-gpd" 0
+check "curve-gpd: one GPD row" test "$(grep -c '^GPD,' "$TMP/gpd/points.csv")" -eq 1
+check "curve-gpd: GPD at mu2 = 0" awk -F, '/^GPD,/ { if ($3 > 1e-12 || $3 < -1e-12) exit 1 }' "$TMP/gpd/points.csv"
+
+# bad input: the same parameter twice, an empty box, a start outside it
+run_sc check "$SRC/examples/curve-cubic.ini" --set task.y=mu1
+expect_rc "curve: x = y" 2
+expect_err "curve: x = y" "same parameter as x"
+run_sc check "$SRC/examples/curve-cubic.ini" --set task.x-to=-2
+expect_rc "curve: x-to below x-from" 2
+expect_err "curve: x-to below x-from" "x-to"
+run_sc check "$SRC/examples/curve-cubic.ini" --set model.mu2=1.8
+expect_rc "curve: start outside the box" 2
+expect_err "curve: start outside the box" "outside"
+run_sc run "$SRC/examples/curve-cubic.ini" --set task.type=graze --out "$TMP/bad"
+expect_rc "curve: unknown type" 2
+expect_err "curve: unknown type" "fold|flip"
+check "curve: nothing written on bad input" test ! -e "$TMP/bad/curve.csv"
+finish
