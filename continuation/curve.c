@@ -101,8 +101,6 @@ int sc_curve_locate(const sc_curve_system *cs, size_t k, double *u,
                        cs->labels ? cs->labels[k] : "?");
       A[n * N + j] = (Gp[n] - Gm[n]) / (2 * h);
     }
-    double res = 0;
-    for (size_t i = 0; i < N; i++) res = fmax(res, fabs(G[i]));
     for (size_t i = 0; i < N; i++) G[i] = -G[i];
     if (solve((int)N, A, G))
       return sc_fail(msg, SC_ESING,
@@ -124,9 +122,13 @@ int sc_curve_locate(const sc_curve_system *cs, size_t k, double *u,
     if (rc)
       return sc_fail(msg, SC_ECALLBACK,
                      "sc_curve_locate: callback failed after a step");
-    res = 0;
-    for (size_t i = 0; i < N; i++) res = fmax(res, fabs(Gp[i]));
+    double res = 0;
+    for (size_t i = 0; i < n; i++) res = fmax(res, fabs(Gp[i]));
     cert->residual = res;
+    cert->psi = Gp[n];
+    /* the test function is not scaled (a normal-form coefficient may be
+     * 1e4 where F is 1e-13): its zero is certified by the Newton step,
+     * F's by the residual */
     if (conv && res <= acc->newton_ftol) return SC_OK;
   }
   return sc_fail(msg, SC_ENOCONV,

@@ -49,7 +49,8 @@ typedef struct {
 
 /** What sc_curve_locate() found. */
 typedef struct {
-  double residual; /**< max |F_i|, |psi_k| at the point: the certificate */
+  double residual; /**< max |F_i| at the point: the certificate */
+  double psi;      /**< psi_k there (its zero is certified by the step) */
   double step;     /**< the last Newton step, max norm */
   int iterations;  /**< Newton iterations */
 } sc_curve_cert;
@@ -59,9 +60,10 @@ typedef struct {
  * values, overwritten with the solution).  F's rows of the Jacobian are
  * exact (pb.jac); psi_k's row is a central difference of psi_k with
  * relative step acc->fd_step (psi_k is computed from exact derivatives,
- * so the row only sets the rate of convergence, never the point: the
- * residual certifies it).  Converged when the step is within
- * newton_atol + newton_rtol |u| and the residual within newton_ftol.
+ * so the row only sets the rate of convergence, never the point).
+ * Converged when the step is within newton_atol + newton_rtol |u| and
+ * max |F_i| within newton_ftol (psi_k is not scaled: its zero is
+ * certified by the step; its value is returned).
  * @return SC_OK; SC_ENOCONV after newton_maxiter iterations (the
  *         certificate says how far it got); SC_ESING for a singular
  *         extended Jacobian; SC_EINVAL for k >= ntest or n + 1 >
@@ -146,7 +148,10 @@ typedef struct {
 
 /** A codimension-two or end point of a traced curve. */
 typedef struct {
-  const char *label;   /**< "CP", "GPD", "TP", "EP" (end) */
+  char label[8];       /**< "CP", "GPD", "TP", "EP" (end); with a '?'
+                            ("CP?") for a sign change of the test that
+                            was not located or is not a zero (note says
+                            why) */
   double x, y, d;
   double coefficient;
   double residual;     /**< sc_curve_cert.residual; NaN for EP */

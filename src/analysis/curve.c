@@ -3,11 +3,20 @@
  * second and third derivatives (SC_EVAL_DERIV2), continued both ways by
  * pseudo-arclength (continuation/branch.c), with CP / GPD / TP located by
  * Newton on the extended system (docs/curves.md). */
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "slipcont/curve.h"
+
+/* The smallest residual tolerance of a curve's system: its residual
+ * g_x -+ 1 is a product of m derivatives, each good to ~1e-13 relative
+ * at event-rtol 1e-14 and amplified near d* and grazings, so 1e-13 (the
+ * default preset's) is below its rounding floor on period-4 and -6
+ * orbits of fig 5.8 (measured: 5e-13 .. 1.2e-12); 1e-11 is a factor 10
+ * inside the 1e-10 the curves must meet (docs/curves.md). */
+#define SC_CURVE_FTOL 1e-11
 
 void sc_curve_settings_default(sc_curve_settings *s) {
   memset(s, 0, sizeof *s);
@@ -70,12 +79,12 @@ static int emit_special(trace *T, const char *label, const double *u,
                         double coef, double residual, const char *note) {
   sc_curve_special s;
   memset(&s, 0, sizeof s);
-  s.label = label;
+  snprintf(s.label, sizeof s.label, "%s", label);
   s.d = u[0], s.x = u[1], s.y = u[2];
   s.coefficient = coef;
   s.residual = residual;
   snprintf(s.note, sizeof s.note, "%s", note);
-  if (strcmp(label, "EP")) T->stats->nspecial++;
+  if (strcmp(label, "EP") && !strchr(label, '?')) T->stats->nspecial++;
   if (T->out && T->out->special && T->out->special(T->out->ctx, &s))
     return SC_ECALLBACK;
   return SC_OK;
@@ -103,6 +112,15 @@ static int emit_point(trace *T, const double *u, int branch) {
   return SC_OK;
 }
 
+static double dist_inf(const double *a, const double *b) {
+  double m = 0;
+  for (int i = 0; i < 3; i++) m = fmax(m, fabs(a[i] - b[i]));
+  return m;
+}
+
+/* sqrt(DBL_EPSILON) */
+#define SC_SQRT_EPS 1.4901161193847656e-08
+
 /* Locate the zero of test k between the points a and b (psi values pa,
  * pb of opposite signs) and report it. */
 static int locate(trace *T, size_t k, const double *a, const double *b,
@@ -114,11 +132,28 @@ static int locate(trace *T, size_t k, const double *a, const double *b,
   int st = sc_curve_locate(&T->cs, k, u, T->acc, &cert, &msg);
   char note[128];
   const char *label = T->cs.labels[k];
+  double mid[3];
+  for (int i = 0; i < 3; i++) mid[i] = a[i] + w * (b[i] - a[i]);
+  char rej[8];
+  snprintf(rej, sizeof rej, "%s?", label);
   if (st) {
-    double mid[3];
-    for (int i = 0; i < 3; i++) mid[i] = a[i] + w * (b[i] - a[i]);
     snprintf(note, sizeof note, "not located: %.100s", msg.text);
-    return emit_special(T, label, mid, NAN, cert.residual, note);
+    return emit_special(T, rej, mid, NAN, cert.residual, note);
+  }
+  /* A sign change across a pole or a jump of psi (near d* or a grazing,
+   * where f'' grows without bound) is no zero: the located psi must be
+   * small against its values at the bracket's ends (sqrt(eps): what a
+   * difference-row Newton reaches on a well-scaled zero), and the point
+   * must lie near the bracket. */
+  double scale = fmax(fabs(pa), fabs(pb));
+  double span = dist_inf(a, b);
+  if (!(fabs(cert.psi) <= SC_SQRT_EPS * scale) ||
+      dist_inf(u, mid) > 2 * span) {
+    snprintf(note, sizeof note,
+             "rejected: the sign change is not a zero (%s = %.3g, ends "
+             "%.3g, %.3g)",
+             k == 0 ? "coefficient" : "test", cert.psi, pa, pb);
+    return emit_special(T, rej, mid, NAN, cert.residual, note);
   }
   double psi[3];
   if (T->cs.test(u, psi, T->cs.user)) return SC_OK;
@@ -155,12 +190,6 @@ static int end_point(trace *T, const double *u, const char *why) {
                                            : sc_curve_coefficient(
                                                  T->set->type, &j);
   return emit_special(T, "EP", u, coef, NAN, why);
-}
-
-static double dist_inf(const double *a, const double *b) {
-  double m = 0;
-  for (int i = 0; i < 3; i++) m = fmax(m, fabs(a[i] - b[i]));
-  return m;
 }
 
 /* Damped Newton for the start at fixed y, unknowns (d, x): the orbits
@@ -332,11 +361,13 @@ int sc_curve_trace(sc_map *m, const sc_curve_settings *set, double d0,
   double floor;
   st = correct_start(&T, &floor, msg);
   /* The residual of f^m's system has a rounding floor that grows with m
-   * and with |f'| along the orbit (near d*, f' ~ |d - d*|^(-1/2)); a
-   * residual tolerance below it can never be met.  Raise it to 4 times
-   * the floor met at the start (reported), never beyond the fast
-   * preset's 1e-9. */
+   * and with |f'| along the orbit (near d*, f' ~ |d - d*|^(-1/2)), and
+   * varies along the curve; a residual tolerance below it can never be
+   * met.  Use at least SC_CURVE_FTOL, and 4 times the floor met at the
+   * start where that is larger (reported), never beyond 1e-9 (the fast
+   * preset's). */
   sc_accuracy acc = *T.acc;
+  acc.newton_ftol = fmax(acc.newton_ftol, SC_CURVE_FTOL);
   if (floor > acc.newton_ftol && floor <= 2.5e-10) {
     acc.newton_ftol = 4 * floor;
     acc.newton_atol = fmax(acc.newton_atol, 4 * floor);
