@@ -16,7 +16,8 @@
  * working precision). */
 static int solve(int N, double *A, double *b) {
   double amax = 0;
-  for (int i = 0; i < N * N; i++) amax = fmax(amax, fabs(A[i]));
+  for (int i = 0; i < N * N; i++)
+    amax = fmax(amax, fabs(A[i]));
   for (int c = 0; c < N; c++) {
     int p = c;
     for (int r = c + 1; r < N; r++)
@@ -34,13 +35,15 @@ static int solve(int N, double *A, double *b) {
     }
     for (int r = c + 1; r < N; r++) {
       double f = A[r * N + c] / A[c * N + c];
-      for (int j = c; j < N; j++) A[r * N + j] -= f * A[c * N + j];
+      for (int j = c; j < N; j++)
+        A[r * N + j] -= f * A[c * N + j];
       b[r] -= f * b[c];
     }
   }
   for (int c = N - 1; c >= 0; c--) {
     double s = b[c];
-    for (int j = c + 1; j < N; j++) s -= A[c * N + j] * b[j];
+    for (int j = c + 1; j < N; j++)
+      s -= A[c * N + j] * b[j];
     b[c] = s / A[c * N + c];
   }
   return SC_OK;
@@ -65,8 +68,7 @@ static int ext_eval(const sc_curve_system *cs, size_t k, const double *u,
 }
 
 int sc_curve_locate(const sc_curve_system *cs, size_t k, double *u,
-                    const sc_accuracy *acc, sc_curve_cert *cert,
-                    sc_msg *msg) {
+                    const sc_accuracy *acc, sc_curve_cert *cert, sc_msg *msg) {
   size_t n = cs->pb.n, N = n + 1;
   memset(cert, 0, sizeof *cert);
   cert->residual = cert->step = HUGE_VAL;
@@ -75,8 +77,7 @@ int sc_curve_locate(const sc_curve_system *cs, size_t k, double *u,
                    "sc_curve_locate: test %zu of %zu, %zu unknowns (valid: "
                    "k < ntest, at most %d)",
                    k, cs->ntest, N, MAXD);
-  double G[MAXD], A[MAXD * MAXD], J[MAXD * MAXD], up[MAXD], Gp[MAXD],
-      Gm[MAXD];
+  double G[MAXD], A[MAXD * MAXD], J[MAXD * MAXD], up[MAXD], Gp[MAXD], Gm[MAXD];
   for (int it = 1; it <= acc->newton_maxiter; it++) {
     int rc = ext_eval(cs, k, u, G);
     if (rc == 0) rc = cs->pb.jac(u, J, cs->pb.user);
@@ -85,7 +86,8 @@ int sc_curve_locate(const sc_curve_system *cs, size_t k, double *u,
                      "sc_curve_locate: callback failed (%d) at iteration %d",
                      rc, it);
     for (size_t i = 0; i < n; i++)
-      for (size_t j = 0; j < N; j++) A[i * N + j] = J[i * N + j];
+      for (size_t j = 0; j < N; j++)
+        A[i * N + j] = J[i * N + j];
     /* psi_k's row: central differences of a function computed from exact
      * derivatives; the step is relative, fd_step (u's scale: 1 + |u_j|) */
     for (size_t j = 0; j < N; j++) {
@@ -101,7 +103,8 @@ int sc_curve_locate(const sc_curve_system *cs, size_t k, double *u,
                        cs->labels ? cs->labels[k] : "?");
       A[n * N + j] = (Gp[n] - Gm[n]) / (2 * h);
     }
-    for (size_t i = 0; i < N; i++) G[i] = -G[i];
+    for (size_t i = 0; i < N; i++)
+      G[i] = -G[i];
     if (solve((int)N, A, G))
       return sc_fail(msg, SC_ESING,
                      "sc_curve_locate: singular extended Jacobian at "
@@ -123,7 +126,8 @@ int sc_curve_locate(const sc_curve_system *cs, size_t k, double *u,
       return sc_fail(msg, SC_ECALLBACK,
                      "sc_curve_locate: callback failed after a step");
     double res = 0;
-    for (size_t i = 0; i < n; i++) res = fmax(res, fabs(Gp[i]));
+    for (size_t i = 0; i < n; i++)
+      res = fmax(res, fabs(Gp[i]));
     cert->residual = res;
     cert->psi = Gp[n];
     /* the test function is not scaled (a normal-form coefficient may be

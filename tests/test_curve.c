@@ -11,7 +11,7 @@
 #include "test_util.h"
 
 typedef struct {
-  double worst;  /* largest violation of the closed form */
+  double worst; /* largest violation of the closed form */
   long n;
   int ncp, ngpd, ntp, nep;
   sc_curve_special cp, gpd;
@@ -24,8 +24,7 @@ static int on_point(void *ctx, const sc_curve_point *p) {
   double e;
   if (c->which == 0) {
     /* on the fold: mu2 = 3 x^2, mu1 = -2 x^3 */
-    e = fmax(fabs(p->y - 3 * p->d * p->d),
-             fabs(p->x + 2 * p->d * p->d * p->d));
+    e = fmax(fabs(p->y - 3 * p->d * p->d), fabs(p->x + 2 * p->d * p->d * p->d));
   } else {
     /* the flip of x = 0: mu1 = 0, x = 0, coefficient mu2 */
     e = fmax(fmax(fabs(p->x), fabs(p->d)), fabs(p->coefficient - p->y));
@@ -70,8 +69,8 @@ static void test_cubic(void) {
   tu_true(c.n >= 50, "cubic fold: %ld points", c.n);
   /* Newton to newton_ftol 1e-12 per point; the closed form's error is
    * the residual times the system's condition (~1 here) */
-  tu_close("cubic fold: max |27 mu1^2 = 4 mu2^3 violation| (via x)", c.worst,
-           0, 1e-12);
+  tu_close("cubic fold: max |27 mu1^2 = 4 mu2^3 violation| (via x)", c.worst, 0,
+           1e-12);
   tu_int("cubic fold: one cusp", c.ncp, 1);
   tu_close("cusp mu1", c.cp.x, 0, 1e-12);
   tu_close("cusp mu2", c.cp.y, 0, 1e-12);
@@ -112,8 +111,7 @@ static void test_gpd(void) {
           c.coef_sign_pos, c.coef_sign_neg);
   /* curve traced from mu2 = 0.4385 upwards first: c goes + to - on the
    * second branch, so the note names the change met going down */
-  tu_true(strstr(c.gpd.note, "critical") != NULL, "GPD note: %s",
-          c.gpd.note);
+  tu_true(strstr(c.gpd.note, "critical") != NULL, "GPD note: %s", c.gpd.note);
   sc_map_free(m);
 }
 

@@ -70,15 +70,13 @@ typedef struct {
  *         SC_CURVE_MAXDIM; SC_ECALLBACK if a callback failed.
  */
 int sc_curve_locate(const sc_curve_system *cs, size_t k, double *u,
-                    const sc_accuracy *acc, sc_curve_cert *cert,
-                    sc_msg *msg);
+                    const sc_accuracy *acc, sc_curve_cert *cert, sc_msg *msg);
 
 /** Derivatives of g = f^m at (x, p) up to those a fold or flip curve and
  * their normal forms need. */
 typedef struct {
   double g, gx, gxx, gxxx;
-  double gp[SC_MAP1D_MAXPARAM], gxp[SC_MAP1D_MAXPARAM],
-      gxxp[SC_MAP1D_MAXPARAM];
+  double gp[SC_MAP1D_MAXPARAM], gxp[SC_MAP1D_MAXPARAM], gxxp[SC_MAP1D_MAXPARAM];
 } sc_curve_jet;
 
 /** g and its derivatives at (x, p) (all np parameters); returns 0, > 0
@@ -126,12 +124,12 @@ double sc_curve_coefficient(sc_curve_type type, const sc_curve_jet *jet);
 /** Settings of sc_curve_trace(). */
 typedef struct {
   sc_curve_type type;
-  int period;            /**< m >= 1 */
-  int ix, iy;            /**< parameter indices of x and y (distinct) */
-  double xlo, xhi;       /**< the box: the curve stops at its edges */
+  int period;      /**< m >= 1 */
+  int ix, iy;      /**< parameter indices of x and y (distinct) */
+  double xlo, xhi; /**< the box: the curve stops at its edges */
   double ylo, yhi;
-  double h0, hmax;       /**< arclength steps (in (d, x, y)) */
-  long max_points;       /**< per direction */
+  double h0, hmax; /**< arclength steps (in (d, x, y)) */
+  long max_points; /**< per direction */
 } sc_curve_settings;
 
 /** @brief Defaults: fold, period 1, steps 1e-3 and 2e-2, 2000 points. */
@@ -139,24 +137,24 @@ void sc_curve_settings_default(sc_curve_settings *s);
 
 /** One point of a traced curve. */
 typedef struct {
-  double x, y, d;      /**< parameters and the orbit point carried */
-  double multiplier;   /**< (f^m)' there: +1 or -1 up to the tolerance */
-  double coefficient;  /**< the normal-form coefficient (psi_0) */
-  int branch;          /**< 0: the first direction, 1: the other */
+  double x, y, d;     /**< parameters and the orbit point carried */
+  double multiplier;  /**< (f^m)' there: +1 or -1 up to the tolerance */
+  double coefficient; /**< the normal-form coefficient (psi_0) */
+  int branch;         /**< 0: the first direction, 1: the other */
   const char *itinerary;
 } sc_curve_point;
 
 /** A codimension-two or end point of a traced curve. */
 typedef struct {
-  char label[8];       /**< "CP", "GPD", "TP", "EP" (end); with a '?'
-                            ("CP?") for a sign change of the test that
-                            was not located or is not a zero (note says
-                            why) */
+  char label[8]; /**< "CP", "GPD", "TP", "EP" (end); with a '?'
+                      ("CP?") for a sign change of the test that
+                      was not located or is not a zero (note says
+                      why) */
   double x, y, d;
   double coefficient;
-  double residual;     /**< sc_curve_cert.residual; NaN for EP */
-  char note[128];      /**< "beta min", "supercritical to subcritical",
-                            why the curve ended, ... */
+  double residual; /**< sc_curve_cert.residual; NaN for EP */
+  char note[128];  /**< "beta min", "supercritical to subcritical",
+                        why the curve ended, ... */
 } sc_curve_special;
 
 /** Callbacks of sc_curve_trace(); either may be NULL; non-zero stops. */
@@ -168,9 +166,9 @@ typedef struct {
 
 /** What sc_curve_trace() did. */
 typedef struct {
-  long npoints;   /**< points reported */
-  long nspecial;  /**< CP, GPD, TP located */
-  int closed;     /**< 1 if the curve closed on itself */
+  long npoints;        /**< points reported */
+  long nspecial;       /**< CP, GPD, TP located */
+  int closed;          /**< 1 if the curve closed on itself */
   double max_residual; /**< largest |F| over the reported points */
   double ftol;         /**< the residual tolerance used: the accuracy's
                             newton_ftol, or 4 times the rounding floor of

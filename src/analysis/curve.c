@@ -44,8 +44,8 @@ static int jet_fn(double x, const double *p, sc_curve_jet *j, void *user) {
       sc_map_set_param(c->m, (size_t)c->iy, p[c->iy], &c->emsg))
     return 1; /* outside the parameters' range: shrink the step */
   sc_map_value v;
-  if (sc_map_iterate(c->m, x, c->period, SC_EVAL_DERIV2 | SC_EVAL_ITINERARY,
-                     &v, &c->emsg))
+  if (sc_map_iterate(c->m, x, c->period, SC_EVAL_DERIV2 | SC_EVAL_ITINERARY, &v,
+                     &c->emsg))
     return 1;
   snprintf(c->itin, sizeof c->itin, "%s", v.itinerary);
   j->g = v.f;
@@ -103,9 +103,9 @@ static int emit_point(trace *T, const double *u, int branch) {
   F[1] = j.gx - (T->set->type == SC_CURVE_FOLD ? 1 : -1);
   T->stats->max_residual =
       fmax(T->stats->max_residual, fmax(fabs(F[0]), fabs(F[1])));
-  sc_curve_point pt = {u[1], u[2], u[0], j.gx,
-                       sc_curve_coefficient(T->set->type, &j), branch,
-                       T->mc.itin};
+  sc_curve_point pt = {
+      u[1],   u[2],      u[0], j.gx, sc_curve_coefficient(T->set->type, &j),
+      branch, T->mc.itin};
   T->stats->npoints++;
   if (T->out && T->out->point && T->out->point(T->out->ctx, &pt))
     return SC_ECALLBACK;
@@ -114,7 +114,8 @@ static int emit_point(trace *T, const double *u, int branch) {
 
 static double dist_inf(const double *a, const double *b) {
   double m = 0;
-  for (int i = 0; i < 3; i++) m = fmax(m, fabs(a[i] - b[i]));
+  for (int i = 0; i < 3; i++)
+    m = fmax(m, fabs(a[i] - b[i]));
   return m;
 }
 
@@ -126,14 +127,16 @@ static double dist_inf(const double *a, const double *b) {
 static int locate(trace *T, size_t k, const double *a, const double *b,
                   double pa, double pb) {
   double w = pa / (pa - pb), u[3];
-  for (int i = 0; i < 3; i++) u[i] = a[i] + w * (b[i] - a[i]);
+  for (int i = 0; i < 3; i++)
+    u[i] = a[i] + w * (b[i] - a[i]);
   sc_curve_cert cert;
   sc_msg msg;
   int st = sc_curve_locate(&T->cs, k, u, T->acc, &cert, &msg);
   char note[128];
   const char *label = T->cs.labels[k];
   double mid[3];
-  for (int i = 0; i < 3; i++) mid[i] = a[i] + w * (b[i] - a[i]);
+  for (int i = 0; i < 3; i++)
+    mid[i] = a[i] + w * (b[i] - a[i]);
   char rej[8];
   snprintf(rej, sizeof rej, "%s?", label);
   if (st) {
@@ -147,8 +150,7 @@ static int locate(trace *T, size_t k, const double *a, const double *b,
    * must lie near the bracket. */
   double scale = fmax(fabs(pa), fabs(pb));
   double span = dist_inf(a, b);
-  if (!(fabs(cert.psi) <= SC_SQRT_EPS * scale) ||
-      dist_inf(u, mid) > 2 * span) {
+  if (!(fabs(cert.psi) <= SC_SQRT_EPS * scale) || dist_inf(u, mid) > 2 * span) {
     snprintf(note, sizeof note,
              "rejected: the sign change is not a zero (%s = %.3g, ends "
              "%.3g, %.3g)",
@@ -161,8 +163,9 @@ static int locate(trace *T, size_t k, const double *a, const double *b,
   const char *yn = sc_map_type(T->mc.m)->params[T->set->iy].name;
   if (k == 0) {
     if (T->set->type == SC_CURVE_FOLD)
-      snprintf(note, sizeof note, "cusp: the fold's quadratic coefficient "
-                                  "changes sign");
+      snprintf(note, sizeof note,
+               "cusp: the fold's quadratic coefficient "
+               "changes sign");
     else
       snprintf(note, sizeof note, "generalized flip: %s",
                pa > 0 ? "supercritical to subcritical"
@@ -186,9 +189,9 @@ static int end_point(trace *T, const double *u, const char *why) {
   memcpy(p, T->sys.p, sizeof p);
   p[T->set->ix] = u[1];
   p[T->set->iy] = u[2];
-  double coef = jet_fn(u[0], p, &j, &T->mc) ? NAN
-                                           : sc_curve_coefficient(
-                                                 T->set->type, &j);
+  double coef = jet_fn(u[0], p, &j, &T->mc)
+                    ? NAN
+                    : sc_curve_coefficient(T->set->type, &j);
   return emit_special(T, "EP", u, coef, NAN, why);
 }
 
@@ -202,8 +205,10 @@ static int correct_start(trace *T, double *floor_out, sc_msg *msg) {
   *floor_out = HUGE_VAL;
   const sc_cont_problem *pb = &T->cs.pb;
   if (pb->f(u, F, pb->user))
-    return sc_fail(msg, SC_ENOCONV, "curve: the map fails at the start "
-                   "(%.200s)", T->mc.emsg.text);
+    return sc_fail(msg, SC_ENOCONV,
+                   "curve: the map fails at the start "
+                   "(%.200s)",
+                   T->mc.emsg.text);
   for (int it = 0; it < T->acc->newton_maxiter; it++) {
     double r = fmax(fabs(F[0]), fabs(F[1]));
     *floor_out = r;
@@ -217,8 +222,7 @@ static int correct_start(trace *T, double *floor_out, sc_msg *msg) {
     double lam = 1;
     for (int h = 0; h < 30; h++, lam *= 0.5) {
       ut[0] = u[0] + lam * dd, ut[1] = u[1] + lam * dx, ut[2] = u[2];
-      if (pb->f(ut, Ft, pb->user) == 0 &&
-          fmax(fabs(Ft[0]), fabs(Ft[1])) < r)
+      if (pb->f(ut, Ft, pb->user) == 0 && fmax(fabs(Ft[0]), fabs(Ft[1])) < r)
         break;
     }
     if (!(fmax(fabs(Ft[0]), fabs(Ft[1])) < r))
@@ -329,9 +333,9 @@ int sc_curve_trace(sc_map *m, const sc_curve_settings *set, double d0,
                    sc_msg *msg) {
   size_t np = sc_map_nparam(m);
   memset(stats, 0, sizeof *stats);
-  if (set->period < 1 || set->ix < 0 || set->iy < 0 ||
-      (size_t)set->ix >= np || (size_t)set->iy >= np || set->ix == set->iy ||
-      !(set->h0 > 0) || !(set->hmax >= set->h0) || set->max_points < 1 ||
+  if (set->period < 1 || set->ix < 0 || set->iy < 0 || (size_t)set->ix >= np ||
+      (size_t)set->iy >= np || set->ix == set->iy || !(set->h0 > 0) ||
+      !(set->hmax >= set->h0) || set->max_points < 1 ||
       !(set->xlo < set->xhi) || !(set->ylo < set->yhi))
     return sc_fail(msg, SC_EINVAL,
                    "sc_curve_trace: bad settings (period %d >= 1, x, y "
@@ -351,7 +355,8 @@ int sc_curve_trace(sc_map *m, const sc_curve_settings *set, double d0,
   T.sys.user = &T.mc;
   T.sys.type = set->type;
   T.sys.np = np;
-  for (size_t i = 0; i < np; i++) T.sys.p[i] = sc_map_get_param(m, i);
+  for (size_t i = 0; i < np; i++)
+    T.sys.p[i] = sc_map_get_param(m, i);
   T.sys.ifree[0] = set->ix;
   T.sys.ifree[1] = set->iy;
   double x0 = T.sys.p[set->ix], y0 = T.sys.p[set->iy];

@@ -136,7 +136,7 @@ static int curve_run(sc_cli_run *r) {
   sc_curve_settings set;
   sc_curve_settings_default(&set);
   set.type = strcmp(sc_scene_text(s, "type"), "flip") == 0 ? SC_CURVE_FLIP
-                                                            : SC_CURVE_FOLD;
+                                                           : SC_CURVE_FOLD;
   set.period = (int)sc_scene_int(s, "period");
   set.ix = sc_map_param_index(m, xn);
   set.iy = sc_map_param_index(m, yn);
@@ -158,10 +158,10 @@ static int curve_run(sc_cli_run *r) {
   if ((st = sc_cli_open(r, "points.csv", &pf))) goto done;
   c.curve = sc_file_stream(cf);
   c.points = sc_file_stream(pf);
-  fprintf(c.curve, "%s,%s,%s,period,multiplier,coefficient,itinerary\n", xn,
-          yn, sc_map_type(m)->state_name);
-  fprintf(c.points, "label,%s,%s,%s,period,note,coefficient,residual\n", xn,
-          yn, sc_map_type(m)->state_name);
+  fprintf(c.curve, "%s,%s,%s,period,multiplier,coefficient,itinerary\n", xn, yn,
+          sc_map_type(m)->state_name);
+  fprintf(c.points, "label,%s,%s,%s,period,note,coefficient,residual\n", xn, yn,
+          sc_map_type(m)->state_name);
   sc_curve_output out = {on_point, on_special, &c};
   sc_curve_stats stats;
   unsigned long ev0 = sc_map_nevals(m);
@@ -187,14 +187,16 @@ static int curve_run(sc_cli_run *r) {
   fprintf(f, "  %s curve of the period-%d orbit in (%s, %s): %ld points%s\n",
           set.type == SC_CURVE_FOLD ? "fold" : "flip", set.period, xn, yn,
           stats.npoints, stats.closed ? ", closed" : "");
-  fprintf(f, "  largest residual of the defining system over the points: "
-             "%.3g\n",
+  fprintf(f,
+          "  largest residual of the defining system over the points: "
+          "%.3g\n",
           stats.max_residual);
   fprintf(f, "  residual tolerance used: %.3g\n", stats.ftol);
   fprintf(f, "  codimension-two points: %ld\n", stats.nspecial);
   for (size_t i = 0; i < c.nsp; i++)
-    fprintf(f, "    %-3s %s = %.17g, %s = %.17g, %s = %.17g, coefficient "
-               "%.6g, residual %.3g: %s\n",
+    fprintf(f,
+            "    %-3s %s = %.17g, %s = %.17g, %s = %.17g, coefficient "
+            "%.6g, residual %.3g: %s\n",
             c.sp[i].label, xn, c.sp[i].x, yn, c.sp[i].y,
             sc_map_type(m)->state_name, c.sp[i].d, c.sp[i].coefficient,
             c.sp[i].residual, c.sp[i].note);
@@ -214,18 +216,19 @@ static int curve_run(sc_cli_run *r) {
                sc_plot_label(m, yn));
   fprintf(f, "set xrange [%.17g:%.17g]\nset yrange [%.17g:%.17g]\n", set.xlo,
           set.xhi, set.ylo, set.yhi);
-  fputs("set datafile separator ','\nset key inside right top box opaque\n",
-        f);
+  fputs("set datafile separator ','\nset key inside right top box opaque\n", f);
   fputs("lab(l) = strcol(1) eq l ? column(3) : NaN\n", f);
-  fprintf(f, "plot 'curve.csv' skip 1 using 1:2 with lines lw 2 lc rgb "
-             "'#1f4e9e' title '%s curve', \\\n",
+  fprintf(f,
+          "plot 'curve.csv' skip 1 using 1:2 with lines lw 2 lc rgb "
+          "'#1f4e9e' title '%s curve', \\\n",
           set.type == SC_CURVE_FOLD ? "fold" : "flip");
   const char *labels[4] = {"CP", "GPD", "TP", "EP"};
   const char *colors[4] = {"#d62728", "#9467bd", "#2ca02c", "#777777"};
   int pts[4] = {7, 5, 9, 6};
   for (int k = 0; k < 4; k++)
-    fprintf(f, "     'points.csv' skip 1 using 2:(lab('%s')) with points pt "
-               "%d ps 2 lc rgb '%s' title '%s'%s\n",
+    fprintf(f,
+            "     'points.csv' skip 1 using 2:(lab('%s')) with points pt "
+            "%d ps 2 lc rgb '%s' title '%s'%s\n",
             labels[k], pts[k], colors[k], labels[k], k < 3 ? ", \\" : "");
   st = sc_cli_commit(r, "curve.gp", gp);
   gp = NULL;

@@ -48,7 +48,8 @@ static inline sc_jet sc_jaxpy(sc_jet a, double s, const sc_jet *b, int nd) {
   for (int i = 0; i < nd; i++) {
     a.g[i] += s * b->g[i];
     a.t[i] += s * b->t[i];
-    for (int j = 0; j < nd; j++) a.h[i][j] += s * b->h[i][j];
+    for (int j = 0; j < nd; j++)
+      a.h[i][j] += s * b->h[i][j];
   }
   return a;
 }
@@ -66,7 +67,8 @@ static inline sc_jet sc_jscale(sc_jet a, double s, int nd) {
   for (int i = 0; i < nd; i++) {
     a.g[i] *= s;
     a.t[i] *= s;
-    for (int j = 0; j < nd; j++) a.h[i][j] *= s;
+    for (int j = 0; j < nd; j++)
+      a.h[i][j] *= s;
   }
   return a;
 }
@@ -84,8 +86,8 @@ static inline sc_jet sc_jmul(sc_jet a, sc_jet b, int nd) {
   for (int i = 0; i < nd; i++) {
     r.g[i] = a.g[i] * b.v + a.v * b.g[i];
     for (int j = 0; j < nd; j++)
-      r.h[i][j] = a.h[i][j] * b.v + a.g[i] * b.g[j] + a.g[j] * b.g[i] +
-                  a.v * b.h[i][j];
+      r.h[i][j] =
+          a.h[i][j] * b.v + a.g[i] * b.g[j] + a.g[j] * b.g[i] + a.v * b.h[i][j];
   }
   for (int k = 0; k < nd; k++)
     r.t[k] = a.t[k] * b.v + 2 * a.h[0][k] * b.g[0] + a.g[k] * b.h[0][0] +
@@ -123,8 +125,8 @@ static inline sc_jet sc_jdiv(sc_jet a, sc_jet b, int nd) {
 
 static inline sc_jet sc_jsqrt(sc_jet a, int nd) {
   double s = sqrt(a.v);
-  return sc_jcompose(&a, s, 0.5 / s, -0.25 / (s * a.v),
-                     0.375 / (s * a.v * a.v), nd);
+  return sc_jcompose(&a, s, 0.5 / s, -0.25 / (s * a.v), 0.375 / (s * a.v * a.v),
+                     nd);
 }
 
 /* sin and cos of one argument together. */

@@ -88,13 +88,13 @@ static jflow flow_make(const jpar *P, int mode, const jstate *x0) {
   sc_jet zero = sc_jconst(0);
   sc_jet F1 = sc_jmul(P->alpha, P->vs, ND);
   if (mode == SC_BK2_SLIP1) {
-    f.o1 = osc_make(x0->y1, x0->u1,
-                    sc_jadd(P->k1, sc_jmul(P->alpha, x0->y2, ND), ND), F1,
-                    P->w1);
+    f.o1 =
+        osc_make(x0->y1, x0->u1,
+                 sc_jadd(P->k1, sc_jmul(P->alpha, x0->y2, ND), ND), F1, P->w1);
   } else if (mode == SC_BK2_SLIP2) {
-    f.o1 = osc_make(x0->y2, x0->u2,
-                    sc_jadd(P->k2, sc_jmul(P->alpha, x0->y1, ND), ND), F1,
-                    P->w1);
+    f.o1 =
+        osc_make(x0->y2, x0->u2,
+                 sc_jadd(P->k2, sc_jmul(P->alpha, x0->y1, ND), ND), F1, P->w1);
   } else {
     f.o1 = osc_make(sc_jadd(x0->y1, x0->y2, ND), sc_jadd(x0->u1, x0->u2, ND),
                     sc_jadd(P->k1, P->k2, ND), zero, sc_jconst(1));
@@ -105,8 +105,8 @@ static jflow flow_make(const jpar *P, int mode, const jstate *x0) {
 }
 
 /* The state and the accelerations at the jet time t. */
-static void flow_at(const jpar *P, const jflow *f, const sc_jet *t,
-                    jstate *x, sc_jet acc[2]) {
+static void flow_at(const jpar *P, const jflow *f, const sc_jet *t, jstate *x,
+                    sc_jet acc[2]) {
   sc_jet q, p, a;
   osc_at(&f->o1, t, &q, &p, &a);
   if (f->mode == SC_BK2_SLIP1 || f->mode == SC_BK2_SLIP2) {
@@ -184,9 +184,11 @@ static int record(void *ctx, int mode, const bk2_state *x0, double dur) {
 
 static void fill_nan(sc_map_value *out, double *grad) {
   out->d2fdd2 = out->d3fdd3 = NAN;
-  for (int k = 0; k < SC_MAXPARAM; k++) out->d2fddp[k] = out->d3fdd2p[k] = NAN;
+  for (int k = 0; k < SC_MAXPARAM; k++)
+    out->d2fddp[k] = out->d3fdd2p[k] = NAN;
   if (grad)
-    for (int k = 0; k < ND; k++) grad[k] = NAN;
+    for (int k = 0; k < ND; k++)
+      grad[k] = NAN;
 }
 
 int sc_bk2_eval_jet(const bk2_inst *b, double d, unsigned flags,
@@ -200,8 +202,8 @@ int sc_bk2_eval_jet(const bk2_inst *b, double d, unsigned flags,
   bk2_state xd;
   phase_log L;
   L.n = 0;
-  int st = sc_bk2_iterate(b, &Pd, sc_dvar(d, 0, 5), flags | SC_EVAL_DERIV,
-                          &xd, out, record, &L, msg);
+  int st = sc_bk2_iterate(b, &Pd, sc_dvar(d, 0, 5), flags | SC_EVAL_DERIV, &xd,
+                          out, record, &L, msg);
   if (st == SC_EINVAL && L.n >= SC_BK2_JET_MAXPHASES)
     return sc_fail(msg, SC_EINVAL,
                    "bk2: %d slip phases in one iterate: too many for second "
@@ -252,7 +254,8 @@ int sc_bk2_eval_jet(const bk2_inst *b, double d, unsigned flags,
   if (out->neutral) {
     /* f = d + c(p) exactly (MODEL.md): no curvature in d. */
     out->d2fdd2 = out->d3fdd3 = 0;
-    for (int k = 0; k < 4; k++) out->d2fddp[k] = out->d3fdd2p[k] = 0;
+    for (int k = 0; k < 4; k++)
+      out->d2fddp[k] = out->d3fdd2p[k] = 0;
   } else {
     out->d2fdd2 = fj.h[0][0];
     out->d3fdd3 = fj.t[0];
@@ -262,6 +265,7 @@ int sc_bk2_eval_jet(const bk2_inst *b, double d, unsigned flags,
     }
   }
   if (grad)
-    for (int k = 0; k < ND; k++) grad[k] = fj.g[k];
+    for (int k = 0; k < ND; k++)
+      grad[k] = fj.g[k];
   return SC_OK;
 }
