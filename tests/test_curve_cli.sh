@@ -39,4 +39,18 @@ run_sc run "$SRC/examples/curve-cubic.ini" --set task.type=graze --out "$TMP/bad
 expect_rc "curve: unknown type" 2
 expect_err "curve: unknown type" "fold|flip"
 check "curve: nothing written on bad input" test ! -e "$TMP/bad/curve.csv"
+
+# overlay: a chart of other parameters is refused; a chart of (mu1, mu2)
+# is drawn under the curve
+run_sc check "$SRC/examples/curve-cubic.ini" --set task.overlay="$TMP/cubic/points.csv"
+expect_rc "curve: overlay not a chart" 2
+expect_err "curve: overlay not a chart" "is not a chart of (mu1, mu2)"
+run_sc check "$SRC/examples/curve-cubic.ini" --set task.overlay="$TMP/none.csv"
+expect_rc "curve: overlay missing" 2
+expect_err "curve: overlay missing" "cannot be read"
+printf 'mu1,mu2,period,x,iterations\n0,0,1,0,10\n' >"$TMP/chart.csv"
+run_sc run "$SRC/examples/curve-cubic.ini" --set task.overlay="$TMP/chart.csv" \
+  --set output.plot=no --out "$TMP/ov" --quiet
+expect_rc "curve: overlay" 0
+check "curve: overlay drawn under the curve" grep -q "chart.csv' skip 1 using 1:2:(\$3 < 0 ? NaN : \$3) with image" "$TMP/ov/curve.gp"
 finish

@@ -1,7 +1,7 @@
 /* Task `curve`: the fold or flip curve of a period-m orbit in two
  * parameters, its codimension-two points (CP, GPD, TP) and where it ends
  * (sc_curve_trace, curve.h; docs/curves.md). */
-#define _POSIX_C_SOURCE 200809L
+#define _XOPEN_SOURCE 700 /* realpath */
 
 #include <math.h>
 #include <stdio.h>
@@ -38,7 +38,33 @@ static const sc_key_info curve_keys[] = {
      "largest arclength step (0: the box's smaller side / 50)"},
     {"max-points", SC_KEY_INT, 0, "5000", 2, 10000000, 0, 0, NULL,
      "accepted points per direction"},
+    {"overlay", SC_KEY_TEXT, 0, NULL, 0, 0, 0, 0, NULL,
+     "a chart.csv of the chart task over the same x and y, drawn under "
+     "the curve (path relative to the working folder)"},
 };
+
+/* The overlay's header must start with "<x>,<y>,period": a chart of
+ * these two parameters.  Returns 0 or a status with the reason. */
+static int overlay_check(const sc_scene *s, const char *path, const char *xn,
+                         const char *yn, sc_msg *msg) {
+  FILE *f = fopen(path, "r");
+  if (!f)
+    return sc_scene_fail_key(s, "task", "overlay", msg,
+                             "overlay = %s cannot be read (valid: a chart.csv "
+                             "of the chart task)",
+                             path);
+  char line[256] = "", want[256];
+  char *ok = fgets(line, sizeof line, f);
+  fclose(f);
+  snprintf(want, sizeof want, "%s,%s,period,", xn, yn);
+  if (!ok || strncmp(line, want, strlen(want)) != 0)
+    return sc_scene_fail_key(s, "task", "overlay", msg,
+                             "overlay = %s is not a chart of (%s, %s): its "
+                             "header does not start with '%s' (valid: a "
+                             "chart.csv with x = %s, y = %s)",
+                             path, xn, yn, want, xn, yn);
+  return SC_OK;
+}
 
 static int curve_check(const sc_scene *s, sc_msg *msg) {
   const sc_map *m = sc_scene_map(s);
@@ -64,6 +90,8 @@ static int curve_check(const sc_scene *s, sc_msg *msg) {
           "(valid: inside the box)",
           nm[k], v, sc_scene_text(s, lo[k]), sc_scene_text(s, hi[k]));
   }
+  const char *ov = sc_scene_text(s, "overlay");
+  if (ov) return overlay_check(s, ov, xn, yn, msg);
   return SC_OK;
 }
 
@@ -218,8 +246,25 @@ static int curve_run(sc_cli_run *r) {
           set.xhi, set.ylo, set.yhi);
   fputs("set datafile separator ','\nset key inside right top box opaque\n", f);
   fputs("lab(l) = strcol(1) eq l ? column(3) : NaN\n", f);
+  const char *ov = sc_scene_text(s, "overlay");
+  char ovpath[4096];
+  int have_ov = ov && realpath(ov, ovpath);
+  if (have_ov)
+    /* the chart's periods in light colours under the curve; undefined
+     * points (period -1) left out */
+    fputs("set palette defined (0 '#f2f2f2', 1 '#cfe3f7', 4 '#d9f2d0', "
+          "8 '#fbe3c8', 16 '#f6cfd6')\n"
+          "set cbrange [0:16]\nset cblabel 'period of the chart'\n",
+          f);
+  fputs("plot ", f);
+  if (have_ov) {
+    sc_plot_quote(f, ovpath);
+    fputs(" skip 1 using 1:2:($3 < 0 ? NaN : $3) with image notitle, \\\n"
+          "     ",
+          f);
+  }
   fprintf(f,
-          "plot 'curve.csv' skip 1 using 1:2 with lines lw 2 lc rgb "
+          "'curve.csv' skip 1 using 1:2 with lines lw 2 lc rgb "
           "'#1f4e9e' title '%s curve', \\\n",
           set.type == SC_CURVE_FOLD ? "fold" : "flip");
   const char *labels[4] = {"CP", "GPD", "TP", "EP"};
