@@ -53,4 +53,23 @@ run_sc run "$SRC/examples/curve-cubic.ini" --set task.overlay="$TMP/chart.csv" \
   --set output.plot=no --out "$TMP/ov" --quiet
 expect_rc "curve: overlay" 0
 check "curve: overlay drawn under the curve" grep -q "chart.csv' skip 1 using 1:2:(\$3 < 0 ? NaN : \$3) with image" "$TMP/ov/curve.gp"
+
+# start = a located LP of a branch task's points.csv instead of d0: the
+# fold of x -> x + mu1 + 1.2 x - x^3 at x = -sqrt(0.4), mu1 = 0.8 sqrt(0.4)
+grep -v '^d0' "$SRC/examples/curve-cubic.ini" >"$TMP/nod0.ini"
+printf 'label,parameter,value,d,period,multiplier,note\n' >"$TMP/pts.csv"
+printf 'PD,mu1,0.1377,-1.0328,1,-1,x\n' >>"$TMP/pts.csv"
+printf 'LP,mu1,0.50596,-0.63246,1,1,x\n' >>"$TMP/pts.csv"
+run_sc run "$TMP/nod0.ini" --set task.start="$TMP/pts.csv:2" --out "$TMP/st" --quiet
+expect_rc "curve: start from points.csv" 0
+check "curve: start from points.csv finds the cusp" grep -q "CP  mu1 = 0" "$TMP/st/summary.txt"
+run_sc check "$TMP/nod0.ini" --set task.start="$TMP/pts.csv:1"
+expect_rc "curve: start row is a PD for a fold" 2
+expect_err "curve: start row is a PD for a fold" "is a PD in mu1"
+run_sc check "$TMP/nod0.ini" --set task.start="$TMP/pts.csv:3"
+expect_rc "curve: start row missing" 2
+expect_err "curve: start row missing" "has no row 3"
+run_sc check "$TMP/nod0.ini"
+expect_rc "curve: neither d0 nor start" 2
+expect_err "curve: neither d0 nor start" "either d0 or start"
 finish

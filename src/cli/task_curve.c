@@ -30,8 +30,12 @@ static const sc_key_info curve_keys[] = {
      "the box: upper end of y (> y-from)"},
     {"period", SC_KEY_INT, 0, "1", 1, 4096, 0, 0, NULL,
      "m: the orbit is a fixed point of f^m (single shooting)"},
-    {"d0", SC_KEY_REAL, 1, NULL, -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
-     "guess of an orbit point at the start"},
+    {"d0", SC_KEY_REAL, 0, NULL, -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
+     "guess of an orbit point at the start (or give start)"},
+    {"start", SC_KEY_TEXT, 0, NULL, 0, 0, 0, 0, NULL,
+     "FILE:N, row N (1 = first after the header) of a branch task's "
+     "points.csv: an LP (type = fold) or PD (type = flip) located in x; "
+     "x, d0 and period are taken from it (instead of d0)"},
     {"h0", SC_KEY_REAL, 0, "0", 0, HUGE_VAL, 0, 1, NULL,
      "initial arclength step in (d, x, y) (0: hmax / 10)"},
     {"hmax", SC_KEY_REAL, 0, "0", 0, HUGE_VAL, 0, 1, NULL,
@@ -66,6 +70,89 @@ static int overlay_check(const sc_scene *s, const char *path, const char *xn,
   return SC_OK;
 }
 
+/* A row of a branch task's points.csv, its columns found by the header's
+ * names (label, parameter, value, d, period). */
+typedef struct {
+  char label[16], param[64];
+  double value, d;
+  int period;
+} start_row;
+
+/* Split a CSV line in place into at most max fields. */
+static int split(char *line, char **f, int max) {
+  int n = 0;
+  line[strcspn(line, "\r\n")] = '\0';
+  for (char *p = line; n < max;) {
+    f[n++] = p;
+    char *c = strchr(p, ',');
+    if (!c) break;
+    *c = '\0';
+    p = c + 1;
+  }
+  return n;
+}
+
+static int read_start(const char *spec, start_row *row, char *why, size_t len) {
+  char path[4096];
+  snprintf(path, sizeof path, "%s", spec);
+  char *colon = strrchr(path, ':');
+  long n = 0;
+  if (!colon || sc_parse_long(colon + 1, 1, 100000000, &n)) {
+    snprintf(why, len, "not FILE:N with N >= 1");
+    return SC_EINVAL;
+  }
+  *colon = '\0';
+  FILE *f = fopen(path, "r");
+  if (!f) {
+    snprintf(why, len, "%.300s cannot be read", path);
+    return SC_EINVAL;
+  }
+  char head[1024], line[4096], *h[16], *v[16];
+  int col[5] = {-1, -1, -1, -1, -1};
+  const char *names[5] = {"label", "parameter", "value", "d", "period"};
+  int nh = fgets(head, sizeof head, f) ? split(head, h, 16) : 0;
+  for (int i = 0; i < nh; i++)
+    for (int k = 0; k < 5; k++)
+      if (strcmp(h[i], names[k]) == 0) col[k] = i;
+  int found = 0;
+  for (long r = 1; fgets(line, sizeof line, f); r++)
+    if (r == n) {
+      found = 1;
+      break;
+    }
+  fclose(f);
+  for (int k = 0; k < 5; k++)
+    if (col[k] < 0) {
+      snprintf(why, len,
+               "%.300s has no column '%s' (a branch task's points.csv "
+               "has label,parameter,value,d,period)",
+               path, names[k]);
+      return SC_EINVAL;
+    }
+  if (!found) {
+    snprintf(why, len, "%.300s has no row %ld", path, n);
+    return SC_EINVAL;
+  }
+  int nv = split(line, v, 16);
+  long per = 0;
+  for (int k = 0; k < 5; k++)
+    if (col[k] >= nv) {
+      snprintf(why, len, "row %ld of %.300s is short", n, path);
+      return SC_EINVAL;
+    }
+  if (sc_parse_double(v[col[2]], &row->value) ||
+      sc_parse_double(v[col[3]], &row->d) ||
+      sc_parse_long(v[col[4]], 1, 4096, &per)) {
+    snprintf(why, len, "row %ld of %.300s: value, d or period unreadable", n,
+             path);
+    return SC_EINVAL;
+  }
+  row->period = (int)per;
+  snprintf(row->label, sizeof row->label, "%s", v[col[0]]);
+  snprintf(row->param, sizeof row->param, "%s", v[col[1]]);
+  return SC_OK;
+}
+
 static int curve_check(const sc_scene *s, sc_msg *msg) {
   const sc_map *m = sc_scene_map(s);
   const char *xn = sc_scene_text(s, "x"), *yn = sc_scene_text(s, "y");
@@ -74,6 +161,28 @@ static int curve_check(const sc_scene *s, sc_msg *msg) {
                              "y = %s is the same parameter as x (valid: "
                              "another parameter of the model)",
                              yn);
+  const char *spec = sc_scene_text(s, "start");
+  int has_d0 = !isnan(sc_scene_real(s, "d0"));
+  if (!spec == !has_d0)
+    return sc_scene_fail_key(s, "task", spec ? "start" : "d0", msg,
+                             "give either d0 or start (valid: exactly one "
+                             "of them)");
+  start_row row;
+  if (spec) {
+    char why[512];
+    if (read_start(spec, &row, why, sizeof why))
+      return sc_scene_fail_key(s, "task", "start", msg,
+                               "start = %s: %s (valid: FILE:N, a row of a "
+                               "branch task's points.csv)",
+                               spec, why);
+    const char *want = strcmp(sc_scene_text(s, "type"), "flip") ? "LP" : "PD";
+    if (strcmp(row.param, xn) || strcmp(row.label, want))
+      return sc_scene_fail_key(s, "task", "start", msg,
+                               "start = %s is a %s in %s (valid: a %s in x "
+                               "= %s for type = %s)",
+                               spec, row.label, row.param, want, xn,
+                               sc_scene_text(s, "type"));
+  }
   const char *lo[2] = {"x-from", "y-from"}, *hi[2] = {"x-to", "y-to"};
   const char *nm[2] = {xn, yn};
   for (int k = 0; k < 2; k++) {
@@ -83,6 +192,7 @@ static int curve_check(const sc_scene *s, sc_msg *msg) {
                                hi[k], sc_scene_text(s, hi[k]), lo[k],
                                sc_scene_text(s, lo[k]), lo[k]);
     double v = sc_map_get_param(m, (size_t)sc_map_param_index(m, nm[k]));
+    if (k == 0 && spec) v = row.value;
     if (v < sc_scene_real(s, lo[k]) || v > sc_scene_real(s, hi[k]))
       return sc_scene_fail_key(
           s, "task", lo[k], msg,
@@ -159,6 +269,7 @@ static double now(void) {
 
 static int curve_run(sc_cli_run *r) {
   const sc_scene *s = r->scene;
+  int st0;
   sc_map *m = r->map;
   const char *xn = sc_scene_text(s, "x"), *yn = sc_scene_text(s, "y");
   sc_curve_settings set;
@@ -177,6 +288,18 @@ static int curve_run(sc_cli_run *r) {
   if (set.h0 > set.hmax) set.hmax = set.h0;
   set.max_points = sc_scene_int(s, "max-points");
   double d0 = sc_scene_real(s, "d0");
+  const char *spec = sc_scene_text(s, "start");
+  if (spec) {
+    /* checked by curve_check(): the row exists and fits */
+    start_row row;
+    char why[512];
+    if (read_start(spec, &row, why, sizeof why))
+      return sc_fail(r->msg, SC_EIO, "curve: start = %s: %s", spec, why);
+    if ((st0 = sc_map_set_param(m, (size_t)set.ix, row.value, r->msg)))
+      return st0;
+    d0 = row.d;
+    set.period = row.period;
+  }
 
   out_ctx c = {0};
   c.period = set.period;
