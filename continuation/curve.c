@@ -4,11 +4,10 @@
  * vectors, Jacobians and callbacks (DESIGN.md). */
 #include <float.h>
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "slipcont/curve.h"
-
-#define MAXD SC_CURVE_MAXDIM
 
 /* Gaussian elimination with partial pivoting on the N x N row-major A;
  * b is overwritten with the solution.  Returns SC_ESING for a zero pivot
@@ -55,10 +54,9 @@ static int finite_all(const double *v, size_t n) {
   return 1;
 }
 
-/* G(u) = (F(u), psi_k(u)) */
+/* G(u) = (F(u), psi_k(u)); psi has room for ntest values */
 static int ext_eval(const sc_curve_system *cs, size_t k, const double *u,
-                    double *G) {
-  double psi[MAXD];
+                    double *G, double *psi) {
   int rc = cs->pb.f(u, G, cs->pb.user);
   if (rc) return rc;
   rc = cs->test(u, psi, cs->user);
@@ -67,19 +65,37 @@ static int ext_eval(const sc_curve_system *cs, size_t k, const double *u,
   return finite_all(G, cs->pb.n + 1) ? 0 : 1;
 }
 
+static int locate_run(const sc_curve_system *cs, size_t k, double *u,
+                      const sc_accuracy *acc, sc_curve_cert *cert, sc_msg *msg,
+                      double *G, double *up, double *Gp, double *Gm,
+                      double *psi, double *A, double *J);
+
 int sc_curve_locate(const sc_curve_system *cs, size_t k, double *u,
                     const sc_accuracy *acc, sc_curve_cert *cert, sc_msg *msg) {
   size_t n = cs->pb.n, N = n + 1;
   memset(cert, 0, sizeof *cert);
   cert->residual = cert->step = HUGE_VAL;
-  if (k >= cs->ntest || N > MAXD || !cs->test)
+  if (k >= cs->ntest || !cs->test)
     return sc_fail(msg, SC_EINVAL,
-                   "sc_curve_locate: test %zu of %zu, %zu unknowns (valid: "
-                   "k < ntest, at most %d)",
-                   k, cs->ntest, N, MAXD);
-  double G[MAXD], A[MAXD * MAXD], J[MAXD * MAXD], up[MAXD], Gp[MAXD], Gm[MAXD];
+                   "sc_curve_locate: test %zu of %zu (valid: k < ntest)", k,
+                   cs->ntest);
+  /* One block: G, up, Gp, Gm (N each), psi (ntest), A, J (N^2 each). */
+  double *mem = malloc((4 * N + cs->ntest + 2 * N * N) * sizeof *mem);
+  if (!mem) return sc_fail(msg, SC_ENOMEM, "sc_curve_locate: out of memory");
+  double *G = mem, *up = G + N, *Gp = up + N, *Gm = Gp + N, *psi = Gm + N;
+  double *A = psi + cs->ntest, *J = A + N * N;
+  int st = locate_run(cs, k, u, acc, cert, msg, G, up, Gp, Gm, psi, A, J);
+  free(mem);
+  return st;
+}
+
+static int locate_run(const sc_curve_system *cs, size_t k, double *u,
+                      const sc_accuracy *acc, sc_curve_cert *cert, sc_msg *msg,
+                      double *G, double *up, double *Gp, double *Gm,
+                      double *psi, double *A, double *J) {
+  size_t n = cs->pb.n, N = n + 1;
   for (int it = 1; it <= acc->newton_maxiter; it++) {
-    int rc = ext_eval(cs, k, u, G);
+    int rc = ext_eval(cs, k, u, G, psi);
     if (rc == 0) rc = cs->pb.jac(u, J, cs->pb.user);
     if (rc)
       return sc_fail(msg, SC_ECALLBACK,
@@ -94,9 +110,9 @@ int sc_curve_locate(const sc_curve_system *cs, size_t k, double *u,
       double h = acc->fd_step * (1 + fabs(u[j]));
       memcpy(up, u, N * sizeof *u);
       up[j] = u[j] + h;
-      rc = ext_eval(cs, k, up, Gp);
+      rc = ext_eval(cs, k, up, Gp, psi);
       up[j] = u[j] - h;
-      if (rc == 0) rc = ext_eval(cs, k, up, Gm);
+      if (rc == 0) rc = ext_eval(cs, k, up, Gm, psi);
       if (rc)
         return sc_fail(msg, SC_ECALLBACK,
                        "sc_curve_locate: test %s failed near the point",
@@ -121,7 +137,7 @@ int sc_curve_locate(const sc_curve_system *cs, size_t k, double *u,
     cert->iterations = it;
     cert->step = step;
     /* the certificate is the residual at the returned point */
-    rc = ext_eval(cs, k, u, Gp);
+    rc = ext_eval(cs, k, u, Gp, psi);
     if (rc)
       return sc_fail(msg, SC_ECALLBACK,
                      "sc_curve_locate: callback failed after a step");

@@ -5,4 +5,5 @@ list(APPEND SC_SOURCES
   continuation/linsolve_klu.c
   continuation/branch.c
   continuation/map1d.c
-  continuation/curve.c)
+  continuation/curve.c
+  continuation/curve_ms.c)

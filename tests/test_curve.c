@@ -170,6 +170,7 @@ typedef struct {
   long n;
   int ntp, ncp;
   double tp_min_coef;
+  double tp[8][2]; /* alpha, beta of the turning points */
 } bk2c;
 
 static int bk2_point(void *ctx, const sc_curve_point *p) {
@@ -193,12 +194,63 @@ static int bk2_special(void *ctx, const sc_curve_special *s) {
   printf("  %s alpha %.17g beta %.17g d %.17g coef %.6g res %.3g: %s\n",
          s->label, s->x, s->y, s->d, s->coefficient, s->residual, s->note);
   if (!strcmp(s->label, "TP")) {
+    if (c->ntp < 8) c->tp[c->ntp][0] = s->x, c->tp[c->ntp][1] = s->y;
     c->ntp++;
     c->tp_min_coef = fmin(c->tp_min_coef, fabs(s->coefficient));
     tu_true(s->residual <= 1e-10, "TP residual %g <= 1e-10", s->residual);
   }
   if (!strcmp(s->label, "CP")) c->ncp++;
   return 0;
+}
+
+static void trace_bk2_period6(int multiple, bk2c *c, sc_curve_stats *st) {
+  sc_map *m;
+  sc_map_alloc("bk2", NULL, &m, NULL);
+  sc_map_set_option(m, "driver", "frozen", NULL);
+  sc_map_set_param_by_name(m, "alpha", 3.2196, NULL);
+  sc_map_set_param_by_name(m, "beta", 2.5, NULL);
+  sc_curve_settings s;
+  sc_curve_settings_default(&s);
+  s.period = 6;
+  s.multiple = multiple;
+  s.ix = 0, s.iy = 1;
+  s.xlo = 2, s.xhi = 4.5, s.ylo = 1.5, s.yhi = 4;
+  s.hmax = 0.05, s.h0 = 0.005;
+  memset(c, 0, sizeof *c);
+  c->m = m;
+  c->tp_min_coef = HUGE_VAL;
+  sc_curve_output out = {bk2_point, bk2_special, c};
+  sc_msg msg;
+  int rc = sc_curve_trace(m, &s, 0.10512, &out, st, &msg);
+  tu_int(multiple ? "bk2 period 6, multiple shooting: status"
+                  : "bk2 period 6, single shooting: status",
+         rc, SC_OK);
+  sc_map_free(m);
+}
+
+/* Multiple shooting traces the same closed curve: same turning points
+ * (each located to the residual tolerance 1e-11 of two differently
+ * conditioned systems: 1e-10 in the parameters), no cusp. */
+static void test_bk2_multiple(void) {
+  bk2c c1, c2;
+  sc_curve_stats s1, s2;
+  trace_bk2_period6(0, &c1, &s1);
+  trace_bk2_period6(1, &c2, &s2);
+  tu_true(s2.closed, "multiple shooting: the curve closes (%ld points)", c2.n);
+  tu_close("multiple shooting: worst residual of f^6's system", c2.worst, 0,
+           1e-10);
+  tu_int("multiple shooting: as many turning points", c2.ntp, c1.ntp);
+  tu_int("multiple shooting: no cusp", c2.ncp, 0);
+  double worst = 0;
+  for (int i = 0; i < c1.ntp && i < c2.ntp && i < 8; i++) {
+    double best = HUGE_VAL;
+    for (int k = 0; k < c2.ntp && k < 8; k++)
+      best = fmin(best, fmax(fabs(c1.tp[i][0] - c2.tp[k][0]),
+                             fabs(c1.tp[i][1] - c2.tp[k][1])));
+    worst = fmax(worst, best);
+  }
+  tu_close("multiple vs single shooting: turning points (max |diff|)", worst, 0,
+           1e-8);
 }
 
 static void test_bk2_period6(void) {
@@ -237,6 +289,7 @@ static void test_bk2_period6(void) {
 int main(void) {
   test_locate();
   test_bk2_period6();
+  test_bk2_multiple();
   test_cubic();
   test_gpd();
   return tu_finish();

@@ -29,17 +29,14 @@
 extern "C" {
 #endif
 
-/** Most unknowns of a curve system handled by sc_curve_locate(). */
-#define SC_CURVE_MAXDIM 8
-
 /**
  * A curve's defining system and its codimension-two tests.  The tests
  * are functions of the point alone (not of the tangent), so that their
  * zeros solve the square extended system {F = 0, psi_k = 0}.
  */
 typedef struct {
-  sc_cont_problem pb; /**< F, its Jacobian, n (n + 1 <= SC_CURVE_MAXDIM);
-                           pb.ntest is ignored */
+  sc_cont_problem pb; /**< F, its dense Jacobian, n; pb.ntest is
+                           ignored */
   size_t ntest;       /**< number of test functions */
   /** All test values psi_k(u), k < ntest; returns as pb's callbacks. */
   int (*test)(const double *u, double *psi, void *user);
@@ -66,8 +63,8 @@ typedef struct {
  * certified by the step; its value is returned).
  * @return SC_OK; SC_ENOCONV after newton_maxiter iterations (the
  *         certificate says how far it got); SC_ESING for a singular
- *         extended Jacobian; SC_EINVAL for k >= ntest or n + 1 >
- *         SC_CURVE_MAXDIM; SC_ECALLBACK if a callback failed.
+ *         extended Jacobian; SC_EINVAL for k >= ntest; SC_ENOMEM;
+ *         SC_ECALLBACK if a callback failed.
  */
 int sc_curve_locate(const sc_curve_system *cs, size_t k, double *u,
                     const sc_accuracy *acc, sc_curve_cert *cert, sc_msg *msg);
@@ -116,6 +113,44 @@ typedef struct {
 int sc_curve_map1d_system(const sc_curve_map1d *sys, sc_curve_system *cs,
                           sc_msg *msg);
 
+/** Workspace of a multiple-shooting curve system (opaque). */
+typedef struct sc_curve_ms_work sc_curve_ms_work;
+
+/** @brief Workspace for a period-@p period multiple-shooting system.
+ * @return SC_OK, SC_EINVAL (period 0) or SC_ENOMEM. */
+int sc_curve_ms_work_alloc(size_t period, sc_curve_ms_work **out, sc_msg *msg);
+/** @brief Release @p w; NULL is accepted. */
+void sc_curve_ms_work_free(sc_curve_ms_work *w);
+
+/**
+ * A fold or flip curve of a period-m orbit by multiple shooting, in
+ * u = (x_0, ..., x_{m-1}, p_a, p_b): F_k = f(x_k) - x_{k+1 mod m} (k < m)
+ * and F_m = prod_k f'(x_k) -+ 1 (continuation/curve_ms.c).  Tests as
+ * sc_curve_map1d (psi_0 from g = f^m at x_0 through @c gfn).  The
+ * callbacks write into @c work: one system per thread.
+ */
+typedef struct {
+  sc_curve_jet_fn fn;  /**< one iterate f: g, gx, gp, gxx, gxp are used */
+  sc_curve_jet_fn gfn; /**< g = f^m at x_0, for the normal-form test */
+  void *user;          /**< passed to fn */
+  void *guser;         /**< passed to gfn */
+  sc_curve_type type;
+  size_t period; /**< m >= 1 */
+  size_t np;
+  double p[SC_MAP1D_MAXPARAM];
+  int ifree[2];
+  sc_curve_ms_work *work; /**< from sc_curve_ms_work_alloc(period) */
+} sc_curve_map1d_ms;
+
+/**
+ * @brief Fill @p cs with the multiple-shooting system of @p sys (n =
+ * m + 1 equations; dense Jacobian).
+ * @return SC_OK, or SC_EINVAL (NULL callbacks or workspace, a workspace
+ *         of another period, bad indices or type).
+ */
+int sc_curve_map1d_ms_system(const sc_curve_map1d_ms *sys, sc_curve_system *cs,
+                             sc_msg *msg);
+
 /** The normal-form coefficient of @p jet for @p type (psi_0 above). */
 double sc_curve_coefficient(sc_curve_type type, const sc_curve_jet *jet);
 
@@ -125,6 +160,8 @@ double sc_curve_coefficient(sc_curve_type type, const sc_curve_jet *jet);
 typedef struct {
   sc_curve_type type;
   int period;      /**< m >= 1 */
+  int multiple;    /**< 1: multiple shooting in (d_0..d_{m-1}, x, y);
+                        0: single shooting on f^m */
   int ix, iy;      /**< parameter indices of x and y (distinct) */
   double xlo, xhi; /**< the box: the curve stops at its edges */
   double ylo, yhi;

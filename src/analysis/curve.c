@@ -6,6 +6,7 @@
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "slipcont/curve.h"
@@ -66,21 +67,41 @@ typedef struct {
   const sc_curve_settings *set;
   const sc_curve_output *out;
   sc_curve_stats *stats;
-  sc_curve_system cs;
+  sc_curve_system cs; /* the system continued: single or multiple */
+  sc_curve_system ss; /* single shooting, for the start's correction */
   sc_curve_map1d sys;
-  map_ctx mc;
+  sc_curve_map1d_ms msys;
+  map_ctx mc;  /* g = f^m */
+  map_ctx mc1; /* f, for multiple shooting */
   const sc_accuracy *acc;
   char itin0[SC_ITIN_LEN];
-  double u0[3];
+  size_t N;   /* unknowns: 3, or m + 2 with multiple shooting */
+  double *u0; /* N: the corrected start */
+  double *prev, *cur, *u, *mid, *F; /* N each: work */
   int closed;
 } trace;
+
+/* x and y of a point u (its last two entries) */
+#define UX(T, u) ((u)[(T)->N - 2])
+#define UY(T, u) ((u)[(T)->N - 1])
+
+/* g = f^m's jet at the orbit point u[0], parameters from u; fills
+ * T->mc.itin.  Returns the callback's status. */
+static int g_at(trace *T, const double *u, sc_curve_jet *j) {
+  double p[SC_MAP1D_MAXPARAM];
+  memcpy(p, T->sys.p, sizeof p);
+  p[T->set->ix] = UX(T, u);
+  p[T->set->iy] = UY(T, u);
+  memset(j, 0, sizeof *j);
+  return jet_fn(u[0], p, j, &T->mc);
+}
 
 static int emit_special(trace *T, const char *label, const double *u,
                         double coef, double residual, const char *note) {
   sc_curve_special s;
   memset(&s, 0, sizeof s);
   snprintf(s.label, sizeof s.label, "%s", label);
-  s.d = u[0], s.x = u[1], s.y = u[2];
+  s.d = u[0], s.x = UX(T, u), s.y = UY(T, u);
   s.coefficient = coef;
   s.residual = residual;
   snprintf(s.note, sizeof s.note, "%s", note);
@@ -90,31 +111,31 @@ static int emit_special(trace *T, const char *label, const double *u,
   return SC_OK;
 }
 
+static double norm_inf(const double *v, size_t n) {
+  double m = 0;
+  for (size_t i = 0; i < n; i++)
+    m = fmax(m, fabs(v[i]));
+  return m;
+}
+
 static int emit_point(trace *T, const double *u, int branch) {
   sc_curve_jet j;
-  double F[2];
-  /* jet at u with the free parameters from u */
-  double p[SC_MAP1D_MAXPARAM];
-  memcpy(p, T->sys.p, sizeof p);
-  p[T->set->ix] = u[1];
-  p[T->set->iy] = u[2];
-  if (jet_fn(u[0], p, &j, &T->mc)) return SC_OK; /* cannot happen here */
-  F[0] = j.g - u[0];
-  F[1] = j.gx - (T->set->type == SC_CURVE_FOLD ? 1 : -1);
+  if (T->cs.pb.f(u, T->F, T->cs.pb.user) || g_at(T, u, &j))
+    return SC_OK; /* cannot happen at an accepted point */
   T->stats->max_residual =
-      fmax(T->stats->max_residual, fmax(fabs(F[0]), fabs(F[1])));
+      fmax(T->stats->max_residual, norm_inf(T->F, T->cs.pb.n));
   sc_curve_point pt = {
-      u[1],   u[2],      u[0], j.gx, sc_curve_coefficient(T->set->type, &j),
-      branch, T->mc.itin};
+      UX(T, u), UY(T, u),  u[0], j.gx, sc_curve_coefficient(T->set->type, &j),
+      branch,   T->mc.itin};
   T->stats->npoints++;
   if (T->out && T->out->point && T->out->point(T->out->ctx, &pt))
     return SC_ECALLBACK;
   return SC_OK;
 }
 
-static double dist_inf(const double *a, const double *b) {
+static double dist_inf(const trace *T, const double *a, const double *b) {
   double m = 0;
-  for (int i = 0; i < 3; i++)
+  for (size_t i = 0; i < T->N; i++)
     m = fmax(m, fabs(a[i] - b[i]));
   return m;
 }
@@ -126,17 +147,14 @@ static double dist_inf(const double *a, const double *b) {
  * pb of opposite signs) and report it. */
 static int locate(trace *T, size_t k, const double *a, const double *b,
                   double pa, double pb) {
-  double w = pa / (pa - pb), u[3];
-  for (int i = 0; i < 3; i++)
-    u[i] = a[i] + w * (b[i] - a[i]);
+  double w = pa / (pa - pb), *u = T->u, *mid = T->mid;
+  for (size_t i = 0; i < T->N; i++)
+    mid[i] = u[i] = a[i] + w * (b[i] - a[i]);
   sc_curve_cert cert;
   sc_msg msg;
   int st = sc_curve_locate(&T->cs, k, u, T->acc, &cert, &msg);
   char note[128];
   const char *label = T->cs.labels[k];
-  double mid[3];
-  for (int i = 0; i < 3; i++)
-    mid[i] = a[i] + w * (b[i] - a[i]);
   char rej[8];
   snprintf(rej, sizeof rej, "%s?", label);
   if (st) {
@@ -149,65 +167,60 @@ static int locate(trace *T, size_t k, const double *a, const double *b,
    * difference-row Newton reaches on a well-scaled zero), and the point
    * must lie near the bracket. */
   double scale = fmax(fabs(pa), fabs(pb));
-  double span = dist_inf(a, b);
-  if (!(fabs(cert.psi) <= SC_SQRT_EPS * scale) || dist_inf(u, mid) > 2 * span) {
+  double span = dist_inf(T, a, b);
+  if (!(fabs(cert.psi) <= SC_SQRT_EPS * scale) ||
+      dist_inf(T, u, mid) > 2 * span) {
     snprintf(note, sizeof note,
              "rejected: the sign change is not a zero (%s = %.3g, ends "
              "%.3g, %.3g)",
              k == 0 ? "coefficient" : "test", cert.psi, pa, pb);
     return emit_special(T, rej, mid, NAN, cert.residual, note);
   }
-  double psi[3];
-  if (T->cs.test(u, psi, T->cs.user)) return SC_OK;
+  sc_curve_jet j;
+  if (g_at(T, u, &j)) return SC_OK;
+  double coef = sc_curve_coefficient(T->set->type, &j);
   const char *xn = sc_map_type(T->mc.m)->params[T->set->ix].name;
   const char *yn = sc_map_type(T->mc.m)->params[T->set->iy].name;
   if (k == 0) {
     if (T->set->type == SC_CURVE_FOLD)
       snprintf(note, sizeof note,
-               "cusp: the fold's quadratic coefficient "
-               "changes sign");
+               "cusp: the fold's quadratic coefficient changes sign");
     else
       snprintf(note, sizeof note, "generalized flip: %s",
                pa > 0 ? "supercritical to subcritical"
                       : "subcritical to supercritical");
-    return emit_special(T, label, u, psi[0], cert.residual, note);
+    return emit_special(T, label, u, coef, cert.residual, note);
   }
   /* A turning point where the normal-form coefficient also vanishes is
    * the cusp (reported by its own test): the coefficient tells them
    * apart.  "Vanishes": within 100 residual tolerances, the accuracy to
    * which the located point satisfies the system. */
-  if (fabs(psi[0]) <= 100 * T->acc->newton_ftol) return SC_OK;
-  int ip = k == 1 ? 1 : 2;
+  if (fabs(coef) <= 100 * T->acc->newton_ftol) return SC_OK;
+  size_t ip = k == 1 ? T->N - 2 : T->N - 1;
   int max = u[ip] >= a[ip] && u[ip] >= b[ip];
   snprintf(note, sizeof note, "%s %s", k == 1 ? xn : yn, max ? "max" : "min");
-  return emit_special(T, label, u, psi[0], cert.residual, note);
+  return emit_special(T, label, u, coef, cert.residual, note);
 }
 
 static int end_point(trace *T, const double *u, const char *why) {
   sc_curve_jet j;
-  double p[SC_MAP1D_MAXPARAM];
-  memcpy(p, T->sys.p, sizeof p);
-  p[T->set->ix] = u[1];
-  p[T->set->iy] = u[2];
-  double coef = jet_fn(u[0], p, &j, &T->mc)
-                    ? NAN
-                    : sc_curve_coefficient(T->set->type, &j);
+  double coef = g_at(T, u, &j) ? NAN : sc_curve_coefficient(T->set->type, &j);
   return emit_special(T, "EP", u, coef, NAN, why);
 }
 
-/* Damped Newton for the start at fixed y, unknowns (d, x): the orbits
- * of f^m can sit close to d*, where f' ~ |d - d*|^(-1/2) (MODEL.md), and
- * a full step from a guess overshoots; halving the step until the
- * residual decreases brings the guess in, and the branch's own corrector
- * then polishes it. */
-static int correct_start(trace *T, double *floor_out, sc_msg *msg) {
-  double *u = T->u0, F[2], J[6], Ft[2], ut[3];
+/* Damped Newton for the start at fixed y on the single-shooting system,
+ * unknowns (d, x): the orbits of f^m can sit close to d*, where
+ * f' ~ |d - d*|^(-1/2) (MODEL.md), and a full step from a guess
+ * overshoots; halving the step until the residual decreases brings the
+ * guess in, and the branch's own corrector then polishes it.  u holds
+ * (d, x, y) in and out. */
+static int correct_start(trace *T, double *u, double *floor_out, sc_msg *msg) {
+  double F[2], J[6], Ft[2], ut[3];
   *floor_out = HUGE_VAL;
-  const sc_cont_problem *pb = &T->cs.pb;
+  const sc_cont_problem *pb = &T->ss.pb;
   if (pb->f(u, F, pb->user))
     return sc_fail(msg, SC_ENOCONV,
-                   "curve: the map fails at the start "
-                   "(%.200s)",
+                   "curve: the map fails at the start (%.200s)",
                    T->mc.emsg.text);
   for (int it = 0; it < T->acc->newton_maxiter; it++) {
     double r = fmax(fabs(F[0]), fabs(F[1]));
@@ -236,6 +249,7 @@ static int correct_start(trace *T, double *floor_out, sc_msg *msg) {
 /* One direction from the corrected start. */
 static int run(trace *T, int dir, int branch, sc_msg *msg) {
   const sc_curve_settings *s = T->set;
+  size_t N = T->N;
   sc_cont_settings cset;
   sc_cont_settings_default(&cset);
   cset.h0 = s->h0;
@@ -253,16 +267,13 @@ static int run(trace *T, int dir, int branch, sc_msg *msg) {
     sc_branch_free(b);
     return st;
   }
-  double prev[3], psi_prev[3], psi[3];
-  memcpy(prev, sc_branch_point(b), sizeof prev);
+  double *prev = T->prev, *cur = T->cur, psi_prev[3], psi[3];
+  memcpy(prev, sc_branch_point(b), N * sizeof *prev);
+  sc_curve_jet j;
   if (branch == 0) {
-    memcpy(T->u0, prev, sizeof prev);
+    memcpy(T->u0, prev, N * sizeof *prev);
     /* the start's itinerary: the curve follows this one */
-    double p[SC_MAP1D_MAXPARAM];
-    sc_curve_jet j;
-    memcpy(p, T->sys.p, sizeof p);
-    p[s->ix] = prev[1], p[s->iy] = prev[2];
-    jet_fn(prev[0], p, &j, &T->mc);
+    g_at(T, prev, &j);
     snprintf(T->itin0, sizeof T->itin0, "%s", T->mc.itin);
     if ((st = emit_point(T, prev, 0))) goto done;
   }
@@ -274,21 +285,15 @@ static int run(trace *T, int dir, int branch, sc_msg *msg) {
   for (;;) {
     sc_msg bm;
     int bs = sc_branch_step(b, &bm);
-    const double *u = sc_branch_point(b);
     if (bs < 0) {
       char why[128];
       snprintf(why, sizeof why, "stopped: %.110s", bm.text);
       st = end_point(T, prev, why);
       break;
     }
-    double cur[3];
-    memcpy(cur, u, sizeof cur);
+    memcpy(cur, sc_branch_point(b), N * sizeof *cur);
     /* the orbit must keep its itinerary: a change is a border */
-    double p[SC_MAP1D_MAXPARAM];
-    sc_curve_jet j;
-    memcpy(p, T->sys.p, sizeof p);
-    p[s->ix] = cur[1], p[s->iy] = cur[2];
-    if (jet_fn(cur[0], p, &j, &T->mc) == 0 && strcmp(T->mc.itin, T->itin0)) {
+    if (g_at(T, cur, &j) == 0 && strcmp(T->mc.itin, T->itin0)) {
       char why[128];
       snprintf(why, sizeof why, "border: itinerary %.40s -> %.40s", T->itin0,
                T->mc.itin);
@@ -301,21 +306,21 @@ static int run(trace *T, int dir, int branch, sc_msg *msg) {
           if ((st = locate(T, k, prev, cur, psi_prev[k], psi[k]))) goto done;
       memcpy(psi_prev, psi, sizeof psi);
     }
-    if (cur[1] < s->xlo || cur[1] > s->xhi) {
+    if (UX(T, cur) < s->xlo || UX(T, cur) > s->xhi) {
       st = end_point(T, prev, "the box's edge in x");
       break;
     }
     if ((st = emit_point(T, cur, branch))) goto done;
-    memcpy(prev, cur, sizeof prev);
+    memcpy(prev, cur, N * sizeof *prev);
     if (bs == SC_END) {
       st = end_point(T, cur,
-                     cur[2] <= s->ylo || cur[2] >= s->yhi
+                     UY(T, cur) <= s->ylo || UY(T, cur) >= s->yhi
                          ? "the box's edge in y"
                          : "max-points reached");
       break;
     }
     /* closed: back within one step of the start after going away */
-    double dist = dist_inf(cur, T->u0);
+    double dist = dist_inf(T, cur, T->u0);
     far = fmax(far, dist);
     if (far > 4 * s->hmax && dist < 1.5 * sc_branch_step_size(b)) {
       T->closed = 1;
@@ -347,10 +352,11 @@ int sc_curve_trace(sc_map *m, const sc_curve_settings *set, double d0,
   T.out = out;
   T.stats = stats;
   T.acc = sc_map_accuracy(m);
-  T.mc.m = m;
+  T.mc.m = T.mc1.m = m;
   T.mc.period = set->period;
-  T.mc.ix = set->ix;
-  T.mc.iy = set->iy;
+  T.mc1.period = 1;
+  T.mc.ix = T.mc1.ix = set->ix;
+  T.mc.iy = T.mc1.iy = set->iy;
   T.sys.fn = jet_fn;
   T.sys.user = &T.mc;
   T.sys.type = set->type;
@@ -360,11 +366,50 @@ int sc_curve_trace(sc_map *m, const sc_curve_settings *set, double d0,
   T.sys.ifree[0] = set->ix;
   T.sys.ifree[1] = set->iy;
   double x0 = T.sys.p[set->ix], y0 = T.sys.p[set->iy];
-  int st = sc_curve_map1d_system(&T.sys, &T.cs, msg);
+  int st = sc_curve_map1d_system(&T.sys, &T.ss, msg);
   if (st) return st;
-  T.u0[0] = d0, T.u0[1] = x0, T.u0[2] = y0;
-  double floor;
-  st = correct_start(&T, &floor, msg);
+  size_t mper = (size_t)set->period;
+  T.N = set->multiple ? mper + 2 : 3;
+  double *mem = calloc(6 * T.N, sizeof *mem);
+  if (!mem) return sc_fail(msg, SC_ENOMEM, "sc_curve_trace: out of memory");
+  T.u0 = mem, T.prev = mem + T.N, T.cur = mem + 2 * T.N;
+  T.u = mem + 3 * T.N, T.mid = mem + 4 * T.N, T.F = mem + 5 * T.N;
+  if (set->multiple) {
+    T.msys.fn = jet_fn;
+    T.msys.gfn = jet_fn;
+    T.msys.user = &T.mc1; /* f */
+    T.msys.guser = &T.mc; /* f^m, for the normal-form test */
+    T.msys.type = set->type;
+    T.msys.period = mper;
+    T.msys.np = np;
+    memcpy(T.msys.p, T.sys.p, sizeof T.msys.p);
+    T.msys.ifree[0] = set->ix;
+    T.msys.ifree[1] = set->iy;
+    st = sc_curve_ms_work_alloc(mper, &T.msys.work, msg);
+    if (st == SC_OK) st = sc_curve_map1d_ms_system(&T.msys, &T.cs, msg);
+  } else {
+    T.cs = T.ss;
+  }
+  double floor = HUGE_VAL, start[3] = {d0, x0, y0};
+  if (st == SC_OK) st = correct_start(&T, start, &floor, msg);
+  if (st == SC_OK) {
+    /* the orbit from the corrected single-shooting start */
+    T.u0[0] = start[0];
+    UX(&T, T.u0) = start[1];
+    UY(&T, T.u0) = start[2];
+    for (size_t k = 1; set->multiple && k < mper && st == SC_OK; k++) {
+      sc_curve_jet j;
+      double p[SC_MAP1D_MAXPARAM];
+      memcpy(p, T.sys.p, sizeof p);
+      p[set->ix] = start[1], p[set->iy] = start[2];
+      if (jet_fn(T.u0[k - 1], p, &j, &T.mc1))
+        st = sc_fail(msg, SC_ENOCONV,
+                     "curve: the map fails along the start "
+                     "orbit (%.200s)",
+                     T.mc1.emsg.text);
+      T.u0[k] = j.g;
+    }
+  }
   /* The residual of f^m's system has a rounding floor that grows with m
    * and with |f'| along the orbit (near d*, f' ~ |d - d*|^(-1/2)), and
    * varies along the curve; a residual tolerance below it can never be
@@ -384,5 +429,7 @@ int sc_curve_trace(sc_map *m, const sc_curve_settings *set, double d0,
   stats->closed = T.closed;
   sc_map_set_param(m, (size_t)set->ix, x0, NULL);
   sc_map_set_param(m, (size_t)set->iy, y0, NULL);
+  sc_curve_ms_work_free(T.msys.work);
+  free(mem);
   return st;
 }

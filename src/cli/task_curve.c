@@ -36,6 +36,9 @@ static const sc_key_info curve_keys[] = {
      "FILE:N, row N (1 = first after the header) of a branch task's "
      "points.csv: an LP (type = fold) or PD (type = flip) located in x; "
      "x, d0 and period are taken from it (instead of d0)"},
+    {"shooting", SC_KEY_CHOICE, 0, "single", 0, 0, 0, 0, "single|multiple",
+     "single: on f^m in (d, x, y); multiple: one equation per iterate in "
+     "(d_0..d_{m-1}, x, y), for long periods"},
     {"h0", SC_KEY_REAL, 0, "0", 0, HUGE_VAL, 0, 1, NULL,
      "initial arclength step in (d, x, y) (0: hmax / 10)"},
     {"hmax", SC_KEY_REAL, 0, "0", 0, HUGE_VAL, 0, 1, NULL,
@@ -277,6 +280,7 @@ static int curve_run(sc_cli_run *r) {
   set.type = strcmp(sc_scene_text(s, "type"), "flip") == 0 ? SC_CURVE_FLIP
                                                            : SC_CURVE_FOLD;
   set.period = (int)sc_scene_int(s, "period");
+  set.multiple = strcmp(sc_scene_text(s, "shooting"), "multiple") == 0;
   set.ix = sc_map_param_index(m, xn);
   set.iy = sc_map_param_index(m, yn);
   set.xlo = sc_scene_real(s, "x-from"), set.xhi = sc_scene_real(s, "x-to");
@@ -343,6 +347,7 @@ static int curve_run(sc_cli_run *r) {
           "%.3g\n",
           stats.max_residual);
   fprintf(f, "  residual tolerance used: %.3g\n", stats.ftol);
+  fprintf(f, "  shooting: %s\n", set.multiple ? "multiple" : "single");
   fprintf(f, "  codimension-two points: %ld\n", stats.nspecial);
   for (size_t i = 0; i < c.nsp; i++)
     fprintf(f,
