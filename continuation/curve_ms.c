@@ -21,9 +21,10 @@
 
 struct sc_curve_ms_work {
   size_t m;
-  sc_curve_jet *jets; /* m */
-  double *pre, *suf;  /* m + 1 each */
-  double *J, *A;      /* (m + 1) x (m + 2), (m + 1)^2 */
+  sc_curve_jet *jets;   /* m */
+  double *pre, *suf;    /* m + 1 each */
+  double *J, *A;        /* (m + 1) x (m + 2), (m + 1)^2 */
+  int *colptr, *rowind; /* the CSC pattern: m + 3, at most 5 m + 2 */
 };
 
 int sc_curve_ms_work_alloc(size_t period, sc_curve_ms_work **out, sc_msg *msg) {
@@ -41,7 +42,29 @@ int sc_curve_ms_work_alloc(size_t period, sc_curve_ms_work **out, sc_msg *msg) {
   w->suf = calloc(n, sizeof *w->suf);
   w->J = calloc(n * (n + 1), sizeof *w->J);
   w->A = calloc(n * n, sizeof *w->A);
-  if (!w->jets || !w->pre || !w->suf || !w->J || !w->A) goto fail;
+  w->colptr = calloc(period + 3, sizeof *w->colptr);
+  w->rowind = calloc(5 * period + 2, sizeof *w->rowind);
+  if (!w->jets || !w->pre || !w->suf || !w->J || !w->A || !w->colptr ||
+      !w->rowind)
+    goto fail;
+  /* Column j < m holds rows j (f'(d_j)), j - 1 mod m (the -1 of
+   * F_{j-1}) and m (the product row); columns m, m + 1 (the parameters)
+   * are full.  Rows increase within each column. */
+  int nz = 0, mm = (int)period;
+  for (int j = 0; j < mm; j++) {
+    w->colptr[j] = nz;
+    int a = j, b = (j + mm - 1) % mm;
+    int lo = a < b ? a : b, hi = a < b ? b : a;
+    w->rowind[nz++] = lo;
+    if (hi != lo) w->rowind[nz++] = hi;
+    w->rowind[nz++] = mm;
+  }
+  for (int j = mm; j < mm + 2; j++) {
+    w->colptr[j] = nz;
+    for (int i = 0; i <= mm; i++)
+      w->rowind[nz++] = i;
+  }
+  w->colptr[mm + 2] = nz;
   *out = w;
   return SC_OK;
 fail:
@@ -56,6 +79,8 @@ void sc_curve_ms_work_free(sc_curve_ms_work *w) {
   free(w->suf);
   free(w->J);
   free(w->A);
+  free(w->colptr);
+  free(w->rowind);
   free(w);
 }
 
@@ -125,6 +150,33 @@ static int ms_jac(const double *u, double *J, void *user) {
   if (rc) return rc;
   ms_jac_fill(s, J);
   return 0;
+}
+
+/* The Jacobian's nonzeros in the CSC pattern's order (for KLU). */
+static int ms_jac_sparse(const double *u, double *J, void *user) {
+  const sc_curve_map1d_ms *s = user;
+  int rc = jets_at(s, u);
+  if (rc) return rc;
+  size_t N = s->period + 2;
+  double *D = s->work->J;
+  ms_jac_fill(s, D);
+  const int *cp = s->work->colptr, *ri = s->work->rowind;
+  for (size_t j = 0; j < N; j++)
+    for (int k = cp[j]; k < cp[j + 1]; k++)
+      J[k] = D[(size_t)ri[k] * N + j];
+  return 0;
+}
+
+int sc_curve_map1d_ms_sparse(const sc_curve_map1d_ms *sys, sc_cont_problem *pb,
+                             sc_msg *msg) {
+  sc_curve_system cs;
+  int st = sc_curve_map1d_ms_system(sys, &cs, msg);
+  if (st) return st;
+  *pb = cs.pb;
+  pb->jac = ms_jac_sparse;
+  pb->jac_colptr = sys->work->colptr;
+  pb->jac_rowind = sys->work->rowind;
+  return SC_OK;
 }
 
 /* Sign-faithful determinant of the n x n row-major A by elimination with

@@ -250,7 +250,7 @@ static void test_bk2_multiple(void) {
     worst = fmax(worst, best);
   }
   tu_close("multiple vs single shooting: turning points (max |diff|)", worst, 0,
-           1e-8);
+           1e-10);
 }
 
 static void test_bk2_period6(void) {
@@ -286,7 +286,65 @@ static void test_bk2_period6(void) {
   sc_map_free(m);
 }
 
+/* The multiple-shooting Jacobian: its sparse (CSC) form holds exactly the
+ * dense one's nonzeros, and both match differences of F (cubic map, u =
+ * (x_0, x_1, x_2, mu1, mu2), periods 1 to 3). */
+static void test_ms_jacobian(void) {
+  for (size_t m = 1; m <= 3; m++) {
+    sc_curve_ms_work *w;
+    sc_curve_ms_work_alloc(m, &w, NULL);
+    sc_curve_map1d_ms sys = {cubic_jet,     cubic_jet, NULL, NULL,
+                             SC_CURVE_FLIP, m,         2,    {0, 0},
+                             {0, 1},        w};
+    sc_curve_system cs;
+    sc_cont_problem sp;
+    sc_msg msg;
+    int rc = sc_curve_map1d_ms_system(&sys, &cs, &msg);
+    rc |= sc_curve_map1d_ms_sparse(&sys, &sp, &msg);
+    tu_int("ms systems built", rc, SC_OK);
+    size_t n = m + 1, N = m + 2;
+    double u[5] = {0.3385, -0.2385, 0.41, 0.1385, 0.7385}, J[20], Js[20], F1[4],
+           F2[4];
+    u[m] = 0.1385, u[m + 1] = 0.7385;
+    cs.pb.jac(u, J, cs.pb.user);
+    sp.jac(u, Js, sp.user);
+    double worst_s = 0, worst_d = 0;
+    int nnz = sp.jac_colptr[N], inpattern = 0;
+    for (size_t j = 0; j < N; j++) {
+      for (int k = sp.jac_colptr[j]; k < sp.jac_colptr[j + 1]; k++)
+        worst_s = fmax(worst_s, fabs(Js[k] - J[sp.jac_rowind[k] * N + j]));
+      double h = 1e-6, up[5], um[5];
+      memcpy(up, u, sizeof u);
+      memcpy(um, u, sizeof u);
+      up[j] += h, um[j] -= h;
+      cs.pb.f(up, F1, cs.pb.user);
+      cs.pb.f(um, F2, cs.pb.user);
+      for (size_t i = 0; i < n; i++) {
+        double diff = (F1[i] - F2[i]) / (2 * h);
+        worst_d = fmax(worst_d, fabs(diff - J[i * N + j]));
+        if (J[i * N + j] != 0) {
+          int found = 0;
+          for (int k = sp.jac_colptr[j]; k < sp.jac_colptr[j + 1]; k++)
+            found |= (size_t)sp.jac_rowind[k] == i;
+          inpattern += found;
+        }
+      }
+    }
+    int nonzero = 0;
+    for (size_t i = 0; i < n * N; i++)
+      nonzero += J[i] != 0;
+    tu_close("ms: sparse entries = dense entries", worst_s, 0, 0);
+    tu_true(inpattern == nonzero && nnz >= nonzero,
+            "ms period %zu: all %d nonzeros in the pattern (%d entries)", m,
+            nonzero, nnz);
+    /* central differences, h = 1e-6 on a cubic: error ~ h^2 */
+    tu_close("ms: Jacobian vs differences of F", worst_d, 0, 1e-9);
+    sc_curve_ms_work_free(w);
+  }
+}
+
 int main(void) {
+  test_ms_jacobian();
   test_locate();
   test_bk2_period6();
   test_bk2_multiple();

@@ -151,6 +151,15 @@ typedef struct {
 int sc_curve_map1d_ms_system(const sc_curve_map1d_ms *sys, sc_curve_system *cs,
                              sc_msg *msg);
 
+/**
+ * @brief The same system's continuation problem with its sparse CSC
+ * pattern (m + 2 columns; about 5 m nonzeros), for the KLU backend: the
+ * Jacobian callback writes the nonzeros in pattern order.
+ * @return as sc_curve_map1d_ms_system().
+ */
+int sc_curve_map1d_ms_sparse(const sc_curve_map1d_ms *sys, sc_cont_problem *pb,
+                             sc_msg *msg);
+
 /** The normal-form coefficient of @p jet for @p type (psi_0 above). */
 double sc_curve_coefficient(sc_curve_type type, const sc_curve_jet *jet);
 

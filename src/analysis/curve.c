@@ -259,8 +259,16 @@ static int run(trace *T, int dir, int branch, sc_msg *msg) {
   cset.pmax = s->yhi;
   cset.direction = dir;
   cset.max_points = s->max_points;
+  /* multiple shooting: the sparse pattern and KLU (about 5 m nonzeros
+   * in an (m + 2)^2 bordered matrix) */
+  sc_cont_problem pb = T->cs.pb;
+  if (s->multiple) {
+    int rc = sc_curve_map1d_ms_sparse(&T->msys, &pb, msg);
+    if (rc) return rc;
+    cset.linsolve = sc_linsolve_klu;
+  }
   sc_branch *b;
-  int st = sc_branch_alloc(&T->cs.pb, &cset, T->acc, &b, msg);
+  int st = sc_branch_alloc(&pb, &cset, T->acc, &b, msg);
   if (st) return st;
   st = sc_branch_set(b, T->u0, msg);
   if (st) {
