@@ -284,6 +284,9 @@ static int run(trace *T, int dir, int branch, sc_msg *msg) {
     g_at(T, prev, &j);
     snprintf(T->itin0, sizeof T->itin0, "%s", T->mc.itin);
     if ((st = emit_point(T, prev, 0))) goto done;
+  } else if ((st = emit_point(T, prev, 1))) {
+    /* the start again, so that each direction's polyline begins there */
+    goto done;
   }
   if (T->cs.test(prev, psi_prev, T->cs.user)) {
     st = sc_fail(msg, SC_ENOCONV, "curve: test functions fail at the start");
