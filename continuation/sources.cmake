@@ -4,4 +4,6 @@ list(APPEND SC_SOURCES
   continuation/linsolve_dense.c
   continuation/linsolve_klu.c
   continuation/branch.c
-  continuation/map1d.c)
+  continuation/map1d.c
+  continuation/curve.c
+  continuation/curve_ms.c)

@@ -5,3 +5,4 @@ sc_add_test(test_bk2)
 add_test(NAME example_api COMMAND example_api)
 set_tests_properties(example_api PROPERTIES PASS_REGULAR_EXPRESSION
   "d = -0.0153337753869[0-9]* -> f\\(d\\) = 0.0153337753869[0-9]*  f' = 0.634677  itinerary 1-12-2")
+sc_add_test(test_jet)

@@ -63,6 +63,8 @@ enum {
   SC_EVAL_VALUE = 0,     /**< f only */
   SC_EVAL_DERIV = 1,     /**< also df/dd and df/dp for every parameter */
   SC_EVAL_ITINERARY = 2, /**< also the itinerary text */
+  SC_EVAL_DERIV2 = 4,    /**< also the second derivatives and the third
+                              ones d3f/dd3, d3f/dd2 dp (implies DERIV) */
 };
 
 /** Longest itinerary text, NUL included (longer ones are cut with "..."). */
@@ -87,6 +89,11 @@ typedef struct {
                                    single-block slip (docs/model.md) */
   int nphases;                /**< slip phases in the evaluation */
   char itinerary[SC_ITIN_LEN];/**< SC_EVAL_ITINERARY */
+  double d2fdd2;              /**< d2f/dd2 (SC_EVAL_DERIV2); NaN where f is
+                                   not twice differentiable */
+  double d2fddp[SC_MAXPARAM]; /**< d2f/dd dp_i (SC_EVAL_DERIV2) */
+  double d3fdd3;              /**< d3f/dd3 (SC_EVAL_DERIV2) */
+  double d3fdd2p[SC_MAXPARAM];/**< d3f/dd2 dp_i (SC_EVAL_DERIV2) */
 } sc_map_value;
 
 /* ------------------------------------------------------------------ */
@@ -232,6 +239,8 @@ extern const sc_model_type sc_model_bk2;
 extern const sc_model_type sc_model_logistic;
 /** The cubic map x -> x + mu1 + mu2 x - x^3 (cusp normal form). */
 extern const sc_model_type sc_model_cubic;
+/** The map x -> -(1 + mu1) x + mu2 x^3 - x^5 (generalized flip). */
+extern const sc_model_type sc_model_gpd;
 
 /** Number of built-in models; sc_model_get(i) lists them. */
 size_t sc_model_count(void);

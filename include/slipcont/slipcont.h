@@ -15,6 +15,7 @@
 #include "slipcont/branch.h"
 #include "slipcont/analysis.h"
 #include "slipcont/chart.h"
+#include "slipcont/curve.h"
 #include "slipcont/io.h"
 
 #endif

@@ -1,4 +1,5 @@
 # sources of src/analysis
 list(APPEND SC_SOURCES src/analysis/period.c src/analysis/chart.c)
 list(APPEND SC_SOURCES src/analysis/sweep.c)
-list(APPEND SC_SOURCES src/analysis/fixed_points.c  src/analysis/branch_orbit.c)
+list(APPEND SC_SOURCES src/analysis/fixed_points.c src/analysis/branch_orbit.c)
+list(APPEND SC_SOURCES src/analysis/curve.c)

@@ -10,7 +10,8 @@
   X(map)                    \
   X(chart)                  \
   X(fixed_point) X(branch)  \
-  X(sweep)
+  X(sweep)                  \
+  X(curve)
 
 #define SC_CLI_TASK_DECLARE_(name) extern const sc_cli_task sc_cli_task_##name;
 SC_CLI_TASK_LIST(SC_CLI_TASK_DECLARE_)

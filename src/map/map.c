@@ -18,7 +18,8 @@ struct sc_map {
 
 static const sc_model_type *const builtin[] = {&sc_model_bk2,
                                                &sc_model_logistic,
-                                               &sc_model_cubic};
+                                               &sc_model_cubic,
+                                               &sc_model_gpd};
 
 size_t sc_model_count(void) { return sizeof builtin / sizeof builtin[0]; }
 
@@ -78,7 +79,7 @@ int sc_map_alloc(const char *model, const sc_accuracy *acc, sc_map **out,
     *out = NULL;
     return sc_fail(msg, SC_EINVAL,
                    "sc_map_alloc: unknown model '%s' (valid: bk2, logistic, "
-                   "cubic)",
+                   "cubic, gpd)",
                    model ? model : "(null)");
   }
   return sc_map_alloc_type(t, acc, out, msg);
@@ -237,6 +238,7 @@ int sc_map_eval_ex(sc_map *m, double d, unsigned flags,
                    m->type->state_name, d);
   memset(out, 0, sizeof *out);
   if (code) code->n = 0;
+  if (flags & SC_EVAL_DERIV2) flags |= SC_EVAL_DERIV;
   m->nevals++;
   int st;
   if (m->type->eval_ex && (force || code || borders))
@@ -263,6 +265,35 @@ static void itin_append(char *dst, const char *s) {
   } else if (n + 4 <= SC_ITIN_LEN && strcmp(dst + n - 3, "...") != 0) {
     strcpy(dst + SC_ITIN_LEN - 4, "...");
   }
+}
+
+/* Second and third derivatives of F_k = f(G, p), G = F_{k-1}(x, p), from
+ * G's (in *G, not yet updated) and f's at G (in *f):
+ *   H_xx  = f_xx G_x^2 + f_x G_xx,
+ *   H_xp  = f_xx G_x G_p + f_xp G_x + f_x G_xp,
+ *   H_xxx = f_xxx G_x^3 + 3 f_xx G_x G_xx + f_x G_xxx,
+ *   H_xxp = (f_xxx G_p + f_xxp) G_x^2 + 2 f_xx G_x G_xp
+ *           + (f_xx G_p + f_xp) G_xx + f_x G_xxp. */
+static void chain2(sc_map_value *G, const sc_map_value *f, size_t np) {
+  double gx = G->dfdd, gxx = G->d2fdd2;
+  for (size_t i = 0; i < np; i++) {
+    double gp = G->dfdp[i], gxp = G->d2fddp[i];
+    G->d3fdd2p[i] = (f->d3fdd3 * gp + f->d3fdd2p[i]) * gx * gx +
+                    2 * f->d2fdd2 * gx * gxp +
+                    (f->d2fdd2 * gp + f->d2fddp[i]) * gxx +
+                    f->dfdd * G->d3fdd2p[i];
+    G->d2fddp[i] = f->d2fdd2 * gx * gp + f->d2fddp[i] * gx + f->dfdd * gxp;
+  }
+  G->d3fdd3 = f->d3fdd3 * gx * gx * gx + 3 * f->d2fdd2 * gx * gxx +
+              f->dfdd * G->d3fdd3;
+  G->d2fdd2 = f->d2fdd2 * gx * gx + f->dfdd * gxx;
+}
+
+/* f^n(d) = d + c(p) on a neutral orbit (docs/model.md): f' = 1 exactly, so the
+ * higher derivatives in d vanish, and so do the mixed ones. */
+static void neutral2(sc_map_value *out, size_t np) {
+  out->d2fdd2 = out->d3fdd3 = 0;
+  for (size_t i = 0; i < np; i++) out->d2fddp[i] = out->d3fdd2p[i] = 0;
 }
 
 int sc_map_iterate_ex(sc_map *m, double d, int n, unsigned flags,
@@ -301,7 +332,8 @@ int sc_map_iterate_ex(sc_map *m, double d, int n, unsigned flags,
       for (size_t j = 0; j < np; j++) bd->dp[j] += mx * out->dfdp[j];
       bd->dd = mx * out->dfdd;
     }
-    if (flags & SC_EVAL_DERIV) {
+    if (flags & SC_EVAL_DERIV2) chain2(out, &one, np);
+    if (flags & (SC_EVAL_DERIV | SC_EVAL_DERIV2)) {
       /* Chain rule: F_k = f(F_{k-1}, p). */
       for (size_t i = 0; i < np; i++)
         out->dfdp[i] = one.dfdd * out->dfdp[i] + one.dfdp[i];
@@ -316,7 +348,10 @@ int sc_map_iterate_ex(sc_map *m, double d, int n, unsigned flags,
     x = one.f;
   }
   out->f = x;
-  if (out->neutral && (flags & SC_EVAL_DERIV)) out->dfdd = 1;
+  if (out->neutral && (flags & (SC_EVAL_DERIV | SC_EVAL_DERIV2))) {
+    out->dfdd = 1;
+    if (flags & SC_EVAL_DERIV2) neutral2(out, np);
+  }
   return SC_OK;
 }
 

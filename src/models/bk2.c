@@ -13,6 +13,7 @@
 
 #include "hybrid/dual.h"
 #include "models/bk2_impl.h"
+#include "models/bk2_jet.h"
 #include "hybrid/hybrid_impl.h"
 #include "slipcont/hybrid.h"
 
@@ -928,6 +929,8 @@ _Static_assert(1 + 4 <= SC_NDIR, "bk2 needs d and four parameters");
 static int bk2_eval(void *vinst, double d, unsigned flags, sc_map_value *out,
                     sc_msg *msg) {
   const bk2_inst *b = vinst;
+  if (flags & SC_EVAL_DERIV2)
+    return sc_bk2_eval_jet(b, d, flags, out, NULL, msg);
   bk2_dpar P;
   int nd = (flags & SC_EVAL_DERIV) ? 5 : 0;
   if (nd) sc_bk2_dparams(b, nd, &P);

@@ -1,0 +1,244 @@
+/**
+ * @file curve.h
+ * @brief Two-parameter curves of codimension-one points (folds and flips
+ *        of a map iterate), their codimension-two points (CP, GPD, TP),
+ *        and the tracing of such curves for a model (docs/curves.md).
+ *
+ * Two levels:
+ *  - generic (continuation/curve.c, continuation/map1d_curve.c): a curve
+ *    is a defining system F(u) = 0, u in R^(n+1), given by callbacks (an
+ *    sc_cont_problem), with test functions psi_k(u) whose zeros are its
+ *    codimension-two points; sc_curve_locate() solves the extended system
+ *    {F = 0, psi_k = 0} by Newton and returns a residual certificate.  Any
+ *    defining system can be plugged in (border curves, later).
+ *  - for a model (src/analysis/curve.c): sc_curve_trace() corrects a start
+ *    onto the fold or flip system of f^m, continues the curve both ways
+ *    by pseudo-arclength in (d, x, y), locates every codimension-two
+ *    point, and reports points through callbacks.
+ */
+#ifndef SLIPCONT_CURVE_H
+#define SLIPCONT_CURVE_H
+
+#include <stddef.h>
+
+#include "slipcont/common.h"
+#include "slipcont/continuation.h"
+#include "slipcont/map.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/**
+ * A curve's defining system and its codimension-two tests.  The tests
+ * are functions of the point alone (not of the tangent), so that their
+ * zeros solve the square extended system {F = 0, psi_k = 0}.
+ */
+typedef struct {
+  sc_cont_problem pb; /**< F, its dense Jacobian, n; pb.ntest is
+                           ignored */
+  size_t ntest;       /**< number of test functions */
+  /** All test values psi_k(u), k < ntest; returns as pb's callbacks. */
+  int (*test)(const double *u, double *psi, void *user);
+  const char *const *labels; /**< ntest short labels ("CP", "GPD", "TP") */
+  void *user;                /**< passed to test */
+} sc_curve_system;
+
+/** What sc_curve_locate() found. */
+typedef struct {
+  double residual; /**< max |F_i| at the point: the certificate */
+  double psi;      /**< psi_k there (its zero is certified by the step) */
+  double step;     /**< the last Newton step, max norm */
+  int iterations;  /**< Newton iterations */
+} sc_curve_cert;
+
+/**
+ * @brief Solve {F(u) = 0, psi_k(u) = 0} by Newton from @p u (n + 1
+ * values, overwritten with the solution).  F's rows of the Jacobian are
+ * exact (pb.jac); psi_k's row is a central difference of psi_k with
+ * relative step acc->fd_step (psi_k is computed from exact derivatives,
+ * so the row only sets the rate of convergence, never the point).
+ * Converged when the step is within newton_atol + newton_rtol |u| and
+ * max |F_i| within newton_ftol (psi_k is not scaled: its zero is
+ * certified by the step; its value is returned).
+ * @return SC_OK; SC_ENOCONV after newton_maxiter iterations (the
+ *         certificate says how far it got); SC_ESING for a singular
+ *         extended Jacobian; SC_EINVAL for k >= ntest; SC_ENOMEM;
+ *         SC_ECALLBACK if a callback failed.
+ */
+int sc_curve_locate(const sc_curve_system *cs, size_t k, double *u,
+                    const sc_accuracy *acc, sc_curve_cert *cert, sc_msg *msg);
+
+/** Derivatives of g = f^m at (x, p) up to those a fold or flip curve and
+ * their normal forms need. */
+typedef struct {
+  double g, gx, gxx, gxxx;
+  double gp[SC_MAP1D_MAXPARAM], gxp[SC_MAP1D_MAXPARAM], gxxp[SC_MAP1D_MAXPARAM];
+} sc_curve_jet;
+
+/** g and its derivatives at (x, p) (all np parameters); returns 0, > 0
+ * (recoverable), < 0 (fatal), as the continuation callbacks. */
+typedef int (*sc_curve_jet_fn)(double x, const double *p, sc_curve_jet *jet,
+                               void *user);
+
+/** Which curve of a map iterate. */
+typedef enum {
+  SC_CURVE_FOLD = 0, /**< g = x, g_x = +1 */
+  SC_CURVE_FLIP = 1, /**< g = x, g_x = -1 */
+} sc_curve_type;
+
+/**
+ * A fold or flip curve of a 1-D map iterate in u = (x, p_a, p_b).
+ * Tests: psi_0 the normal-form coefficient (fold: a = g_xx / 2, zero at a
+ * cusp "CP"; flip: c = (g_xx / 2)^2 + g_xxx / 6, zero at a generalized
+ * flip "GPD", c > 0 supercritical); psi_1, psi_2 vanish where the curve
+ * turns back in p_a, p_b ("TP": the determinant of F's Jacobian without
+ * that parameter's column, proportional to that tangent component).
+ */
+typedef struct {
+  sc_curve_jet_fn fn;
+  void *user;
+  sc_curve_type type;
+  size_t np;                   /**< parameters of g */
+  double p[SC_MAP1D_MAXPARAM]; /**< their values (free ones replaced) */
+  int ifree[2];                /**< indices of p_a, p_b (p_b = u[2]) */
+} sc_curve_map1d;
+
+/**
+ * @brief Fill @p cs with the defining system and tests of @p sys (which
+ * must outlive @p cs and not change while it is used).
+ * @return SC_OK, or SC_EINVAL (NULL fn, np or free indices out of range,
+ *         equal free indices, unknown type).
+ */
+int sc_curve_map1d_system(const sc_curve_map1d *sys, sc_curve_system *cs,
+                          sc_msg *msg);
+
+/** Workspace of a multiple-shooting curve system (opaque). */
+typedef struct sc_curve_ms_work sc_curve_ms_work;
+
+/** @brief Workspace for a period-@p period multiple-shooting system.
+ * @return SC_OK, SC_EINVAL (period 0) or SC_ENOMEM. */
+int sc_curve_ms_work_alloc(size_t period, sc_curve_ms_work **out, sc_msg *msg);
+/** @brief Release @p w; NULL is accepted. */
+void sc_curve_ms_work_free(sc_curve_ms_work *w);
+
+/**
+ * A fold or flip curve of a period-m orbit by multiple shooting, in
+ * u = (x_0, ..., x_{m-1}, p_a, p_b): F_k = f(x_k) - x_{k+1 mod m} (k < m)
+ * and F_m = prod_k f'(x_k) -+ 1 (continuation/curve_ms.c).  Tests as
+ * sc_curve_map1d (psi_0 from g = f^m at x_0 through @c gfn).  The
+ * callbacks write into @c work: one system per thread.
+ */
+typedef struct {
+  sc_curve_jet_fn fn;  /**< one iterate f: g, gx, gp, gxx, gxp are used */
+  sc_curve_jet_fn gfn; /**< g = f^m at x_0, for the normal-form test */
+  void *user;          /**< passed to fn */
+  void *guser;         /**< passed to gfn */
+  sc_curve_type type;
+  size_t period; /**< m >= 1 */
+  size_t np;
+  double p[SC_MAP1D_MAXPARAM];
+  int ifree[2];
+  sc_curve_ms_work *work; /**< from sc_curve_ms_work_alloc(period) */
+} sc_curve_map1d_ms;
+
+/**
+ * @brief Fill @p cs with the multiple-shooting system of @p sys (n =
+ * m + 1 equations; dense Jacobian).
+ * @return SC_OK, or SC_EINVAL (NULL callbacks or workspace, a workspace
+ *         of another period, bad indices or type).
+ */
+int sc_curve_map1d_ms_system(const sc_curve_map1d_ms *sys, sc_curve_system *cs,
+                             sc_msg *msg);
+
+/**
+ * @brief The same system's continuation problem with its sparse CSC
+ * pattern (m + 2 columns; about 5 m nonzeros), for the KLU backend: the
+ * Jacobian callback writes the nonzeros in pattern order.
+ * @return as sc_curve_map1d_ms_system().
+ */
+int sc_curve_map1d_ms_sparse(const sc_curve_map1d_ms *sys, sc_cont_problem *pb,
+                             sc_msg *msg);
+
+/** The normal-form coefficient of @p jet for @p type (psi_0 above). */
+double sc_curve_coefficient(sc_curve_type type, const sc_curve_jet *jet);
+
+/* ------------------------------------------------------------------ */
+
+/** Settings of sc_curve_trace(). */
+typedef struct {
+  sc_curve_type type;
+  int period;      /**< m >= 1 */
+  int multiple;    /**< 1: multiple shooting in (d_0..d_{m-1}, x, y);
+                        0: single shooting on f^m */
+  int ix, iy;      /**< parameter indices of x and y (distinct) */
+  double xlo, xhi; /**< the box: the curve stops at its edges */
+  double ylo, yhi;
+  double h0, hmax; /**< arclength steps (in (d, x, y)) */
+  long max_points; /**< per direction */
+} sc_curve_settings;
+
+/** @brief Defaults: fold, period 1, steps 1e-3 and 2e-2, 2000 points. */
+void sc_curve_settings_default(sc_curve_settings *s);
+
+/** One point of a traced curve. */
+typedef struct {
+  double x, y, d;     /**< parameters and the orbit point carried */
+  double multiplier;  /**< (f^m)' there: +1 or -1 up to the tolerance */
+  double coefficient; /**< the normal-form coefficient (psi_0) */
+  int branch;         /**< 0: the first direction, 1: the other */
+  const char *itinerary;
+} sc_curve_point;
+
+/** A codimension-two or end point of a traced curve. */
+typedef struct {
+  char label[8]; /**< "CP", "GPD", "TP", "EP" (end); with a '?'
+                      ("CP?") for a sign change of the test that
+                      was not located or is not a zero (note says
+                      why) */
+  double x, y, d;
+  double coefficient;
+  double residual; /**< sc_curve_cert.residual; NaN for EP */
+  char note[128];  /**< "beta min", "supercritical to subcritical",
+                        why the curve ended, ... */
+} sc_curve_special;
+
+/** Callbacks of sc_curve_trace(); either may be NULL; non-zero stops. */
+typedef struct {
+  int (*point)(void *ctx, const sc_curve_point *p);
+  int (*special)(void *ctx, const sc_curve_special *s);
+  void *ctx;
+} sc_curve_output;
+
+/** What sc_curve_trace() did. */
+typedef struct {
+  long npoints;        /**< points reported */
+  long nspecial;       /**< CP, GPD, TP located */
+  int closed;          /**< 1 if the curve closed on itself */
+  double max_residual; /**< largest |F| over the reported points */
+  double ftol;         /**< the residual tolerance used: the accuracy's
+                            newton_ftol, or 4 times the rounding floor of
+                            the system at the start where that is larger
+                            (at most 1e-9) */
+} sc_curve_stats;
+
+/**
+ * @brief Trace the fold or flip curve of the period-m orbit through
+ * (d0, x, y) of map @p m (its parameters ix, iy hold the start's x, y):
+ * correct the start at fixed y, continue both ways, locate CP / GPD /
+ * TP, stop at the box, where the curve closes, or where the orbit's
+ * itinerary changes (a border: said in the EP note).  The map's
+ * parameters are changed during the trace and restored at the end.
+ * Needs SC_EVAL_DERIV2 of the model (bk2: exact flows).
+ * @return SC_OK; SC_EINVAL for bad settings; SC_ENOCONV if the start
+ *         could not be corrected; SC_ECALLBACK if an output callback
+ *         stopped; the map's errors at the start.
+ */
+int sc_curve_trace(sc_map *m, const sc_curve_settings *set, double d0,
+                   const sc_curve_output *out, sc_curve_stats *stats,
+                   sc_msg *msg);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,446 @@
+/* Fold and flip curves of a model's period-m orbits in two parameters:
+ * the defining system of continuation/curve.c on g = f^m with exact
+ * second and third derivatives (SC_EVAL_DERIV2), continued both ways by
+ * pseudo-arclength (continuation/branch.c), with CP / GPD / TP located by
+ * Newton on the extended system (docs/curves.md). */
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "slipcont/curve.h"
+
+/* The smallest residual tolerance of a curve's system: its residual
+ * g_x -+ 1 is a product of m derivatives, each good to ~1e-13 relative
+ * at event-rtol 1e-14 and amplified near d* and grazings, so 1e-13 (the
+ * default preset's) is below its rounding floor on period-4 and -6
+ * orbits of fig 5.8 (measured: 5e-13 .. 1.2e-12); 1e-11 is a factor 10
+ * inside the 1e-10 the curves must meet (docs/curves.md). */
+#define SC_CURVE_FTOL 1e-11
+
+void sc_curve_settings_default(sc_curve_settings *s) {
+  memset(s, 0, sizeof *s);
+  s->type = SC_CURVE_FOLD;
+  s->period = 1;
+  s->ix = 0;
+  s->iy = 1;
+  s->xlo = s->ylo = -HUGE_VAL;
+  s->xhi = s->yhi = HUGE_VAL;
+  s->h0 = 1e-3;
+  s->hmax = 2e-2;
+  s->max_points = 2000;
+}
+
+typedef struct {
+  sc_map *m;
+  int period, ix, iy;
+  char itin[SC_ITIN_LEN]; /* of the last evaluation */
+  sc_msg emsg;            /* of the last failed evaluation */
+} map_ctx;
+
+static int jet_fn(double x, const double *p, sc_curve_jet *j, void *user) {
+  map_ctx *c = user;
+  if (sc_map_set_param(c->m, (size_t)c->ix, p[c->ix], &c->emsg) ||
+      sc_map_set_param(c->m, (size_t)c->iy, p[c->iy], &c->emsg))
+    return 1; /* outside the parameters' range: shrink the step */
+  sc_map_value v;
+  if (sc_map_iterate(c->m, x, c->period, SC_EVAL_DERIV2 | SC_EVAL_ITINERARY, &v,
+                     &c->emsg))
+    return 1;
+  snprintf(c->itin, sizeof c->itin, "%s", v.itinerary);
+  j->g = v.f;
+  j->gx = v.dfdd;
+  j->gxx = v.d2fdd2;
+  j->gxxx = v.d3fdd3;
+  size_t np = sc_map_nparam(c->m);
+  for (size_t i = 0; i < np; i++) {
+    j->gp[i] = v.dfdp[i];
+    j->gxp[i] = v.d2fddp[i];
+    j->gxxp[i] = v.d3fdd2p[i];
+  }
+  /* NaN: an event with zero slope, f not twice differentiable */
+  return isfinite(j->gx) && isfinite(j->gxx) && isfinite(j->gxxx) ? 0 : 1;
+}
+
+typedef struct {
+  const sc_curve_settings *set;
+  const sc_curve_output *out;
+  sc_curve_stats *stats;
+  sc_curve_system cs; /* the system continued: single or multiple */
+  sc_curve_system ss; /* single shooting, for the start's correction */
+  sc_curve_map1d sys;
+  sc_curve_map1d_ms msys;
+  map_ctx mc;  /* g = f^m */
+  map_ctx mc1; /* f, for multiple shooting */
+  const sc_accuracy *acc;
+  char itin0[SC_ITIN_LEN];
+  size_t N;   /* unknowns: 3, or m + 2 with multiple shooting */
+  double *u0; /* N: the corrected start */
+  double *prev, *cur, *u, *mid, *F; /* N each: work */
+  int closed;
+} trace;
+
+/* x and y of a point u (its last two entries) */
+#define UX(T, u) ((u)[(T)->N - 2])
+#define UY(T, u) ((u)[(T)->N - 1])
+
+/* g = f^m's jet at the orbit point u[0], parameters from u; fills
+ * T->mc.itin.  Returns the callback's status. */
+static int g_at(trace *T, const double *u, sc_curve_jet *j) {
+  double p[SC_MAP1D_MAXPARAM];
+  memcpy(p, T->sys.p, sizeof p);
+  p[T->set->ix] = UX(T, u);
+  p[T->set->iy] = UY(T, u);
+  memset(j, 0, sizeof *j);
+  return jet_fn(u[0], p, j, &T->mc);
+}
+
+static int emit_special(trace *T, const char *label, const double *u,
+                        double coef, double residual, const char *note) {
+  sc_curve_special s;
+  memset(&s, 0, sizeof s);
+  snprintf(s.label, sizeof s.label, "%s", label);
+  s.d = u[0], s.x = UX(T, u), s.y = UY(T, u);
+  s.coefficient = coef;
+  s.residual = residual;
+  snprintf(s.note, sizeof s.note, "%s", note);
+  if (strcmp(label, "EP") && !strchr(label, '?')) T->stats->nspecial++;
+  if (T->out && T->out->special && T->out->special(T->out->ctx, &s))
+    return SC_ECALLBACK;
+  return SC_OK;
+}
+
+static double norm_inf(const double *v, size_t n) {
+  double m = 0;
+  for (size_t i = 0; i < n; i++)
+    m = fmax(m, fabs(v[i]));
+  return m;
+}
+
+static int emit_point(trace *T, const double *u, int branch) {
+  sc_curve_jet j;
+  if (T->cs.pb.f(u, T->F, T->cs.pb.user) || g_at(T, u, &j))
+    return SC_OK; /* cannot happen at an accepted point */
+  T->stats->max_residual =
+      fmax(T->stats->max_residual, norm_inf(T->F, T->cs.pb.n));
+  sc_curve_point pt = {
+      UX(T, u), UY(T, u),  u[0], j.gx, sc_curve_coefficient(T->set->type, &j),
+      branch,   T->mc.itin};
+  T->stats->npoints++;
+  if (T->out && T->out->point && T->out->point(T->out->ctx, &pt))
+    return SC_ECALLBACK;
+  return SC_OK;
+}
+
+static double dist_inf(const trace *T, const double *a, const double *b) {
+  double m = 0;
+  for (size_t i = 0; i < T->N; i++)
+    m = fmax(m, fabs(a[i] - b[i]));
+  return m;
+}
+
+/* sqrt(DBL_EPSILON) */
+#define SC_SQRT_EPS 1.4901161193847656e-08
+
+/* Locate the zero of test k between the points a and b (psi values pa,
+ * pb of opposite signs) and report it. */
+static int locate(trace *T, size_t k, const double *a, const double *b,
+                  double pa, double pb) {
+  double w = pa / (pa - pb), *u = T->u, *mid = T->mid;
+  for (size_t i = 0; i < T->N; i++)
+    mid[i] = u[i] = a[i] + w * (b[i] - a[i]);
+  sc_curve_cert cert;
+  sc_msg msg;
+  int st = sc_curve_locate(&T->cs, k, u, T->acc, &cert, &msg);
+  char note[128];
+  const char *label = T->cs.labels[k];
+  char rej[8];
+  snprintf(rej, sizeof rej, "%s?", label);
+  if (st) {
+    snprintf(note, sizeof note, "not located: %.100s", msg.text);
+    return emit_special(T, rej, mid, NAN, cert.residual, note);
+  }
+  /* A sign change across a pole or a jump of psi (near d* or a grazing,
+   * where f'' grows without bound) is no zero: the located psi must be
+   * small against its values at the bracket's ends (sqrt(eps): what a
+   * difference-row Newton reaches on a well-scaled zero), and the point
+   * must lie near the bracket. */
+  double scale = fmax(fabs(pa), fabs(pb));
+  double span = dist_inf(T, a, b);
+  if (!(fabs(cert.psi) <= SC_SQRT_EPS * scale) ||
+      dist_inf(T, u, mid) > 2 * span) {
+    snprintf(note, sizeof note,
+             "rejected: the sign change is not a zero (%s = %.3g, ends "
+             "%.3g, %.3g)",
+             k == 0 ? "coefficient" : "test", cert.psi, pa, pb);
+    return emit_special(T, rej, mid, NAN, cert.residual, note);
+  }
+  sc_curve_jet j;
+  if (g_at(T, u, &j)) return SC_OK;
+  double coef = sc_curve_coefficient(T->set->type, &j);
+  const char *xn = sc_map_type(T->mc.m)->params[T->set->ix].name;
+  const char *yn = sc_map_type(T->mc.m)->params[T->set->iy].name;
+  if (k == 0) {
+    if (T->set->type == SC_CURVE_FOLD)
+      snprintf(note, sizeof note,
+               "cusp: the fold's quadratic coefficient changes sign");
+    else
+      snprintf(note, sizeof note, "generalized flip: %s",
+               pa > 0 ? "supercritical to subcritical"
+                      : "subcritical to supercritical");
+    return emit_special(T, label, u, coef, cert.residual, note);
+  }
+  /* A turning point where the normal-form coefficient also vanishes is
+   * the cusp (reported by its own test): the coefficient tells them
+   * apart.  "Vanishes": within 100 residual tolerances, the accuracy to
+   * which the located point satisfies the system. */
+  if (fabs(coef) <= 100 * T->acc->newton_ftol) return SC_OK;
+  size_t ip = k == 1 ? T->N - 2 : T->N - 1;
+  int max = u[ip] >= a[ip] && u[ip] >= b[ip];
+  snprintf(note, sizeof note, "%s %s", k == 1 ? xn : yn, max ? "max" : "min");
+  return emit_special(T, label, u, coef, cert.residual, note);
+}
+
+static int end_point(trace *T, const double *u, const char *why) {
+  sc_curve_jet j;
+  double coef = g_at(T, u, &j) ? NAN : sc_curve_coefficient(T->set->type, &j);
+  return emit_special(T, "EP", u, coef, NAN, why);
+}
+
+/* Damped Newton for the start at fixed y on the single-shooting system,
+ * unknowns (d, x): the orbits of f^m can sit close to d*, where
+ * f' ~ |d - d*|^(-1/2) (MODEL.md), and a full step from a guess
+ * overshoots; halving the step until the residual decreases brings the
+ * guess in, and the branch's own corrector then polishes it.  u holds
+ * (d, x, y) in and out. */
+static int correct_start(trace *T, double *u, double *floor_out, sc_msg *msg) {
+  double F[2], J[6], Ft[2], ut[3];
+  *floor_out = HUGE_VAL;
+  const sc_cont_problem *pb = &T->ss.pb;
+  if (pb->f(u, F, pb->user))
+    return sc_fail(msg, SC_ENOCONV,
+                   "curve: the map fails at the start (%.200s)",
+                   T->mc.emsg.text);
+  for (int it = 0; it < T->acc->newton_maxiter; it++) {
+    double r = fmax(fabs(F[0]), fabs(F[1]));
+    *floor_out = r;
+    if (r <= T->acc->newton_ftol) return SC_OK;
+    if (pb->jac(u, J, pb->user)) break;
+    /* columns d (0) and x (1) of the 2 x 3 Jacobian */
+    double a = J[0], b = J[1], c = J[3], e = J[4], det = a * e - b * c;
+    if (det == 0) break;
+    double dd = -(e * F[0] - b * F[1]) / det;
+    double dx = -(a * F[1] - c * F[0]) / det;
+    double lam = 1;
+    for (int h = 0; h < 30; h++, lam *= 0.5) {
+      ut[0] = u[0] + lam * dd, ut[1] = u[1] + lam * dx, ut[2] = u[2];
+      if (pb->f(ut, Ft, pb->user) == 0 && fmax(fabs(Ft[0]), fabs(Ft[1])) < r)
+        break;
+    }
+    if (!(fmax(fabs(Ft[0]), fabs(Ft[1])) < r))
+      return SC_OK; /* no step decreases the residual: its rounding floor */
+    memcpy(u, ut, sizeof ut);
+    memcpy(F, Ft, sizeof Ft);
+  }
+  return SC_OK; /* the branch corrector decides */
+}
+
+/* One direction from the corrected start. */
+static int run(trace *T, int dir, int branch, sc_msg *msg) {
+  const sc_curve_settings *s = T->set;
+  size_t N = T->N;
+  sc_cont_settings cset;
+  sc_cont_settings_default(&cset);
+  cset.h0 = s->h0;
+  cset.hmax = s->hmax;
+  cset.hmin = fmin(cset.hmin, s->h0);
+  cset.pmin = s->ylo;
+  cset.pmax = s->yhi;
+  cset.direction = dir;
+  cset.max_points = s->max_points;
+  /* multiple shooting: the sparse pattern and KLU (about 5 m nonzeros
+   * in an (m + 2)^2 bordered matrix) */
+  sc_cont_problem pb = T->cs.pb;
+  if (s->multiple) {
+    int rc = sc_curve_map1d_ms_sparse(&T->msys, &pb, msg);
+    if (rc) return rc;
+    cset.linsolve = sc_linsolve_klu;
+  }
+  sc_branch *b;
+  int st = sc_branch_alloc(&pb, &cset, T->acc, &b, msg);
+  if (st) return st;
+  st = sc_branch_set(b, T->u0, msg);
+  if (st) {
+    sc_branch_free(b);
+    return st;
+  }
+  double *prev = T->prev, *cur = T->cur, psi_prev[3], psi[3];
+  memcpy(prev, sc_branch_point(b), N * sizeof *prev);
+  sc_curve_jet j;
+  if (branch == 0) {
+    memcpy(T->u0, prev, N * sizeof *prev);
+    /* the start's itinerary: the curve follows this one */
+    g_at(T, prev, &j);
+    snprintf(T->itin0, sizeof T->itin0, "%s", T->mc.itin);
+    if ((st = emit_point(T, prev, 0))) goto done;
+  } else if ((st = emit_point(T, prev, 1))) {
+    /* the start again, so that each direction's polyline begins there */
+    goto done;
+  }
+  if (T->cs.test(prev, psi_prev, T->cs.user)) {
+    st = sc_fail(msg, SC_ENOCONV, "curve: test functions fail at the start");
+    goto done;
+  }
+  double far = 0;
+  for (;;) {
+    sc_msg bm;
+    int bs = sc_branch_step(b, &bm);
+    if (bs < 0) {
+      char why[128];
+      snprintf(why, sizeof why, "stopped: %.110s", bm.text);
+      st = end_point(T, prev, why);
+      break;
+    }
+    memcpy(cur, sc_branch_point(b), N * sizeof *cur);
+    /* the orbit must keep its itinerary: a change is a border */
+    if (g_at(T, cur, &j) == 0 && strcmp(T->mc.itin, T->itin0)) {
+      char why[128];
+      snprintf(why, sizeof why, "border: itinerary %.40s -> %.40s", T->itin0,
+               T->mc.itin);
+      st = end_point(T, prev, why);
+      break;
+    }
+    if (T->cs.test(cur, psi, T->cs.user) == 0) {
+      for (size_t k = 0; k < 3; k++)
+        if ((psi_prev[k] > 0 && psi[k] < 0) || (psi_prev[k] < 0 && psi[k] > 0))
+          if ((st = locate(T, k, prev, cur, psi_prev[k], psi[k]))) goto done;
+      memcpy(psi_prev, psi, sizeof psi);
+    }
+    if (UX(T, cur) < s->xlo || UX(T, cur) > s->xhi) {
+      st = end_point(T, prev, "the box's edge in x");
+      break;
+    }
+    if ((st = emit_point(T, cur, branch))) goto done;
+    memcpy(prev, cur, N * sizeof *prev);
+    if (bs == SC_END) {
+      st = end_point(T, cur,
+                     UY(T, cur) <= s->ylo || UY(T, cur) >= s->yhi
+                         ? "the box's edge in y"
+                         : "max-points reached");
+      break;
+    }
+    /* closed: back within one step of the start after going away */
+    double dist = dist_inf(T, cur, T->u0);
+    far = fmax(far, dist);
+    if (far > 4 * s->hmax && dist < 1.5 * sc_branch_step_size(b)) {
+      T->closed = 1;
+      st = end_point(T, cur, "the curve closes on itself");
+      break;
+    }
+  }
+done:
+  sc_branch_free(b);
+  return st;
+}
+
+int sc_curve_trace(sc_map *m, const sc_curve_settings *set, double d0,
+                   const sc_curve_output *out, sc_curve_stats *stats,
+                   sc_msg *msg) {
+  size_t np = sc_map_nparam(m);
+  memset(stats, 0, sizeof *stats);
+  if (set->period < 1 || set->ix < 0 || set->iy < 0 || (size_t)set->ix >= np ||
+      (size_t)set->iy >= np || set->ix == set->iy || !(set->h0 > 0) ||
+      !(set->hmax >= set->h0) || set->max_points < 1 ||
+      !(set->xlo < set->xhi) || !(set->ylo < set->yhi))
+    return sc_fail(msg, SC_EINVAL,
+                   "sc_curve_trace: bad settings (period %d >= 1, x, y "
+                   "distinct parameters, 0 < h0 <= hmax, lo < hi)",
+                   set->period);
+  trace T;
+  memset(&T, 0, sizeof T);
+  T.set = set;
+  T.out = out;
+  T.stats = stats;
+  T.acc = sc_map_accuracy(m);
+  T.mc.m = T.mc1.m = m;
+  T.mc.period = set->period;
+  T.mc1.period = 1;
+  T.mc.ix = T.mc1.ix = set->ix;
+  T.mc.iy = T.mc1.iy = set->iy;
+  T.sys.fn = jet_fn;
+  T.sys.user = &T.mc;
+  T.sys.type = set->type;
+  T.sys.np = np;
+  for (size_t i = 0; i < np; i++)
+    T.sys.p[i] = sc_map_get_param(m, i);
+  T.sys.ifree[0] = set->ix;
+  T.sys.ifree[1] = set->iy;
+  double x0 = T.sys.p[set->ix], y0 = T.sys.p[set->iy];
+  int st = sc_curve_map1d_system(&T.sys, &T.ss, msg);
+  if (st) return st;
+  size_t mper = (size_t)set->period;
+  T.N = set->multiple ? mper + 2 : 3;
+  double *mem = calloc(6 * T.N, sizeof *mem);
+  if (!mem) return sc_fail(msg, SC_ENOMEM, "sc_curve_trace: out of memory");
+  T.u0 = mem, T.prev = mem + T.N, T.cur = mem + 2 * T.N;
+  T.u = mem + 3 * T.N, T.mid = mem + 4 * T.N, T.F = mem + 5 * T.N;
+  if (set->multiple) {
+    T.msys.fn = jet_fn;
+    T.msys.gfn = jet_fn;
+    T.msys.user = &T.mc1; /* f */
+    T.msys.guser = &T.mc; /* f^m, for the normal-form test */
+    T.msys.type = set->type;
+    T.msys.period = mper;
+    T.msys.np = np;
+    memcpy(T.msys.p, T.sys.p, sizeof T.msys.p);
+    T.msys.ifree[0] = set->ix;
+    T.msys.ifree[1] = set->iy;
+    st = sc_curve_ms_work_alloc(mper, &T.msys.work, msg);
+    if (st == SC_OK) st = sc_curve_map1d_ms_system(&T.msys, &T.cs, msg);
+  } else {
+    T.cs = T.ss;
+  }
+  double floor = HUGE_VAL, start[3] = {d0, x0, y0};
+  if (st == SC_OK) st = correct_start(&T, start, &floor, msg);
+  if (st == SC_OK) {
+    /* the orbit from the corrected single-shooting start */
+    T.u0[0] = start[0];
+    UX(&T, T.u0) = start[1];
+    UY(&T, T.u0) = start[2];
+    for (size_t k = 1; set->multiple && k < mper && st == SC_OK; k++) {
+      sc_curve_jet j;
+      double p[SC_MAP1D_MAXPARAM];
+      memcpy(p, T.sys.p, sizeof p);
+      p[set->ix] = start[1], p[set->iy] = start[2];
+      if (jet_fn(T.u0[k - 1], p, &j, &T.mc1))
+        st = sc_fail(msg, SC_ENOCONV,
+                     "curve: the map fails along the start "
+                     "orbit (%.200s)",
+                     T.mc1.emsg.text);
+      T.u0[k] = j.g;
+    }
+  }
+  /* The residual of f^m's system has a rounding floor that grows with m
+   * and with |f'| along the orbit (near d*, f' ~ |d - d*|^(-1/2)), and
+   * varies along the curve; a residual tolerance below it can never be
+   * met.  Use at least SC_CURVE_FTOL, and 4 times the floor met at the
+   * start where that is larger (reported), never beyond 1e-9 (the fast
+   * preset's). */
+  sc_accuracy acc = *T.acc;
+  acc.newton_ftol = fmax(acc.newton_ftol, SC_CURVE_FTOL);
+  if (floor > acc.newton_ftol && floor <= 2.5e-10) {
+    acc.newton_ftol = 4 * floor;
+    acc.newton_atol = fmax(acc.newton_atol, 4 * floor);
+  }
+  stats->ftol = acc.newton_ftol;
+  T.acc = &acc;
+  if (st == SC_OK) st = run(&T, +1, 0, msg);
+  if (st == SC_OK && !T.closed) st = run(&T, -1, 1, msg);
+  stats->closed = T.closed;
+  sc_map_set_param(m, (size_t)set->ix, x0, NULL);
+  sc_map_set_param(m, (size_t)set->iy, y0, NULL);
+  sc_curve_ms_work_free(T.msys.work);
+  free(mem);
+  return st;
+}

@@ -1,0 +1,433 @@
+/* Task `curve`: the fold or flip curve of a period-m orbit in two
+ * parameters, its codimension-two points (CP, GPD, TP) and where it ends
+ * (sc_curve_trace, curve.h; docs/curves.md). */
+#define _XOPEN_SOURCE 700 /* realpath */
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "cli/tasks.h"
+#include "slipcont/curve.h"
+
+static const sc_key_info curve_keys[] = {
+    {"type", SC_KEY_CHOICE, 1, NULL, 0, 0, 0, 0, "fold|flip",
+     "fold: multiplier +1 (f^m(d) = d, (f^m)' = 1); flip: (f^m)' = -1"},
+    {"x", SC_KEY_PARAM, 1, NULL, 0, 0, 0, 0, NULL,
+     "the parameter the start was located in (horizontal axis)"},
+    {"y", SC_KEY_PARAM, 1, NULL, 0, 0, 0, 0, NULL,
+     "the second parameter (vertical axis); the start is corrected at the "
+     "model's value of y"},
+    {"x-from", SC_KEY_REAL, 1, NULL, -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
+     "the box: lower end of x"},
+    {"x-to", SC_KEY_REAL, 1, NULL, -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
+     "the box: upper end of x (> x-from)"},
+    {"y-from", SC_KEY_REAL, 1, NULL, -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
+     "the box: lower end of y"},
+    {"y-to", SC_KEY_REAL, 1, NULL, -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
+     "the box: upper end of y (> y-from)"},
+    {"period", SC_KEY_INT, 0, "1", 1, 4096, 0, 0, NULL,
+     "m: the orbit is a fixed point of f^m (single shooting)"},
+    {"d0", SC_KEY_REAL, 0, NULL, -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
+     "guess of an orbit point at the start (or give start)"},
+    {"start", SC_KEY_TEXT, 0, NULL, 0, 0, 0, 0, NULL,
+     "FILE:N, row N (1 = first after the header) of a branch task's "
+     "points.csv: an LP (type = fold) or PD (type = flip) located in x; "
+     "x, d0 and period are taken from it (instead of d0)"},
+    {"shooting", SC_KEY_CHOICE, 0, "single", 0, 0, 0, 0, "single|multiple",
+     "single: on f^m in (d, x, y); multiple: one equation per iterate in "
+     "(d_0..d_{m-1}, x, y), for long periods"},
+    {"h0", SC_KEY_REAL, 0, "0", 0, HUGE_VAL, 0, 1, NULL,
+     "initial arclength step in (d, x, y) (0: hmax / 10)"},
+    {"hmax", SC_KEY_REAL, 0, "0", 0, HUGE_VAL, 0, 1, NULL,
+     "largest arclength step (0: the box's smaller side / 50)"},
+    {"max-points", SC_KEY_INT, 0, "5000", 2, 10000000, 0, 0, NULL,
+     "accepted points per direction"},
+    {"overlay", SC_KEY_TEXT, 0, NULL, 0, 0, 0, 0, NULL,
+     "a chart.csv of the chart task over the same x and y, drawn under "
+     "the curve (path relative to the working folder)"},
+};
+
+/* The overlay's header must start with "<x>,<y>,period": a chart of
+ * these two parameters.  Returns 0 or a status with the reason. */
+static int overlay_check(const sc_scene *s, const char *path, const char *xn,
+                         const char *yn, sc_msg *msg) {
+  FILE *f = fopen(path, "r");
+  if (!f)
+    return sc_scene_fail_key(s, "task", "overlay", msg,
+                             "overlay = %s cannot be read (valid: a chart.csv "
+                             "of the chart task)",
+                             path);
+  char line[256] = "", want[256];
+  char *ok = fgets(line, sizeof line, f);
+  fclose(f);
+  snprintf(want, sizeof want, "%s,%s,period,", xn, yn);
+  if (!ok || strncmp(line, want, strlen(want)) != 0)
+    return sc_scene_fail_key(s, "task", "overlay", msg,
+                             "overlay = %s is not a chart of (%s, %s): its "
+                             "header does not start with '%s' (valid: a "
+                             "chart.csv with x = %s, y = %s)",
+                             path, xn, yn, want, xn, yn);
+  return SC_OK;
+}
+
+/* A row of a branch task's points.csv, its columns found by the header's
+ * names (label, parameter, value, d, period). */
+typedef struct {
+  char label[16], param[64];
+  double value, d;
+  int period;
+} start_row;
+
+/* Split a CSV line in place into at most max fields. */
+static int split(char *line, char **f, int max) {
+  int n = 0;
+  line[strcspn(line, "\r\n")] = '\0';
+  for (char *p = line; n < max;) {
+    f[n++] = p;
+    char *c = strchr(p, ',');
+    if (!c) break;
+    *c = '\0';
+    p = c + 1;
+  }
+  return n;
+}
+
+static int read_start(const char *spec, start_row *row, char *why, size_t len) {
+  char path[4096];
+  snprintf(path, sizeof path, "%s", spec);
+  char *colon = strrchr(path, ':');
+  long n = 0;
+  if (!colon || sc_parse_long(colon + 1, 1, 100000000, &n)) {
+    snprintf(why, len, "not FILE:N with N >= 1");
+    return SC_EINVAL;
+  }
+  *colon = '\0';
+  FILE *f = fopen(path, "r");
+  if (!f) {
+    snprintf(why, len, "%.300s cannot be read", path);
+    return SC_EINVAL;
+  }
+  char head[1024], line[4096], *h[16], *v[16];
+  int col[5] = {-1, -1, -1, -1, -1};
+  const char *names[5] = {"label", "parameter", "value", "d", "period"};
+  int nh = fgets(head, sizeof head, f) ? split(head, h, 16) : 0;
+  for (int i = 0; i < nh; i++)
+    for (int k = 0; k < 5; k++)
+      if (strcmp(h[i], names[k]) == 0) col[k] = i;
+  int found = 0;
+  for (long r = 1; fgets(line, sizeof line, f); r++)
+    if (r == n) {
+      found = 1;
+      break;
+    }
+  fclose(f);
+  for (int k = 0; k < 5; k++)
+    if (col[k] < 0) {
+      snprintf(why, len,
+               "%.300s has no column '%s' (a branch task's points.csv "
+               "has label,parameter,value,d,period)",
+               path, names[k]);
+      return SC_EINVAL;
+    }
+  if (!found) {
+    snprintf(why, len, "%.300s has no row %ld", path, n);
+    return SC_EINVAL;
+  }
+  int nv = split(line, v, 16);
+  long per = 0;
+  for (int k = 0; k < 5; k++)
+    if (col[k] >= nv) {
+      snprintf(why, len, "row %ld of %.300s is short", n, path);
+      return SC_EINVAL;
+    }
+  if (sc_parse_double(v[col[2]], &row->value) ||
+      sc_parse_double(v[col[3]], &row->d) ||
+      sc_parse_long(v[col[4]], 1, 4096, &per)) {
+    snprintf(why, len, "row %ld of %.300s: value, d or period unreadable", n,
+             path);
+    return SC_EINVAL;
+  }
+  row->period = (int)per;
+  snprintf(row->label, sizeof row->label, "%s", v[col[0]]);
+  snprintf(row->param, sizeof row->param, "%s", v[col[1]]);
+  return SC_OK;
+}
+
+static int curve_check(const sc_scene *s, sc_msg *msg) {
+  const sc_map *m = sc_scene_map(s);
+  const char *xn = sc_scene_text(s, "x"), *yn = sc_scene_text(s, "y");
+  if (strcmp(xn, yn) == 0)
+    return sc_scene_fail_key(s, "task", "y", msg,
+                             "y = %s is the same parameter as x (valid: "
+                             "another parameter of the model)",
+                             yn);
+  const char *spec = sc_scene_text(s, "start");
+  int has_d0 = !isnan(sc_scene_real(s, "d0"));
+  if (!spec == !has_d0)
+    return sc_scene_fail_key(s, "task", spec ? "start" : "d0", msg,
+                             "give either d0 or start (valid: exactly one "
+                             "of them)");
+  start_row row;
+  if (spec) {
+    char why[512];
+    if (read_start(spec, &row, why, sizeof why))
+      return sc_scene_fail_key(s, "task", "start", msg,
+                               "start = %s: %s (valid: FILE:N, a row of a "
+                               "branch task's points.csv)",
+                               spec, why);
+    const char *want = strcmp(sc_scene_text(s, "type"), "flip") ? "LP" : "PD";
+    if (strcmp(row.param, xn) || strcmp(row.label, want))
+      return sc_scene_fail_key(s, "task", "start", msg,
+                               "start = %s is a %s in %s (valid: a %s in x "
+                               "= %s for type = %s)",
+                               spec, row.label, row.param, want, xn,
+                               sc_scene_text(s, "type"));
+  }
+  const char *lo[2] = {"x-from", "y-from"}, *hi[2] = {"x-to", "y-to"};
+  const char *nm[2] = {xn, yn};
+  for (int k = 0; k < 2; k++) {
+    if (!(sc_scene_real(s, lo[k]) < sc_scene_real(s, hi[k])))
+      return sc_scene_fail_key(s, "task", hi[k], msg,
+                               "%s = %s is not above %s = %s (valid: > %s)",
+                               hi[k], sc_scene_text(s, hi[k]), lo[k],
+                               sc_scene_text(s, lo[k]), lo[k]);
+    double v = sc_map_get_param(m, (size_t)sc_map_param_index(m, nm[k]));
+    if (k == 0 && spec) v = row.value;
+    if (v < sc_scene_real(s, lo[k]) || v > sc_scene_real(s, hi[k]))
+      return sc_scene_fail_key(
+          s, "task", lo[k], msg,
+          "the start's %s = %.17g (the [model] value) lies outside [%s, %s] "
+          "(valid: inside the box)",
+          nm[k], v, sc_scene_text(s, lo[k]), sc_scene_text(s, hi[k]));
+  }
+  const char *ov = sc_scene_text(s, "overlay");
+  if (ov) return overlay_check(s, ov, xn, yn, msg);
+  return SC_OK;
+}
+
+typedef struct {
+  FILE *curve, *points;
+  int period;
+  int last_branch;
+  sc_curve_special *sp;
+  size_t nsp, cap;
+  int oom;
+} out_ctx;
+
+static int on_point(void *vc, const sc_curve_point *p) {
+  out_ctx *c = vc;
+  if (p->branch != c->last_branch) fputc('\n', c->curve);
+  c->last_branch = p->branch;
+  sc_csv_double(c->curve, p->x);
+  fputc(',', c->curve);
+  sc_csv_double(c->curve, p->y);
+  fputc(',', c->curve);
+  sc_csv_double(c->curve, p->d);
+  fprintf(c->curve, ",%d,", c->period);
+  sc_csv_double(c->curve, p->multiplier);
+  fputc(',', c->curve);
+  sc_csv_double(c->curve, p->coefficient);
+  char itin[SC_ITIN_LEN];
+  snprintf(itin, sizeof itin, "%s", p->itinerary);
+  fprintf(c->curve, ",%s\n", sc_cli_csv_text(itin));
+  return sc_cli_interrupted();
+}
+
+static int on_special(void *vc, const sc_curve_special *s) {
+  out_ctx *c = vc;
+  fprintf(c->points, "%s,", s->label);
+  sc_csv_double(c->points, s->x);
+  fputc(',', c->points);
+  sc_csv_double(c->points, s->y);
+  fputc(',', c->points);
+  sc_csv_double(c->points, s->d);
+  char note[sizeof s->note];
+  snprintf(note, sizeof note, "%s", s->note);
+  fprintf(c->points, ",%d,%s,", c->period, sc_cli_csv_text(note));
+  sc_csv_double(c->points, s->coefficient);
+  fputc(',', c->points);
+  sc_csv_double(c->points, s->residual);
+  fputc('\n', c->points);
+  if (c->nsp == c->cap) {
+    size_t cap = c->cap ? 2 * c->cap : 16;
+    sc_curve_special *n = realloc(c->sp, cap * sizeof *n);
+    if (!n) {
+      c->oom = 1;
+      return 1;
+    }
+    c->sp = n, c->cap = cap;
+  }
+  c->sp[c->nsp++] = *s;
+  return 0;
+}
+
+static double now(void) {
+  struct timespec t;
+  clock_gettime(CLOCK_MONOTONIC, &t);
+  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+static int curve_run(sc_cli_run *r) {
+  const sc_scene *s = r->scene;
+  int st0;
+  sc_map *m = r->map;
+  const char *xn = sc_scene_text(s, "x"), *yn = sc_scene_text(s, "y");
+  sc_curve_settings set;
+  sc_curve_settings_default(&set);
+  set.type = strcmp(sc_scene_text(s, "type"), "flip") == 0 ? SC_CURVE_FLIP
+                                                           : SC_CURVE_FOLD;
+  set.period = (int)sc_scene_int(s, "period");
+  set.multiple = strcmp(sc_scene_text(s, "shooting"), "multiple") == 0;
+  set.ix = sc_map_param_index(m, xn);
+  set.iy = sc_map_param_index(m, yn);
+  set.xlo = sc_scene_real(s, "x-from"), set.xhi = sc_scene_real(s, "x-to");
+  set.ylo = sc_scene_real(s, "y-from"), set.yhi = sc_scene_real(s, "y-to");
+  set.hmax = sc_scene_real(s, "hmax");
+  if (set.hmax == 0) set.hmax = fmin(set.xhi - set.xlo, set.yhi - set.ylo) / 50;
+  set.h0 = sc_scene_real(s, "h0");
+  if (set.h0 == 0) set.h0 = set.hmax / 10;
+  if (set.h0 > set.hmax) set.hmax = set.h0;
+  set.max_points = sc_scene_int(s, "max-points");
+  double d0 = sc_scene_real(s, "d0");
+  const char *spec = sc_scene_text(s, "start");
+  if (spec) {
+    /* checked by curve_check(): the row exists and fits */
+    start_row row;
+    char why[512];
+    if (read_start(spec, &row, why, sizeof why))
+      return sc_fail(r->msg, SC_EIO, "curve: start = %s: %s", spec, why);
+    if ((st0 = sc_map_set_param(m, (size_t)set.ix, row.value, r->msg)))
+      return st0;
+    d0 = row.d;
+    set.period = row.period;
+  }
+
+  out_ctx c = {0};
+  c.period = set.period;
+  sc_file *cf = NULL, *pf = NULL, *sum = NULL, *gp = NULL;
+  int st;
+  if ((st = sc_cli_open(r, "curve.csv", &cf))) goto done;
+  if ((st = sc_cli_open(r, "points.csv", &pf))) goto done;
+  c.curve = sc_file_stream(cf);
+  c.points = sc_file_stream(pf);
+  fprintf(c.curve, "%s,%s,%s,period,multiplier,coefficient,itinerary\n", xn, yn,
+          sc_map_type(m)->state_name);
+  fprintf(c.points, "label,%s,%s,%s,period,note,coefficient,residual\n", xn, yn,
+          sc_map_type(m)->state_name);
+  sc_curve_output out = {on_point, on_special, &c};
+  sc_curve_stats stats;
+  unsigned long ev0 = sc_map_nevals(m);
+  double t0 = now();
+  st = sc_curve_trace(m, &set, d0, &out, &stats, r->msg);
+  double elapsed = now() - t0;
+  if (st == SC_ECALLBACK && (c.oom || sc_cli_interrupted()))
+    sc_fail(r->msg, st, "curve: %s", c.oom ? "out of memory" : "interrupted");
+  if (st) goto done;
+  if ((st = sc_cli_commit(r, "curve.csv", cf))) {
+    cf = NULL;
+    goto done;
+  }
+  cf = NULL;
+  if ((st = sc_cli_commit(r, "points.csv", pf))) {
+    pf = NULL;
+    goto done;
+  }
+  pf = NULL;
+
+  if ((st = sc_cli_summary_begin(r, &sum))) goto done;
+  FILE *f = sc_file_stream(sum);
+  fprintf(f, "  %s curve of the period-%d orbit in (%s, %s): %ld points%s\n",
+          set.type == SC_CURVE_FOLD ? "fold" : "flip", set.period, xn, yn,
+          stats.npoints, stats.closed ? ", closed" : "");
+  fprintf(f,
+          "  largest residual of the defining system over the points: "
+          "%.3g\n",
+          stats.max_residual);
+  fprintf(f, "  residual tolerance used: %.3g\n", stats.ftol);
+  fprintf(f, "  shooting: %s\n", set.multiple ? "multiple" : "single");
+  fprintf(f, "  codimension-two points: %ld\n", stats.nspecial);
+  for (size_t i = 0; i < c.nsp; i++)
+    fprintf(f,
+            "    %-3s %s = %.17g, %s = %.17g, %s = %.17g, coefficient "
+            "%.6g, residual %.3g: %s\n",
+            c.sp[i].label, xn, c.sp[i].x, yn, c.sp[i].y,
+            sc_map_type(m)->state_name, c.sp[i].d, c.sp[i].coefficient,
+            c.sp[i].residual, c.sp[i].note);
+  fprintf(f, "  map evaluations: %lu; time %.3f s\n", sc_map_nevals(m) - ev0,
+          elapsed);
+  st = sc_cli_commit(r, "summary.txt", sum);
+  sum = NULL;
+  if (st) goto done;
+
+  if ((st = sc_cli_open(r, "curve.gp", &gp))) goto done;
+  f = sc_file_stream(gp);
+  char title[512], full[640];
+  sc_plot_title(m, NULL, title, sizeof title);
+  snprintf(full, sizeof full, "%s curve, period %d (%s)",
+           set.type == SC_CURVE_FOLD ? "fold" : "flip", set.period, title);
+  sc_plot_head(f, "curve.png", full, sc_plot_label(m, xn),
+               sc_plot_label(m, yn));
+  fprintf(f, "set xrange [%.17g:%.17g]\nset yrange [%.17g:%.17g]\n", set.xlo,
+          set.xhi, set.ylo, set.yhi);
+  fputs("set datafile separator ','\nset key inside right top box opaque\n", f);
+  fputs("lab(l) = strcol(1) eq l ? column(3) : NaN\n", f);
+  const char *ov = sc_scene_text(s, "overlay");
+  char ovpath[4096];
+  int have_ov = ov && realpath(ov, ovpath);
+  if (have_ov)
+    /* the chart's periods in light colours under the curve; undefined
+     * points (period -1) left out */
+    fputs("set palette defined (0 '#f2f2f2', 1 '#cfe3f7', 4 '#d9f2d0', "
+          "8 '#fbe3c8', 16 '#f6cfd6')\n"
+          "set cbrange [0:16]\nset cblabel 'period of the chart'\n",
+          f);
+  fputs("plot ", f);
+  if (have_ov) {
+    sc_plot_quote(f, ovpath);
+    fputs(" skip 1 using 1:2:($3 < 0 ? NaN : $3) with image notitle, \\\n"
+          "     ",
+          f);
+  }
+  fprintf(f,
+          "'curve.csv' skip 1 using 1:2 with lines lw 2 lc rgb "
+          "'#1f4e9e' title '%s curve', \\\n",
+          set.type == SC_CURVE_FOLD ? "fold" : "flip");
+  const char *labels[4] = {"CP", "GPD", "TP", "EP"};
+  const char *colors[4] = {"#d62728", "#9467bd", "#2ca02c", "#777777"};
+  int pts[4] = {7, 5, 9, 6};
+  for (int k = 0; k < 4; k++)
+    fprintf(f,
+            "     'points.csv' skip 1 using 2:(lab('%s')) with points pt "
+            "%d ps 2 lc rgb '%s' title '%s'%s\n",
+            labels[k], pts[k], colors[k], labels[k], k < 3 ? ", \\" : "");
+  st = sc_cli_commit(r, "curve.gp", gp);
+  gp = NULL;
+  if (st) goto done;
+  st = sc_cli_add_plot(r, "curve.gp", "curve.png");
+  sc_cli_note(r, "%ld curve points, %ld codimension-two points in %.3f s",
+              stats.npoints, stats.nspecial, elapsed);
+done:
+  sc_file_abort(cf);
+  sc_file_abort(pf);
+  sc_file_abort(sum);
+  sc_file_abort(gp);
+  free(c.sp);
+  return st;
+}
+
+const sc_cli_task sc_cli_task_curve = {
+    .type = {.kind = "curve",
+             .doc = "fold or flip curve of a period-m orbit in two "
+                    "parameters, with its cusps (CP), generalized flips "
+                    "(GPD) and turning points (TP)",
+             .keys = curve_keys,
+             .nkeys = sizeof curve_keys / sizeof curve_keys[0],
+             .check = curve_check},
+    .outputs = "curve.csv (x,y,d,period,multiplier,coefficient,itinerary), "
+               "points.csv (label,x,y,d,period,note,coefficient,residual), "
+               "summary.txt, curve.gp, curve.png",
+    .run = curve_run,
+};
