@@ -373,7 +373,11 @@ static void test_extremes(void) {
               sc_msg msg = {""};
               int st = sc_map_eval(m, dv[k], SC_EVAL_DERIV, &r, &msg);
               total++;
-              if (st == SC_EUNDEF && msg.text[0]) undef++;
+              /* undefined, or a derivative that is not finite (an event
+               * with zero slope): refused with a reason, never NaN with
+               * SC_OK */
+              if ((st == SC_EUNDEF || st == SC_ENONFINITE) && msg.text[0])
+                undef++;
               /* f' is NaN only where it does not exist: at an event
                * with zero slope (derivations.md) */
               else if (st || !isfinite(r.f)) {
@@ -387,7 +391,9 @@ static void test_extremes(void) {
           }
   tu_int("extreme parameters: evaluations neither finite nor undefined", bad,
          0);
-  printf("(%d evaluations, %d undefined with a reason)\n", total, undef);
+  printf("(%d evaluations, %d undefined or not differentiable, with a "
+         "reason)\n",
+         total, undef);
 }
 
 /* The m-th border named like `x` in a forced evaluation at (d, p). */
@@ -479,10 +485,31 @@ static void test_border_derivatives(void) {
           skipped, checked);
 }
 
+/* Within a few ulps of d* with the driver frozen, f' is beyond what
+ * double resolves: each evaluation with derivatives gives a finite f' or
+ * SC_ENONFINITE with a message, never NaN with SC_OK. */
+static void test_near_dstar(void) {
+  sc_map *m = make(3.3, 2.5, 0.025, "frozen");
+  double ds = sc_bk2_dstar(3.3, 2.5);
+  int silent = 0, refused = 0;
+  for (int k = -40; k <= 40; k++) {
+    double d = ds + k * ds * DBL_EPSILON;
+    sc_map_value v;
+    sc_msg msg = {""};
+    int st = sc_map_eval(m, d, SC_EVAL_DERIV, &v, &msg);
+    if (st == SC_OK && !isfinite(v.dfdd)) silent++;
+    if (st == SC_ENONFINITE && msg.text[0]) refused++;
+  }
+  tu_int("f' NaN with SC_OK within 40 ulps of d*", silent, 0);
+  printf("(%d of 81 refused as not finite)\n", refused);
+  sc_map_free(m);
+}
+
 int main(void) {
   test_closed_forms();
   test_derivatives();
   test_border_derivatives();
+  test_near_dstar();
   test_properties();
   test_reference();
   test_bad_input();

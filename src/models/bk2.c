@@ -926,6 +926,19 @@ int sc_bk2_iterate_ex(const bk2_inst *b, const bk2_dpar *P, sc_dual d,
 
 _Static_assert(1 + 4 <= SC_NDIR, "bk2 needs d and four parameters");
 
+/* f' is not finite: an event with zero slope.  Next to d* with the
+ * driver frozen that is rounding (the other block starts at its threshold
+ * with zero speed, so f' grows like |d - d*|^(-1/2), beyond what double
+ * resolves): say so rather than return NaN with SC_OK. */
+static int nonfinite_derivative(const bk2_inst *b, double d, int st,
+                                const sc_map_value *out, sc_msg *msg) {
+  if (st || isfinite(out->dfdd)) return st;
+  return sc_fail(msg, SC_ENONFINITE,
+                 "bk2: f'(%.17g) is not finite: an event with zero slope "
+                 "(d - d* = %.3g; next to d* f' grows like |d - d*|^(-1/2))",
+                 d, d - b->dstar);
+}
+
 static int bk2_eval(void *vinst, double d, unsigned flags, sc_map_value *out,
                     sc_msg *msg) {
   const bk2_inst *b = vinst;
@@ -936,8 +949,9 @@ static int bk2_eval(void *vinst, double d, unsigned flags, sc_map_value *out,
   if (nd) sc_bk2_dparams(b, nd, &P);
   else P = b->p0;
   bk2_state x;
-  return sc_bk2_iterate(b, &P, sc_dvar(d, 0, nd), flags, &x, out, NULL, NULL,
-                        msg);
+  int st = sc_bk2_iterate(b, &P, sc_dvar(d, 0, nd), flags, &x, out, NULL,
+                          NULL, msg);
+  return nd ? nonfinite_derivative(b, d, st, out, msg) : st;
 }
 
 /* Numerical flows: the integration tolerance, times the growth of an
@@ -955,13 +969,18 @@ static int bk2_eval_ex(void *vinst, double d, unsigned flags,
                        sc_border_list *borders, sc_map_value *out,
                        sc_msg *msg) {
   const bk2_inst *b = vinst;
+  if (flags & SC_EVAL_DERIV2)
+    return sc_bk2_eval_jet_ex(b, d, flags, force, code, borders, out, NULL,
+                              msg);
   bk2_dpar P;
   int nd = (flags & SC_EVAL_DERIV) || borders ? 5 : 0;
   if (nd) sc_bk2_dparams(b, nd, &P);
   else P = b->p0;
   bk2_state x;
-  return sc_bk2_iterate_ex(b, &P, sc_dvar(d, 0, nd), flags, force, code,
-                           borders, &x, out, NULL, NULL, msg);
+  int st = sc_bk2_iterate_ex(b, &P, sc_dvar(d, 0, nd), flags, force, code,
+                             borders, &x, out, NULL, NULL, msg);
+  return (flags & SC_EVAL_DERIV) ? nonfinite_derivative(b, d, st, out, msg)
+                                 : st;
 }
 
 /* ---- trajectories --------------------------------------------------- */

@@ -193,6 +193,21 @@ static void fill_nan(sc_map_value *out, double *grad) {
 
 int sc_bk2_eval_jet(const bk2_inst *b, double d, unsigned flags,
                     sc_map_value *out, double *grad, sc_msg *msg) {
+  return sc_bk2_eval_jet_ex(b, d, flags, NULL, NULL, NULL, out, grad, msg);
+}
+
+int sc_bk2_eval_jet_ex(const bk2_inst *b, double d, unsigned flags,
+                       const sc_itin_code *force, sc_itin_code *code,
+                       sc_border_list *borders, sc_map_value *out,
+                       double *grad, sc_msg *msg) {
+  /* The replay solves each event as a root of its guard: a code that
+   * ends a phase at a guard's maximum (a grazing's own system) is not
+   * one it can follow. */
+  for (int i = 2; force && i < force->n; i += 2)
+    if (force->c[i - 1] & BK2_EV_ATMAX)
+      return sc_fail(msg, SC_EINVAL,
+                     "bk2: second derivatives along a code that ends a slip "
+                     "at a guard's maximum are not available");
   if (b->numerical)
     return sc_fail(msg, SC_EINVAL,
                    "bk2: second derivatives (SC_EVAL_DERIV2) need the "
@@ -202,8 +217,8 @@ int sc_bk2_eval_jet(const bk2_inst *b, double d, unsigned flags,
   bk2_state xd;
   phase_log L;
   L.n = 0;
-  int st = sc_bk2_iterate(b, &Pd, sc_dvar(d, 0, 5), flags | SC_EVAL_DERIV, &xd,
-                          out, record, &L, msg);
+  int st = sc_bk2_iterate_ex(b, &Pd, sc_dvar(d, 0, 5), flags | SC_EVAL_DERIV,
+                             force, code, borders, &xd, out, record, &L, msg);
   if (st == SC_EINVAL && L.n >= SC_BK2_JET_MAXPHASES)
     return sc_fail(msg, SC_EINVAL,
                    "bk2: %d slip phases in one iterate: too many for second "

@@ -19,5 +19,12 @@
  * (d, alpha, beta, phi, v), a cross-check of the duals' (tests). */
 int sc_bk2_eval_jet(const bk2_inst *b, double d, unsigned flags,
                     sc_map_value *out, double *grad, sc_msg *msg);
+/* As sc_bk2_eval_jet() along a forced code, with the code followed and
+ * the borders (sc_bk2_iterate_ex()); a code with an event at a guard's
+ * maximum is refused (SC_EINVAL). */
+int sc_bk2_eval_jet_ex(const bk2_inst *b, double d, unsigned flags,
+                       const sc_itin_code *force, sc_itin_code *code,
+                       sc_border_list *borders, sc_map_value *out,
+                       double *grad, sc_msg *msg);
 
 #endif
