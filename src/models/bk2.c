@@ -61,6 +61,7 @@ static int bk2_setup(void *vinst, const double *p, const int *opt,
   b->vs = b->frozen ? 0 : b->v;
   b->dstar = sc_bk2_dstar(b->alpha, b->beta);
   sc_bk2_dparams(b, 0, &b->p0); /* value-only evaluations start from it */
+  b->search = sc_guard_first_root;
   if (b->vw && b->frozen)
     return sc_fail(msg, SC_EINVAL,
                    "bk2: friction = velocity-weakening with driver = frozen "
@@ -381,7 +382,7 @@ static int exact_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
   for (int i = 0; i < ng; i++) {
     int skip = kind[i] < 3 && (fresh & kind[i]);
     double lim = first < 0 ? tmax : r[first].t + atol + rtol * r[first].t;
-    int st = sc_guard_first_root(&g[i], lim, skip, atol, rtol, &r[i]);
+    int st = b->search(&g[i], lim, skip, atol, rtol, &r[i]);
     if (st)
       return sc_fail(msg, SC_EINTERNAL,
                      "bk2: malformed guard in mode %d (parameters out of "

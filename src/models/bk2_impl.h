@@ -4,6 +4,7 @@
 #define SC_MODELS_BK2_IMPL_H
 
 #include "hybrid/dual.h"
+#include "slipcont/hybrid.h"
 #include "slipcont/models.h"
 
 typedef struct bk2_num bk2_num; /* numerical-flow workspace (GSL) */
@@ -23,6 +24,11 @@ typedef struct {
   double mu, w1, w2, vs, dstar; /* derived */
   bk2_num *num;                 /* owned; NULL for exact flows */
   bk2_dpar p0;                  /* the parameters without derivatives */
+  /* The first-root search of the exact flows: sc_guard_first_root, set
+   * by bk2_setup; tests put a frozen earlier search here to check that a
+   * faster one changes nothing but speed (tests/test_map_equiv.c). */
+  int (*search)(const sc_guard *g, double tmax, int skip_start, double atol,
+                double rtol, sc_root *out);
 } bk2_inst;
 
 
