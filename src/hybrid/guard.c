@@ -57,11 +57,12 @@ typedef struct {
   double c0, c1, amp, wamp;
 } guard_size;
 
-/* The sizes, and each sinusoid's amplitude into amp[] (one hypot each). */
+/* The sizes, and each sinusoid's amplitude into amp[] (coefficients are
+ * far from overflow: sqrt of the sum of squares, not hypot). */
 static guard_size guard_sizes(const sc_guard *g, double *amp) {
   guard_size z = {fabs(g->c0), fabs(g->c1), 0, 0};
   for (int k = 0; k < g->n; k++) {
-    amp[k] = hypot(g->a[k], g->b[k]);
+    amp[k] = sqrt(g->a[k] * g->a[k] + g->b[k] * g->b[k]);
     z.amp += amp[k];
     z.wamp += amp[k] * g->w[k];
   }
@@ -142,9 +143,52 @@ static double amplitude_bound(const sc_guard *g, const guard_terms *e,
  * zero, or when a Newton step inside the bracket is below the tolerance
  * (convergence is quadratic there, so the step itself bounds the error,
  * and the slope at the last point is the root's to O(step)). */
+/* cos and sin of x for |x| <= GUARD_SMALL_ANGLE by their Taylor
+ * polynomials in x^2 (through x^15 and x^16: the truncation is below
+ * 1e-18, the rounding a few ulps, as libm's), several times cheaper than
+ * a libm call. */
+#define GUARD_SMALL_ANGLE 0.6
+static inline void small_sincos(double x, double *s, double *c) {
+  double z = x * x;
+  *s = x * (1 + z * (-1.0 / 6 + z * (1.0 / 120 + z * (-1.0 / 5040 +
+       z * (1.0 / 362880 + z * (-1.0 / 39916800 + z * (1.0 / 6227020800 +
+       z * (-1.0 / 1307674368000))))))));
+  *c = 1 + z * (-0.5 + z * (1.0 / 24 + z * (-1.0 / 720 + z * (1.0 / 40320 +
+       z * (-1.0 / 3628800 + z * (1.0 / 479001600 + z * (-1.0 / 87178291200 +
+       z * (1.0 / 20922789888000))))))));
+}
+
+/* g and g' at t near t0, where cos and sin of every term are c0[], s0[]:
+ * by angle addition with the small angles w (t - t0). */
+static void eval_near(const sc_guard *g, double t0, const double *c0,
+                      const double *s0, double t, double *v, double *d) {
+  double x = t - t0, g0 = g->c0 + g->c1 * t, g1 = g->c1;
+  for (int k = 0; k < g->n; k++) {
+    double w = g->w[k], sx, cx;
+    if (fabs(w * x) <= GUARD_SMALL_ANGLE) {
+      small_sincos(w * x, &sx, &cx);
+    } else {
+      double sn, cs;
+      sn = sin(w * t), cs = cos(w * t);
+      g0 += g->a[k] * cs + g->b[k] * sn;
+      g1 += w * (g->b[k] * cs - g->a[k] * sn);
+      continue;
+    }
+    double cs = c0[k] * cx - s0[k] * sx, sn = s0[k] * cx + c0[k] * sx;
+    g0 += g->a[k] * cs + g->b[k] * sn;
+    g1 += w * (g->b[k] * cs - g->a[k] * sn);
+  }
+  *v = g0, *d = g1;
+}
+
 static void refine(const sc_guard *g, const guard_size *z, double lo,
                    double glo, double dlo, double hi, double ghi, double dhi,
                    double atol, double rtol, sc_root *out) {
+  /* cos and sin at lo from libm, once: the iterates lie within the
+   * bracket, less than GUARD_SMALL_ANGLE / w from it. */
+  double t0 = lo, c0[SC_GUARD_MAXFREQ], s0[SC_GUARD_MAXFREQ];
+  for (int k = 0; k < g->n; k++)
+    c0[k] = cos(g->w[k] * t0), s0[k] = sin(g->w[k] * t0);
   /* Start from the root of the cubic Hermite interpolant of g and g' at
    * both ends (a few Newton steps on the cubic, no trigonometry), which
    * is far closer than the secant point: one or two Newton steps on g
@@ -167,7 +211,7 @@ static void refine(const sc_guard *g, const guard_size *z, double lo,
   }
   double v = 0, d = 0, bracket = hi - lo;
   for (int it = 0; it < GUARD_MAX_REFINE; it++) {
-    sc_guard_eval(g, t, &v, &d, NULL);
+    eval_near(g, t0, c0, s0, t, &v, &d);
     if (fabs(v) <= round_at(z, t)) {
       bracket = 0;
       break;
@@ -242,6 +286,294 @@ static int closed_form(const sc_guard *g, const guard_size *z, double R,
   return 1;
 }
 
+/* What the march needs to know about one guard, computed once per search. */
+typedef struct {
+  const sc_guard *g;
+  guard_size z;
+  double amp[SC_GUARD_MAXFREQ], m3[SC_GUARD_MAXFREQ], M3;
+  double atol, rtol;
+} guard_ctx;
+
+/* The adaptive march on [t, tend], from the terms e at t: intervals are
+ * halved until test (A) or (B) passes.  Returns 1 with *out filled when it
+ * finds the first root there, 0 when [t, tend] holds none. */
+static int march(const guard_ctx *c, double t, double tend, guard_terms *e,
+                 int at_start_root, double h, sc_root *out) {
+  const sc_guard *g = c->g;
+  double atol = c->atol, rtol = c->rtol, M3 = c->M3;
+  double g0 = e->g0, g1 = e->g1, g2 = e->g2;
+  while (t < tend) {
+    h = min2(h, tend - t);
+    out->steps++;
+    double E = round_at(&c->z, t + h);
+    double sigma = g0 > 0 ? 1 : -1;
+    if (at_start_root) {
+      /* g(0) = 0 by construction: its sign just after 0 is that of g1,
+       * or of g2 if g1 vanishes. */
+      sigma = g1 != 0 ? (g1 > 0 ? 1 : -1) : (g2 > 0 ? 1 : -1);
+    } else if (fabs(g0) <= E) {
+      /* g is within rounding of zero here: a root at t. */
+      out->found = 1;
+      out->t = t;
+      out->slope = g1;
+      out->tangent = fabs(g1) * tol_at(t, atol, rtol) <= E;
+      return 1;
+    }
+    /* (A) no root in [t, t+h]: the quadratic with the global remainder,
+     * or failing that (with several frequencies) the bound that takes
+     * some terms by their amplitude. */
+    if (!at_start_root &&
+        (quad_min(sigma, g0, g1, g2, h) - M3 * h * h * h / 6 > E ||
+         (g->n > 1 &&
+          amplitude_bound(g, e, c->amp, c->m3, sigma, t, h) > E))) {
+      t += h;
+      eval_terms(g, t, e);
+      g0 = e->g0, g1 = e->g1, g2 = e->g2;
+      h *= 2;
+      continue;
+    }
+    /* (B) g strictly monotone on [t, t+h] */
+    double d0 = g1, dh = g1 + g2 * h;
+    if ((d0 > 0) == (dh > 0) && min2(fabs(d0), fabs(dh)) > M3 * h * h / 2) {
+      guard_terms eh;
+      eval_terms(g, t + h, &eh);
+      double ge = eh.g0, ge1 = eh.g1, ge2 = eh.g2;
+      if (!at_start_root && (ge * sigma <= 0 || fabs(ge) <= E)) {
+        if (fabs(ge) <= E) {
+          out->found = 1;
+          out->t = t + h;
+          out->slope = ge1;
+          return 1;
+        }
+        refine(g, &c->z, t, g0, g1, t + h, ge, ge1, atol, rtol, out);
+        return 1;
+      }
+      at_start_root = 0;
+      t += h;
+      *e = eh;
+      g0 = ge, g1 = ge1, g2 = ge2;
+      h *= 2;
+      continue;
+    }
+    h *= 0.5;
+    if (h <= tol_at(t, atol, rtol)) {
+      /* Neither test can be passed over an interval below the tolerance:
+       * g and g' are both within rounding of zero: a touch. */
+      if (at_start_root) {
+        /* degenerate start (g' = 0 too): step past it */
+        at_start_root = 0;
+        t += h;
+        eval_terms(g, t, e);
+        g0 = e->g0, g1 = e->g1, g2 = e->g2;
+        continue;
+      }
+      out->found = 1;
+      out->tangent = 1;
+      out->t = t + 0.5 * h;
+      out->bracket = h;
+      sc_guard_eval(g, out->t, NULL, &out->slope, NULL);
+      return 1;
+    }
+  }
+  return 0;
+}
+
+/* ---- the grid march ---------------------------------------------------
+ * Samples at t_j = j dt, dt = a twelfth of the fastest period, with cos
+ * and sin of every frequency carried from one sample to the next by a
+ * rotation through w dt (no libm call per sample; the rounding bound
+ * grows with the number of rotations).  Between two samples the guard is bounded by the cubic
+ * Hermite interpolant of g, g' at both ends, whose error is at most
+ * M4 dt^4/384 (M4 = sum R_k w_k^4 >= |g''''|), and g' likewise by that
+ * of g', g'' (M5 dt^4/384).  An interval is accepted as root-free when
+ * the cubic for g keeps the sign of g with that margin, or as holding
+ * exactly one root when the cubic for g' keeps one sign with its margin
+ * (then a sign change at the ends brackets the root for refine()).  An
+ * interval that passes neither goes to the adaptive march above, which
+ * decides that interval exactly as before (touches included); the grid
+ * then goes on from exact values.  Every interval is
+ * thus decided by a proof, and the intervals are contiguous from 0. */
+
+/* Twelve samples per period of the fastest frequency: w dt = pi/6, the
+ * Hermite remainder is 2e-4 of a term's amplitude, so only intervals
+ * where g comes that close to zero (roots, near-touches) need more. */
+#define GUARD_GRID_PER_PERIOD 12
+/* cos and sin of pi/6, the fastest term's rotation per sample. */
+#define GUARD_COS30 0.86602540378443864676
+#define GUARD_SIN30 0.5
+/* Each rotation adds at most GUARD_ROT_ULPS ulps to the error of cos and
+ * sin (two products and a sum, with the rotation's own cos and sin within
+ * half an ulp, and |(cos, sin)| within a few ulps of 1); the values
+ * restart exact from sincos at 0 and after every interval the adaptive
+ * march decided. */
+#define GUARD_ROT_ULPS 4.0
+
+/* Minimum of the Bernstein coefficients of the cubic with values p0, p1
+ * and slopes times the interval q0, q1 at the ends: a lower bound of the
+ * cubic over the interval (its graph lies in their convex hull). */
+static inline double bern_min(double p0, double q0, double p1, double q1) {
+  double b1 = p0 + q0 / 3, b2 = p1 - q1 / 3;
+  return min2(min2(p0, p1), min2(b1, b2));
+}
+
+/* Exact minimum over s in [0, h] of the cubic Hermite interpolant of
+ * values p0, p1 and slopes q0, q1 (per unit time) at the ends. */
+static double hermite_min(double p0, double q0, double p1, double q1,
+                          double h) {
+  double dg = (p1 - p0) / h;
+  double c2 = (3 * dg - 2 * q0 - q1) / h;
+  double c3 = (q0 + q1 - 2 * dg) / (h * h);
+  double m = min2(p0, p1);
+  /* p'(s) = q0 + 2 c2 s + 3 c3 s^2 */
+  double A = 3 * c3, B = 2 * c2, C = q0, r[2];
+  int nr = 0;
+  if (A == 0) {
+    if (B != 0) r[nr++] = -C / B;
+  } else {
+    double disc = B * B - 4 * A * C;
+    if (disc >= 0) {
+      double q = -0.5 * (B + (B >= 0 ? sqrt(disc) : -sqrt(disc)));
+      r[nr++] = q / A;
+      if (q != 0) r[nr++] = C / q;
+    }
+  }
+  for (int i = 0; i < nr; i++)
+    if (r[i] > 0 && r[i] < h)
+      m = min2(m, p0 + r[i] * (q0 + r[i] * (c2 + r[i] * c3)));
+  return m;
+}
+
+/* g, g', g'' at t from cos and sin of each term. */
+static inline void vals_from(const sc_guard *g, double t, const double *cs,
+                             const double *sn, double *v) {
+  double g0 = g->c0 + g->c1 * t, g1 = g->c1, g2 = 0;
+  for (int k = 0; k < g->n; k++) {
+    double w = g->w[k];
+    double a = g->a[k] * cs[k] + g->b[k] * sn[k];
+    g0 += a;
+    g1 += w * (g->b[k] * cs[k] - g->a[k] * sn[k]);
+    g2 -= w * w * a;
+  }
+  v[0] = g0, v[1] = g1, v[2] = g2;
+}
+
+/* cos and sin of every term at t, from libm. */
+static inline void anchor(const sc_guard *g, double t, double *cs,
+                          double *sn) {
+  for (int k = 0; k < g->n; k++) {
+    cs[k] = cos(g->w[k] * t);
+    sn[k] = sin(g->w[k] * t);
+  }
+}
+
+/* Returns 1 with *out filled when a root is found in (0, tmax], else 0. */
+static int grid_march(const guard_ctx *c, double wmax, double tmax,
+                      int at_start_root, sc_root *out) {
+  const sc_guard *g = c->g;
+  int n = g->n;
+  double dt = 2 * SC_PI / (GUARD_GRID_PER_PERIOD * wmax);
+  double cr[SC_GUARD_MAXFREQ], sr[SC_GUARD_MAXFREQ];
+  double cs[SC_GUARD_MAXFREQ], sn[SC_GUARD_MAXFREQ];
+  double M4 = 0, M5 = 0, wamp2 = 0;
+  for (int k = 0; k < n; k++) {
+    double w = g->w[k];
+    if (w == wmax) {
+      cr[k] = GUARD_COS30, sr[k] = GUARD_SIN30;
+    } else {
+      cr[k] = cos(w * dt), sr[k] = sin(w * dt);
+    }
+    cs[k] = 1, sn[k] = 0;
+    M4 += c->m3[k] * w;
+    M5 += c->m3[k] * w * w;
+    wamp2 += c->amp[k] * w * w;
+  }
+  /* The Hermite remainders over one interval; the rounding of g, g', g''
+   * at a sample: a constant, a part growing with t (the arguments w t)
+   * and one growing with the rotations since the last exact values. */
+  const double ue = GUARD_ROUND_ULPS * DBL_EPSILON;
+  const double ur = GUARD_ROT_ULPS * DBL_EPSILON;
+  double dt4 = dt * dt * dt * dt / 384, rem0 = M4 * dt4, rem1 = M5 * dt4;
+  double e00 = ue * (c->z.c0 + c->z.amp), e01 = ue * (c->z.c1 + c->z.wamp);
+  double e10 = ue * (c->z.c1 + c->z.wamp), e11 = ue * wmax * c->z.wamp;
+  double e20 = ue * wamp2, e21 = ue * wmax * wamp2;
+  double r0 = ur * c->z.amp, r1 = ur * c->z.wamp, r2 = ur * wamp2;
+  double ve[3], vf[3];
+  vals_from(g, 0, cs, sn, ve);
+  double t = 0;
+  long rot = 0; /* rotations since exact values */
+  for (long j = 1;; j++) {
+    double tn = (double)j * dt;
+    if (tn > tmax) break;
+    for (int k = 0; k < n; k++) {
+      double c0 = cs[k];
+      cs[k] = c0 * cr[k] - sn[k] * sr[k];
+      sn[k] = sn[k] * cr[k] + c0 * sr[k];
+    }
+    rot++;
+    vals_from(g, tn, cs, sn, vf);
+    out->steps++;
+    double E = e00 + e01 * tn + r0 * (double)rot;
+    double E1 = e10 + e11 * tn + r1 * (double)rot;
+    double E2 = e20 + e21 * tn + r2 * (double)rot;
+    double g0 = ve[0], G0 = vf[0];
+    double sigma;
+    int decided = 0;
+    if (at_start_root) {
+      sigma = ve[1] != 0 ? (ve[1] > 0 ? 1 : -1) : (ve[2] > 0 ? 1 : -1);
+    } else {
+      sigma = g0 > 0 ? 1 : -1;
+      if (fabs(g0) <= E) sigma = 0; /* at a root: the march decides */
+    }
+    int same = sigma != 0 && !at_start_root && sigma * G0 > E;
+    /* (A) no root: the cubic of g keeps its sign with margin (rounding
+     * of the values and of the slopes times dt; twice that for the
+     * exact minimum, whose own arithmetic rounds too) */
+    if (same) {
+      double marg = rem0 + E + dt * E1;
+      if (bern_min(sigma * g0, sigma * ve[1] * dt, sigma * G0,
+                   sigma * vf[1] * dt) > marg ||
+          hermite_min(sigma * g0, sigma * ve[1], sigma * G0, sigma * vf[1],
+                      dt) > 2 * marg)
+        decided = 1;
+    }
+    /* (B) g' keeps one sign: g strictly monotone on [t, tn] */
+    if (!decided && sigma != 0) {
+      double s1 = ve[1] > 0 ? 1 : -1;
+      double dmin = bern_min(s1 * ve[1], s1 * ve[2] * dt, s1 * vf[1],
+                             s1 * vf[2] * dt);
+      if (dmin > rem1 + E1 + dt * E2) {
+        if (same || (at_start_root && s1 == sigma && s1 * G0 > E)) {
+          decided = 1; /* monotone, no sign change past the start */
+        } else if (!at_start_root && sigma * G0 <= 0 && fabs(G0) > E) {
+          refine(g, &c->z, t, g0, ve[1], tn, G0, vf[1], c->atol, c->rtol,
+                 out);
+          return 1;
+        }
+      }
+    }
+    if (!decided) {
+      /* The adaptive march decides [t, tn] from exact values, and the
+       * grid goes on from exact values at tn. */
+      guard_terms ex;
+      eval_terms(g, t, &ex);
+      double h = min2(tn - t, 0.5 * SC_PI / wmax);
+      if (march(c, t, tn, &ex, at_start_root, h, out)) return 1;
+      anchor(g, tn, cs, sn);
+      vals_from(g, tn, cs, sn, vf);
+      rot = 0;
+    }
+    at_start_root = 0;
+    t = tn;
+    ve[0] = vf[0], ve[1] = vf[1], ve[2] = vf[2];
+  }
+  /* The rest, below one sample spacing: the adaptive march. */
+  if (!(t < tmax)) return 0;
+  guard_terms ex;
+  eval_terms(g, t, &ex);
+  double h = min2(tmax - t, 0.5 * SC_PI / wmax);
+  return march(c, t, tmax, &ex, at_start_root, h, out);
+}
+
 int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
                         double atol, double rtol, sc_root *out) {
   out->found = out->tangent = 0;
@@ -263,12 +595,19 @@ int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
   /* A guard that starts within rounding of zero: a root at 0 if it moves
    * up through zero there (the events of MODEL.md are all upward
    * crossings), otherwise the start root is skipped. */
-  double amp[SC_GUARD_MAXFREQ];
-  guard_size z = guard_sizes(g, amp); /* once per search */
-  guard_terms e;
-  eval_terms(g, 0, &e);
+  guard_ctx c;
+  c.g = g;
+  c.z = guard_sizes(g, c.amp); /* once per search */
+  c.atol = atol, c.rtol = rtol;
+  guard_terms e; /* at 0: cos = 1, sin = 0 */
+  e.g0 = g->c0, e.g1 = g->c1, e.g2 = 0;
+  for (int k = 0; k < g->n; k++) {
+    double w = g->w[k];
+    e.v[k] = g->a[k], e.d[k] = w * g->b[k];
+    e.g0 += e.v[k], e.g1 += e.d[k], e.g2 -= w * w * e.v[k];
+  }
   double g0 = e.g0, g1 = e.g1, g2 = e.g2;
-  if (fabs(g0) <= round_at(&z, 0)) {
+  if (fabs(g0) <= round_at(&c.z, 0)) {
     int upward = g1 > 0 || (g1 == 0 && g2 > 0);
     if (!skip_start && upward) {
       out->found = 1;
@@ -279,91 +618,17 @@ int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
     skip_start = 1;
   }
   if (g->n == 1 && g->c1 == 0 &&
-      closed_form(g, &z, amp[0], tmax, skip_start, out))
+      closed_form(g, &c.z, c.amp[0], tmax, skip_start, out))
     return SC_OK;
   out->tangent = 0;
   /* The bound M3 on the third derivative, term by term. */
-  double M3 = 0, m3[SC_GUARD_MAXFREQ];
+  c.M3 = 0;
   for (int k = 0; k < g->n; k++) {
     double w = g->w[k];
-    m3[k] = amp[k] * w * w * w;
-    M3 += m3[k];
+    c.m3[k] = c.amp[k] * w * w * w;
+    c.M3 += c.m3[k];
   }
-  /* First trial step: a quarter of the fastest period, or all of tmax. */
-  double h = wmax > 0 ? fmin(tmax, 0.5 * SC_PI / wmax) : tmax;
-  double t = 0;
-  int at_start_root = skip_start;
-  while (t < tmax) {
-    h = min2(h, tmax - t);
-    out->steps++;
-    double E = round_at(&z, t + h);
-    double sigma = g0 > 0 ? 1 : -1;
-    if (at_start_root) {
-      /* g(0) = 0 by construction: its sign just after 0 is that of g1,
-       * or of g2 if g1 vanishes. */
-      sigma = g1 != 0 ? (g1 > 0 ? 1 : -1) : (g2 > 0 ? 1 : -1);
-    } else if (fabs(g0) <= E) {
-      /* g is within rounding of zero here: a root at t. */
-      out->found = 1;
-      out->t = t;
-      out->slope = g1;
-      out->tangent = fabs(g1) * tol_at(t, atol, rtol) <= E;
-      return SC_OK;
-    }
-    /* (A) no root in [t, t+h]: the quadratic with the global remainder,
-     * or failing that (with several frequencies) the bound that takes
-     * some terms by their amplitude. */
-    if (!at_start_root &&
-        (quad_min(sigma, g0, g1, g2, h) - M3 * h * h * h / 6 > E ||
-         (g->n > 1 && amplitude_bound(g, &e, amp, m3, sigma, t, h) > E))) {
-      t += h;
-      eval_terms(g, t, &e);
-      g0 = e.g0, g1 = e.g1, g2 = e.g2;
-      h *= 2;
-      continue;
-    }
-    /* (B) g strictly monotone on [t, t+h] */
-    double d0 = g1, dh = g1 + g2 * h;
-    if ((d0 > 0) == (dh > 0) && min2(fabs(d0), fabs(dh)) > M3 * h * h / 2) {
-      guard_terms eh;
-      eval_terms(g, t + h, &eh);
-      double ge = eh.g0, ge1 = eh.g1, ge2 = eh.g2;
-      if (!at_start_root && (ge * sigma <= 0 || fabs(ge) <= E)) {
-        if (fabs(ge) <= E) {
-          out->found = 1;
-          out->t = t + h;
-          out->slope = ge1;
-          return SC_OK;
-        }
-        refine(g, &z, t, g0, g1, t + h, ge, ge1, atol, rtol, out);
-        return SC_OK;
-      }
-      at_start_root = 0;
-      t += h;
-      e = eh;
-      g0 = ge, g1 = ge1, g2 = ge2;
-      h *= 2;
-      continue;
-    }
-    h *= 0.5;
-    if (h <= tol_at(t, atol, rtol)) {
-      /* Neither test can be passed over an interval below the tolerance:
-       * g and g' are both within rounding of zero: a touch. */
-      if (at_start_root) {
-        /* degenerate start (g' = 0 too): step past it */
-        at_start_root = 0;
-        t += h;
-        eval_terms(g, t, &e);
-        g0 = e.g0, g1 = e.g1, g2 = e.g2;
-        continue;
-      }
-      out->found = 1;
-      out->tangent = 1;
-      out->t = t + 0.5 * h;
-      out->bracket = h;
-      sc_guard_eval(g, out->t, NULL, &out->slope, NULL);
-      return SC_OK;
-    }
-  }
+  if (wmax > 0) grid_march(&c, wmax, tmax, skip_start, out);
+  else march(&c, 0, tmax, &e, skip_start, tmax, out);
   return SC_OK;
 }
