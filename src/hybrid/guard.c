@@ -161,8 +161,9 @@ static inline void small_sincos(double x, double *s, double *c) {
 /* g and g' at t near t0, where cos and sin of every term are c0[], s0[]:
  * by angle addition with the small angles w (t - t0). */
 static void eval_near(const sc_guard *g, double t0, const double *c0,
-                      const double *s0, double t, double *v, double *d) {
-  double x = t - t0, g0 = g->c0 + g->c1 * t, g1 = g->c1;
+                      const double *s0, double t, double *v, double *d,
+                      double *d2) {
+  double x = t - t0, g0 = g->c0 + g->c1 * t, g1 = g->c1, g2 = 0;
   for (int k = 0; k < g->n; k++) {
     double w = g->w[k], sx, cx;
     if (fabs(w * x) <= GUARD_SMALL_ANGLE) {
@@ -170,25 +171,23 @@ static void eval_near(const sc_guard *g, double t0, const double *c0,
     } else {
       double sn, cs;
       sn = sin(w * t), cs = cos(w * t);
-      g0 += g->a[k] * cs + g->b[k] * sn;
+      double a = g->a[k] * cs + g->b[k] * sn;
+      g0 += a, g2 -= w * w * a;
       g1 += w * (g->b[k] * cs - g->a[k] * sn);
       continue;
     }
     double cs = c0[k] * cx - s0[k] * sx, sn = s0[k] * cx + c0[k] * sx;
-    g0 += g->a[k] * cs + g->b[k] * sn;
+    double a = g->a[k] * cs + g->b[k] * sn;
+    g0 += a, g2 -= w * w * a;
     g1 += w * (g->b[k] * cs - g->a[k] * sn);
   }
-  *v = g0, *d = g1;
+  *v = g0, *d = g1, *d2 = g2;
 }
 
-static void refine(const sc_guard *g, const guard_size *z, double lo,
-                   double glo, double dlo, double hi, double ghi, double dhi,
-                   double atol, double rtol, sc_root *out) {
-  /* cos and sin at lo from libm, once: the iterates lie within the
-   * bracket, less than GUARD_SMALL_ANGLE / w from it. */
-  double t0 = lo, c0[SC_GUARD_MAXFREQ], s0[SC_GUARD_MAXFREQ];
-  for (int k = 0; k < g->n; k++)
-    c0[k] = cos(g->w[k] * t0), s0[k] = sin(g->w[k] * t0);
+static void refine(const sc_guard *g, const guard_size *z, double M3,
+                   double lo, double glo, double dlo, double hi, double ghi,
+                   double dhi, double atol, double rtol, sc_root *out) {
+  double t0, c0[SC_GUARD_MAXFREQ], s0[SC_GUARD_MAXFREQ];
   /* Start from the root of the cubic Hermite interpolant of g and g' at
    * both ends (a few Newton steps on the cubic, no trigonometry), which
    * is far closer than the secant point: one or two Newton steps on g
@@ -209,19 +208,39 @@ static void refine(const sc_guard *g, const guard_size *z, double lo,
     }
     t = lo + s;
   }
-  double v = 0, d = 0, bracket = hi - lo;
+  /* cos and sin at the start from libm, once: the iterates stay close to
+   * it, where angle addition with small angles is exact to a few ulps. */
+  t0 = t;
+  for (int k = 0; k < g->n; k++)
+    c0[k] = cos(g->w[k] * t0), s0[k] = sin(g->w[k] * t0);
+  double v = 0, d = 0, d2 = 0, bracket = hi - lo;
   for (int it = 0; it < GUARD_MAX_REFINE; it++) {
-    eval_near(g, t0, c0, s0, t, &v, &d);
+    eval_near(g, t0, c0, s0, t, &v, &d, &d2);
     if (fabs(v) <= round_at(z, t)) {
       bracket = 0;
       break;
     }
     if ((v > 0) == (glo > 0)) lo = t, glo = v;
     else hi = t;
-    double tn = t - v / d;
+    /* Halley's step (Newton's where its correction is not small) */
+    double nt = v / d, corr = 1 - 0.5 * nt * d2 / d;
+    double tn = t - (corr > 0.5 && corr < 2 ? nt / corr : nt);
     if (d != 0 && tn > lo && tn < hi) {
-      if (fabs(tn - t) <= tol_at(tn, atol, rtol)) {
-        bracket = fabs(tn - t);
+      double dl = fabs(tn - t);
+      if (dl <= tol_at(tn, atol, rtol)) {
+        bracket = dl;
+        t = tn;
+        break;
+      }
+      /* Taylor: the root r has g(t) + g'(t)(r - t) + g''(xi)(r - t)^2/2
+       * = 0, so Newton's point is within |g''| (r - t)^2 / (2 |g'|) of r,
+       * with |r - t| <= 2 dl once that bound is below dl, and Halley's
+       * within as much again: if the bound is below the tolerance, stop
+       * without evaluating g again (slope moved to tn to first order). */
+      double est = 2 * (fabs(d2) + 2 * M3 * dl) * dl * dl / fabs(d) * 2;
+      if (est <= tol_at(tn, atol, rtol) && est < 0.25 * dl) {
+        bracket = est;
+        d += d2 * (tn - t);
         t = tn;
         break;
       }
@@ -345,7 +364,7 @@ static int march(const guard_ctx *c, double t, double tend, guard_terms *e,
           out->slope = ge1;
           return 1;
         }
-        refine(g, &c->z, t, g0, g1, t + h, ge, ge1, atol, rtol, out);
+        refine(g, &c->z, M3, t, g0, g1, t + h, ge, ge1, atol, rtol, out);
         return 1;
       }
       at_start_root = 0;
@@ -466,55 +485,95 @@ static inline void anchor(const sc_guard *g, double t, double *cs,
   }
 }
 
+/* Steps of the grid march: dt, 2 dt, 4 dt (a third of the fastest
+ * period at most, where the Hermite remainder is 5% of an amplitude). */
+#define GUARD_GRID_LEVELS 3
+
+/* cos, sin of w h for every term into c[], s[]: the Taylor series for
+ * small angles, libm otherwise. */
+static void rotation(const sc_guard *g, double h, double *c, double *s) {
+  for (int k = 0; k < g->n; k++) {
+    double x = g->w[k] * h;
+    if (x <= GUARD_SMALL_ANGLE) small_sincos(x, &s[k], &c[k]);
+    else s[k] = sin(x), c[k] = cos(x);
+  }
+}
+
 /* Returns 1 with *out filled when a root is found in (0, tmax], else 0. */
 static int grid_march(const guard_ctx *c, double wmax, double tmax,
                       int at_start_root, sc_root *out) {
   const sc_guard *g = c->g;
   int n = g->n;
   double dt = 2 * SC_PI / (GUARD_GRID_PER_PERIOD * wmax);
-  double cr[SC_GUARD_MAXFREQ], sr[SC_GUARD_MAXFREQ];
+  /* rotations through w dt 2^m, made on first use */
+  double rc[GUARD_GRID_LEVELS][SC_GUARD_MAXFREQ];
+  double rs[GUARD_GRID_LEVELS][SC_GUARD_MAXFREQ];
+  int have = 0;
   double cs[SC_GUARD_MAXFREQ], sn[SC_GUARD_MAXFREQ];
   double M4 = 0, M5 = 0, wamp2 = 0;
   for (int k = 0; k < n; k++) {
     double w = g->w[k];
-    if (w == wmax) {
-      cr[k] = GUARD_COS30, sr[k] = GUARD_SIN30;
-    } else {
-      cr[k] = cos(w * dt), sr[k] = sin(w * dt);
-    }
     cs[k] = 1, sn[k] = 0;
     M4 += c->m3[k] * w;
     M5 += c->m3[k] * w * w;
     wamp2 += c->amp[k] * w * w;
   }
-  /* The Hermite remainders over one interval; the rounding of g, g', g''
-   * at a sample: a constant, a part growing with t (the arguments w t)
-   * and one growing with the rotations since the last exact values. */
+  /* The rounding of g, g', g'' at a sample: a constant, a part growing
+   * with t (the arguments w t) and one growing with the rotations since
+   * the last exact values (rerr ulps of cos and sin). */
   const double ue = GUARD_ROUND_ULPS * DBL_EPSILON;
-  const double ur = GUARD_ROT_ULPS * DBL_EPSILON;
-  double dt4 = dt * dt * dt * dt / 384, rem0 = M4 * dt4, rem1 = M5 * dt4;
   double e00 = ue * (c->z.c0 + c->z.amp), e01 = ue * (c->z.c1 + c->z.wamp);
   double e10 = ue * (c->z.c1 + c->z.wamp), e11 = ue * wmax * c->z.wamp;
   double e20 = ue * wamp2, e21 = ue * wmax * wamp2;
-  double r0 = ur * c->z.amp, r1 = ur * c->z.wamp, r2 = ur * wamp2;
+  double r0 = DBL_EPSILON * c->z.amp, r1 = DBL_EPSILON * c->z.wamp;
+  double r2 = DBL_EPSILON * wamp2;
   double ve[3], vf[3];
   vals_from(g, 0, cs, sn, ve);
-  double t = 0;
-  long rot = 0; /* rotations since exact values */
-  for (long j = 1;; j++) {
-    double tn = (double)j * dt;
-    if (tn > tmax) break;
-    for (int k = 0; k < n; k++) {
-      double c0 = cs[k];
-      cs[k] = c0 * cr[k] - sn[k] * sr[k];
-      sn[k] = sn[k] * cr[k] + c0 * sr[k];
+  double t = 0, rerr = 0;
+  int m = 0;
+  while (t < tmax) {
+    double h = dt * (double)(1 << m), tn, ct[SC_GUARD_MAXFREQ],
+           st[SC_GUARD_MAXFREQ];
+    const double *cr, *sr;
+    double rot_ulps = GUARD_ROT_ULPS + 4 * m;
+    int tail = !(t + h < tmax);
+    if (tail) {
+      h = tmax - t, tn = tmax;
+      rotation(g, h, ct, st);
+      cr = ct, sr = st;
+      rot_ulps = GUARD_ROT_ULPS + 4 * GUARD_GRID_LEVELS;
+    } else {
+      tn = t + h;
+      while (have <= m) {
+        if (have == 0) {
+          for (int k = 0; k < n; k++) {
+            if (g->w[k] == wmax) rc[0][k] = GUARD_COS30, rs[0][k] = GUARD_SIN30;
+            else small_sincos(g->w[k] * dt, &rs[0][k], &rc[0][k]);
+          }
+        } else {
+          /* double angles: cos 2x = 1 - 2 sin^2 x, sin 2x = 2 sin x cos x */
+          for (int k = 0; k < n; k++) {
+            double cc = rc[have - 1][k], ss = rs[have - 1][k];
+            rc[have][k] = 1 - 2 * ss * ss;
+            rs[have][k] = 2 * ss * cc;
+          }
+        }
+        have++;
+      }
+      cr = rc[m], sr = rs[m];
     }
-    rot++;
-    vals_from(g, tn, cs, sn, vf);
+    double ncs[SC_GUARD_MAXFREQ], nsn[SC_GUARD_MAXFREQ];
+    for (int k = 0; k < n; k++) {
+      ncs[k] = cs[k] * cr[k] - sn[k] * sr[k];
+      nsn[k] = sn[k] * cr[k] + cs[k] * sr[k];
+    }
+    double nerr = rerr + rot_ulps;
+    vals_from(g, tn, ncs, nsn, vf);
     out->steps++;
-    double E = e00 + e01 * tn + r0 * (double)rot;
-    double E1 = e10 + e11 * tn + r1 * (double)rot;
-    double E2 = e20 + e21 * tn + r2 * (double)rot;
+    double E = e00 + e01 * tn + r0 * nerr;
+    double E1 = e10 + e11 * tn + r1 * nerr;
+    double E2 = e20 + e21 * tn + r2 * nerr;
+    double h4 = h * h * h * h / 384, rem0 = M4 * h4, rem1 = M5 * h4;
     double g0 = ve[0], G0 = vf[0];
     double sigma;
     int decided = 0;
@@ -526,52 +585,60 @@ static int grid_march(const guard_ctx *c, double wmax, double tmax,
     }
     int same = sigma != 0 && !at_start_root && sigma * G0 > E;
     /* (A) no root: the cubic of g keeps its sign with margin (rounding
-     * of the values and of the slopes times dt; twice that for the
-     * exact minimum, whose own arithmetic rounds too) */
+     * of the values and of the slopes times h; twice that for the exact
+     * minimum, whose own arithmetic rounds too) */
     if (same) {
-      double marg = rem0 + E + dt * E1;
-      if (bern_min(sigma * g0, sigma * ve[1] * dt, sigma * G0,
-                   sigma * vf[1] * dt) > marg ||
+      double marg = rem0 + E + h * E1;
+      if (bern_min(sigma * g0, sigma * ve[1] * h, sigma * G0,
+                   sigma * vf[1] * h) > marg ||
           hermite_min(sigma * g0, sigma * ve[1], sigma * G0, sigma * vf[1],
-                      dt) > 2 * marg)
+                      h) > 2 * marg)
         decided = 1;
     }
     /* (B) g' keeps one sign: g strictly monotone on [t, tn] */
     if (!decided && sigma != 0) {
       double s1 = ve[1] > 0 ? 1 : -1;
-      double dmin = bern_min(s1 * ve[1], s1 * ve[2] * dt, s1 * vf[1],
-                             s1 * vf[2] * dt);
-      if (dmin > rem1 + E1 + dt * E2) {
+      double dmin = bern_min(s1 * ve[1], s1 * ve[2] * h, s1 * vf[1],
+                             s1 * vf[2] * h);
+      if (dmin > rem1 + E1 + h * E2) {
         if (same || (at_start_root && s1 == sigma && s1 * G0 > E)) {
           decided = 1; /* monotone, no sign change past the start */
         } else if (!at_start_root && sigma * G0 <= 0 && fabs(G0) > E) {
-          refine(g, &c->z, t, g0, ve[1], tn, G0, vf[1], c->atol, c->rtol,
+          refine(g, &c->z, c->M3, t, g0, ve[1], tn, G0, vf[1], c->atol, c->rtol,
                  out);
           return 1;
         }
       }
     }
-    if (!decided) {
-      /* The adaptive march decides [t, tn] from exact values, and the
-       * grid goes on from exact values at tn. */
-      guard_terms ex;
-      eval_terms(g, t, &ex);
-      double h = min2(tn - t, 0.5 * SC_PI / wmax);
-      if (march(c, t, tn, &ex, at_start_root, h, out)) return 1;
-      anchor(g, tn, cs, sn);
-      vals_from(g, tn, cs, sn, vf);
-      rot = 0;
+    if (decided) {
+      at_start_root = 0;
+      t = tn, rerr = nerr;
+      for (int k = 0; k < n; k++) cs[k] = ncs[k], sn[k] = nsn[k];
+      ve[0] = vf[0], ve[1] = vf[1], ve[2] = vf[2];
+      if (m + 1 < GUARD_GRID_LEVELS) m++;
+      continue;
     }
+    /* Undecided: a shorter step, down to dt (below the tail's length,
+     * which is not retried), then the adaptive march. */
+    if (m > 0) {
+      m--;
+      while (m > 0 && !(t + dt * (double)(1 << m) < tmax)) m--;
+      if (t + dt < tmax) continue;
+    }
+    double tend = min2(t + dt, tmax);
+    guard_terms ex;
+    eval_terms(g, t, &ex);
+    if (march(c, t, tend, &ex, at_start_root, min2(tend - t, 0.5 * SC_PI / wmax),
+              out))
+      return 1;
     at_start_root = 0;
-    t = tn;
-    ve[0] = vf[0], ve[1] = vf[1], ve[2] = vf[2];
+    t = tend;
+    anchor(g, t, cs, sn);
+    vals_from(g, t, cs, sn, ve);
+    rerr = 0;
+    m = 0;
   }
-  /* The rest, below one sample spacing: the adaptive march. */
-  if (!(t < tmax)) return 0;
-  guard_terms ex;
-  eval_terms(g, t, &ex);
-  double h = min2(tmax - t, 0.5 * SC_PI / wmax);
-  return march(c, t, tmax, &ex, at_start_root, h, out);
+  return 0;
 }
 
 int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
