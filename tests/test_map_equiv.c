@@ -93,6 +93,8 @@ static int search_now(const sc_guard *g, double tmax, int skip, double atol,
 static int search_ref(const sc_guard *g, double tmax, int skip, double atol,
                       double rtol, sc_root *out) {
   int st = sc_guard_first_root_v0(g, tmax, skip, atol, rtol, out);
+  /* the earlier search had no curv: bk2 then evaluated g'' itself */
+  if (!st && out->found) sc_guard_eval(g, out->t, NULL, NULL, &out->curv);
   note_window(g, out);
   return st;
 }
@@ -108,7 +110,7 @@ static int search_jit(const sc_guard *g, double tmax, int skip, double atol,
   if (!st && out->found && out->t > 0) {
     double W = window(g, out);
     if (isfinite(W)) out->t += jit_sign * (atol + rtol * out->t + W);
-    sc_guard_eval(g, out->t, NULL, &out->slope, NULL);
+    sc_guard_eval(g, out->t, NULL, &out->slope, &out->curv);
   }
   return st;
 }

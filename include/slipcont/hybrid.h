@@ -43,6 +43,7 @@ typedef struct {
   double t;       /**< the root (tmax when none) */
   double bracket; /**< width of the interval known to hold the root */
   double slope;   /**< g'(t) at the root */
+  double curv;    /**< g''(t) at the root (the grazing margin uses it) */
   int steps;      /**< intervals examined (for benchmarks) */
 } sc_root;
 

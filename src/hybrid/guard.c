@@ -255,6 +255,7 @@ static void refine(const sc_guard *g, const guard_size *z, double M3,
   out->bracket = bracket;
   out->found = 1;
   out->slope = d;
+  out->curv = d2;
 }
 
 /* A single sinusoid and a constant: roots in closed form.  g = c0 +
@@ -270,13 +271,14 @@ static int closed_form(const sc_guard *g, const guard_size *z, double R,
   if (gap < -E) return 1; /* never reaches zero: out says not found */
   double phi = atan2(b, a);
   const double twopi = 2 * SC_PI;
-  double asc, desc;
+  double asc, desc, rs = 0;
   if (gap <= E) {
     /* touches: cos(w t - phi) = -sign(c0) */
     asc = desc = c0 < 0 ? phi : phi + SC_PI;
     out->tangent = 1;
   } else {
-    double theta = atan2(sqrt(gap * (R + fabs(c0))), -c0);
+    rs = sqrt(gap * (R + fabs(c0))); /* R sin(theta) */
+    double theta = atan2(rs, -c0);
     asc = phi - theta;
     desc = phi + theta;
   }
@@ -286,8 +288,7 @@ static int closed_form(const sc_guard *g, const guard_size *z, double R,
   if (desc < 0) desc += twopi;
   double alpha;
   if (skip_start) {
-    double g1;
-    sc_guard_eval(g, 0, NULL, &g1, NULL);
+    double g1 = w * b; /* g'(0) */
     if (g1 == 0 || out->tangent) return 0;
     /* the start root is of the type of g'(0): the next is the other type */
     alpha = g1 < 0 ? asc : desc;
@@ -299,7 +300,11 @@ static int closed_form(const sc_guard *g, const guard_size *z, double R,
   if (t <= tmax) {
     out->found = 1;
     out->t = t;
-    sc_guard_eval(g, t, NULL, &out->slope, NULL);
+    /* at a root R cos(w t - phi) = -c0: g' = +-w R sin(theta) (ascending
+     * or descending), g'' = w^2 c0 */
+    if (out->tangent) sc_guard_eval(g, t, NULL, &out->slope, NULL);
+    else out->slope = alpha == asc ? w * rs : -w * rs;
+    out->curv = w * w * c0;
     out->bracket = out->tangent ? 0 : E / fmax(fabs(out->slope), DBL_MIN);
   }
   return 1;
@@ -335,6 +340,7 @@ static int march(const guard_ctx *c, double t, double tend, guard_terms *e,
       out->found = 1;
       out->t = t;
       out->slope = g1;
+      out->curv = g2;
       out->tangent = fabs(g1) * tol_at(t, atol, rtol) <= E;
       return 1;
     }
@@ -362,6 +368,7 @@ static int march(const guard_ctx *c, double t, double tend, guard_terms *e,
           out->found = 1;
           out->t = t + h;
           out->slope = ge1;
+          out->curv = ge2;
           return 1;
         }
         refine(g, &c->z, M3, t, g0, g1, t + h, ge, ge1, atol, rtol, out);
@@ -390,7 +397,7 @@ static int march(const guard_ctx *c, double t, double tend, guard_terms *e,
       out->tangent = 1;
       out->t = t + 0.5 * h;
       out->bracket = h;
-      sc_guard_eval(g, out->t, NULL, &out->slope, NULL);
+      sc_guard_eval(g, out->t, NULL, &out->slope, &out->curv);
       return 1;
     }
   }
@@ -509,7 +516,7 @@ static int grid_march(const guard_ctx *c, double wmax, double tmax,
   double rc[GUARD_GRID_LEVELS][SC_GUARD_MAXFREQ];
   double rs[GUARD_GRID_LEVELS][SC_GUARD_MAXFREQ];
   int have = 0;
-  double cs[SC_GUARD_MAXFREQ], sn[SC_GUARD_MAXFREQ];
+  double cs[SC_GUARD_MAXFREQ] = {0}, sn[SC_GUARD_MAXFREQ] = {0};
   double M4 = 0, M5 = 0, wamp2 = 0;
   for (int k = 0; k < n; k++) {
     double w = g->w[k];
@@ -562,7 +569,7 @@ static int grid_march(const guard_ctx *c, double wmax, double tmax,
       }
       cr = rc[m], sr = rs[m];
     }
-    double ncs[SC_GUARD_MAXFREQ], nsn[SC_GUARD_MAXFREQ];
+    double ncs[SC_GUARD_MAXFREQ] = {0}, nsn[SC_GUARD_MAXFREQ] = {0};
     for (int k = 0; k < n; k++) {
       ncs[k] = cs[k] * cr[k] - sn[k] * sr[k];
       nsn[k] = sn[k] * cr[k] + cs[k] * sr[k];
@@ -613,7 +620,7 @@ static int grid_march(const guard_ctx *c, double wmax, double tmax,
     if (decided) {
       at_start_root = 0;
       t = tn, rerr = nerr;
-      for (int k = 0; k < n; k++) cs[k] = ncs[k], sn[k] = nsn[k];
+      for (int k = 0; k < SC_GUARD_MAXFREQ; k++) cs[k] = ncs[k], sn[k] = nsn[k];
       ve[0] = vf[0], ve[1] = vf[1], ve[2] = vf[2];
       if (m + 1 < GUARD_GRID_LEVELS) m++;
       continue;
@@ -647,6 +654,7 @@ int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
   out->t = tmax;
   out->bracket = 0;
   out->slope = 0;
+  out->curv = 0;
   out->steps = 0;
   if (!g || g->n < 0 || g->n > SC_GUARD_MAXFREQ || !isfinite(g->c0) ||
       !isfinite(g->c1) || !(tmax > 0) || !isfinite(tmax) || !(atol > 0) ||
@@ -680,6 +688,7 @@ int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
       out->found = 1;
       out->t = 0;
       out->slope = g1;
+      out->curv = g2;
       return SC_OK;
     }
     skip_start = 1;

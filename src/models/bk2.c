@@ -415,8 +415,7 @@ static int exact_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
   /* Grazing margin of a re-stick: the height slope^2 / (2 |g''|) that the
    * local maximum of U_i - Vs reaches above zero just after the root. */
   if (kind[first] < 3) {
-    double gpp;
-    sc_guard_eval(&g[first], t, NULL, NULL, &gpp);
+    double gpp = r[first].curv;
     double h = gpp < 0 ? r[first].slope * r[first].slope / (2 * -gpp)
                        : HUGE_VAL;
     if (h < ev->graze_margin) {
