@@ -100,35 +100,50 @@ static int search_ref(const sc_guard *g, double tmax, int skip, double atol,
 }
 
 /* The reference with every root moved toward jit_sign by its time
- * tolerance (atol + rtol t) plus its window, and its slope taken there:
+ * tolerance (atol + rtol t) plus its window, and its slope taken there
+ * and moved by the rounding bound of g' (a slope from a closed form or
+ * from another point of the window differs by that much):
  * how much the reference's own results move when its roots move as much
  * as their certification lets them. */
-static int jit_sign;
+static int jit_sign, jit_alt;
 static int search_jit(const sc_guard *g, double tmax, int skip, double atol,
                       double rtol, sc_root *out) {
   int st = sc_guard_first_root_v0(g, tmax, skip, atol, rtol, out);
+  if (jit_alt) jit_sign = -jit_sign; /* guards of one phase move apart */
   if (!st && out->found && out->t > 0) {
-    double W = window(g, out);
+    double W = window(g, out), E1 = fabs(g->c1);
     if (isfinite(W)) out->t += jit_sign * (atol + rtol * out->t + W);
     sc_guard_eval(g, out->t, NULL, &out->slope, &out->curv);
+    /* and the slope by the rounding bound of g' */
+    for (int k = 0; k < g->n; k++)
+      E1 += hypot(g->a[k], g->b[k]) * g->w[k] * (1 + g->w[k] * out->t);
+    out->slope += jit_sign * 8 * 2.220446049250313e-16 * E1;
   }
   return st;
 }
 
 /* The reference's spread at d: largest change of f and of each
- * derivative under those moves; *itin_ok set if one of them gives the
+ * derivative under those moves, all roots one way or successive ones
+ * opposite ways (which moves ties); *itin_ok set if one of them gives the
  * itinerary `itin`. */
 static void ref_jitter(const pair *P, double d, unsigned flags,
                        const sc_map_value *r, const char *itin, double J[6],
                        int *itin_ok) {
-  for (int sg = -1; sg <= 1; sg += 2) {
+  char seen[SC_ITIN_LEN] = "";
+  for (int run = 0; run < 4; run++) {
     sc_map_value b;
-    jit_sign = sg;
+    jit_sign = run % 2 ? 1 : -1;
+    jit_alt = run >= 2;
     P->ref->search = search_jit;
     int st = eval(P->ref, d, flags | SC_EVAL_ITINERARY, &b);
     P->ref->search = search_ref;
     if (st) continue;
-    if (itin_ok && strcmp(b.itinerary, itin) == 0) *itin_ok = 1;
+    /* the itinerary `itin`, or two different ones among the moves: the
+     * reference's own itinerary is not determined here */
+    if (itin_ok && (strcmp(b.itinerary, itin) == 0 ||
+                    (seen[0] && strcmp(b.itinerary, seen) != 0)))
+      *itin_ok = 1;
+    strcpy(seen, b.itinerary);
     if (strcmp(b.itinerary, r->itinerary) != 0) continue;
     double vb[6] = {b.f, b.dfdd, b.dfdp[0], b.dfdp[1], b.dfdp[2], b.dfdp[3]};
     double vr[6] = {r->f, r->dfdd, r->dfdp[0], r->dfdp[1], r->dfdp[2],
@@ -176,8 +191,8 @@ static void compare(const pair *P, const double p[4], double d, stats *s,
   if (strcmp(a.itinerary, r.itinerary) != 0) {
     /* A tie of two events decided at the time tolerance (two re-sticks
      * of a symmetric slip, say) may go either way: excused if the
-     * reference itself goes the other way with its roots moved by their
-     * tolerance. */
+     * reference itself goes the other way, or two ways, with its roots
+     * moved within their windows. */
     double J0[6] = {0};
     int amb = 0;
     ref_jitter(P, d, flags, &r, a.itinerary, J0, &amb);

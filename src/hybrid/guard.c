@@ -269,32 +269,37 @@ static int closed_form(const sc_guard *g, const guard_size *z, double R,
   if (R <= E) return 0;
   double gap = R - fabs(c0);
   if (gap < -E) return 1; /* never reaches zero: out says not found */
-  double phi = atan2(b, a);
   const double twopi = 2 * SC_PI;
-  double asc, desc, rs = 0;
+  /* Phase vectors: with (a, b) = R (cos phi, sin phi) and
+   * (-c0, rs) = R (cos theta, sin theta), the ascending root's phase
+   * phi - theta and the descending one's phi + theta are the angles of
+   * the products (a + i b)(-c0 -+ i rs): one atan2, no fmod. */
+  double asc, desc, alpha, rs = 0;
   if (gap <= E) {
     /* touches: cos(w t - phi) = -sign(c0) */
-    asc = desc = c0 < 0 ? phi : phi + SC_PI;
+    asc = desc = c0 < 0 ? atan2(b, a) : atan2(-b, -a);
     out->tangent = 1;
   } else {
     rs = sqrt(gap * (R + fabs(c0))); /* R sin(theta) */
-    double theta = atan2(rs, -c0);
-    asc = phi - theta;
-    desc = phi + theta;
+    asc = desc = -1;
   }
-  asc = fmod(asc, twopi);
-  if (asc < 0) asc += twopi;
-  desc = fmod(desc, twopi);
-  if (desc < 0) desc += twopi;
-  double alpha;
   if (skip_start) {
     double g1 = w * b; /* g'(0) */
     if (g1 == 0 || out->tangent) return 0;
     /* the start root is of the type of g'(0): the next is the other type */
+    if (g1 < 0) asc = atan2(-b * c0 - a * rs, -a * c0 + b * rs);
+    else desc = atan2(a * rs - b * c0, -a * c0 - b * rs);
     alpha = g1 < 0 ? asc : desc;
+    if (alpha < 0) alpha += twopi;
     if (alpha * 1 <= 4 * DBL_EPSILON * twopi) alpha += twopi;
   } else {
-    alpha = fmin(asc, desc);
+    /* from below zero the first root ascends, from above it descends */
+    if (!out->tangent) {
+      if (c0 + a < 0) asc = atan2(-b * c0 - a * rs, -a * c0 + b * rs);
+      else desc = atan2(a * rs - b * c0, -a * c0 - b * rs);
+    }
+    alpha = c0 + a < 0 ? asc : desc;
+    if (alpha < 0) alpha += twopi;
   }
   double t = alpha / w;
   if (t <= tmax) {
@@ -303,7 +308,7 @@ static int closed_form(const sc_guard *g, const guard_size *z, double R,
     /* at a root R cos(w t - phi) = -c0: g' = +-w R sin(theta) (ascending
      * or descending), g'' = w^2 c0 */
     if (out->tangent) sc_guard_eval(g, t, NULL, &out->slope, NULL);
-    else out->slope = alpha == asc ? w * rs : -w * rs;
+    else out->slope = (skip_start ? w * b < 0 : c0 + a < 0) ? w * rs : -w * rs;
     out->curv = w * w * c0;
     out->bracket = out->tangent ? 0 : E / fmax(fabs(out->slope), DBL_MIN);
   }
