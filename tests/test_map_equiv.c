@@ -135,8 +135,10 @@ static void ref_jitter(const pair *P, double d, unsigned flags,
     jit_sign = run % 2 ? 1 : -1;
     jit_alt = run >= 2;
     P->ref->search = search_jit;
+    sc_bk2_first_restick(P->ref);
     int st = eval(P->ref, d, flags | SC_EVAL_ITINERARY, &b);
     P->ref->search = search_ref;
+    sc_bk2_first_restick(P->ref);
     if (st) continue;
     /* the itinerary `itin`, or two different ones among the moves: the
      * reference's own itinerary is not determined here */
@@ -164,6 +166,7 @@ static int setup(bk2_inst *b, const double p[4], int frozen,
   memset(b, 0, sizeof *b);
   int st = sc_model_bk2.setup(b, p, opt, &acc, &msg);
   b->search = search;
+  if (!st) sc_bk2_first_restick(b); /* with this search */
   return st;
 }
 

@@ -29,6 +29,13 @@ typedef struct {
    * faster one changes nothing but speed (tests/test_map_equiv.c). */
   int (*search)(const sc_guard *g, double tmax, int skip_start, double atol,
                 double rtol, sc_root *out);
+  /* The re-stick guard of block i in a slip that starts from a GSP does
+   * not depend on d (its amplitude is (1 - mu) T_i / (1 + alpha)): its
+   * guard and first root, found once by sc_bk2_first_restick() (exact
+   * flows), and whether they are there. */
+  sc_guard first_g[2];
+  sc_root first_r[2];
+  int first_ok[2];
 } bk2_inst;
 
 
@@ -51,6 +58,9 @@ typedef int (*bk2_phase_fn)(void *ctx, int mode, const bk2_state *x0,
                             double duration);
 
 void sc_bk2_dparams(const bk2_inst *b, int nd, bk2_dpar *P);
+/* Fill first_g, first_r, first_ok with b->search (again after changing
+ * the search). */
+void sc_bk2_first_restick(bk2_inst *b);
 int sc_bk2_onset(const bk2_inst *b, const bk2_dpar *P, sc_dual d,
                  bk2_state *x);
 void sc_bk2_event_shift(const bk2_dpar *P, sc_dual gval, double slope,
