@@ -475,10 +475,10 @@ static double hermite_min(double p0, double q0, double p1, double q1,
 }
 
 /* g, g', g'' at t from cos and sin of each term. */
-static inline void vals_from(const sc_guard *g, double t, const double *cs,
-                             const double *sn, double *v) {
+static inline void vals_from(const sc_guard *g, int n, double t,
+                             const double *cs, const double *sn, double *v) {
   double g0 = g->c0 + g->c1 * t, g1 = g->c1, g2 = 0;
-  for (int k = 0; k < g->n; k++) {
+  for (int k = 0; k < n; k++) {
     double w = g->w[k];
     double a = g->a[k] * cs[k] + g->b[k] * sn[k];
     g0 += a;
@@ -512,10 +512,9 @@ static void rotation(const sc_guard *g, double h, double *c, double *s) {
 }
 
 /* Returns 1 with *out filled when a root is found in (0, tmax], else 0. */
-static int grid_march(const guard_ctx *c, double wmax, double tmax,
-                      int at_start_root, sc_root *out) {
+static inline int grid_march_n(const guard_ctx *c, int n, double wmax,
+                               double tmax, int at_start_root, sc_root *out) {
   const sc_guard *g = c->g;
-  int n = g->n;
   double dt = 2 * SC_PI / (GUARD_GRID_PER_PERIOD * wmax);
   /* rotations through w dt 2^m, made on first use */
   double rc[GUARD_GRID_LEVELS][SC_GUARD_MAXFREQ];
@@ -540,7 +539,7 @@ static int grid_march(const guard_ctx *c, double wmax, double tmax,
   double r0 = DBL_EPSILON * c->z.amp, r1 = DBL_EPSILON * c->z.wamp;
   double r2 = DBL_EPSILON * wamp2;
   double ve[3], vf[3];
-  vals_from(g, 0, cs, sn, ve);
+  vals_from(g, n, 0, cs, sn, ve);
   double t = 0, rerr = 0;
   int m = 0;
   while (t < tmax) {
@@ -580,7 +579,7 @@ static int grid_march(const guard_ctx *c, double wmax, double tmax,
       nsn[k] = sn[k] * cr[k] + cs[k] * sr[k];
     }
     double nerr = rerr + rot_ulps;
-    vals_from(g, tn, ncs, nsn, vf);
+    vals_from(g, n, tn, ncs, nsn, vf);
     out->steps++;
     double E = e00 + e01 * tn + r0 * nerr;
     double E1 = e10 + e11 * tn + r1 * nerr;
@@ -646,11 +645,25 @@ static int grid_march(const guard_ctx *c, double wmax, double tmax,
     at_start_root = 0;
     t = tend;
     anchor(g, t, cs, sn);
-    vals_from(g, t, cs, sn, ve);
+    vals_from(g, n, t, cs, sn, ve);
     rerr = 0;
     m = 0;
   }
   return 0;
+}
+
+/* The march with the number of terms a constant, so that the compiler
+ * unrolls its loops (bk2's guards have one or two terms). */
+static int grid_march(const guard_ctx *c, double wmax, double tmax,
+                      int at_start_root, sc_root *out) {
+  switch (c->g->n) {
+  case 1:
+    return grid_march_n(c, 1, wmax, tmax, at_start_root, out);
+  case 2:
+    return grid_march_n(c, 2, wmax, tmax, at_start_root, out);
+  default:
+    return grid_march_n(c, c->g->n, wmax, tmax, at_start_root, out);
+  }
 }
 
 int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
