@@ -1,7 +1,7 @@
 /* Event-map iterates per CPU second on one core, the workloads of issue 9
  * (docs/performance.md, "Event map: the certified search"):
  *
- *   bench_events [repeats] [iterates]
+ *   bench_events [repeats] [iterates] [figure: 0 both, 1, 2]
  *
  *   fig 5.6  bk2, alpha 2.9, beta 1, phi 1.25, V 0.018, driver moving,
  *            the orbit from d0 = 0.02 (chaotic)
@@ -32,8 +32,10 @@ static int cmp(const void *a, const void *b) {
 int main(int argc, char **argv) {
   int repeats = argc > 1 ? atoi(argv[1]) : 5;
   long n = argc > 2 ? atol(argv[2]) : 200000;
-  if (repeats < 1 || repeats > 101 || n < 1) {
-    fprintf(stderr, "usage: bench_events [repeats 1..101] [iterates >= 1]\n");
+  int only = argc > 3 ? atoi(argv[3]) : 0;
+  if (repeats < 1 || repeats > 101 || n < 1 || only < 0 || only > 2) {
+    fprintf(stderr, "usage: bench_events [repeats 1..101] [iterates >= 1] "
+                    "[figure 0 (both), 1 or 2]\n");
     return 1;
   }
   const struct {
@@ -47,6 +49,7 @@ int main(int argc, char **argv) {
        0.025, "frozen"},
   };
   for (size_t fi = 0; fi < sizeof figs / sizeof figs[0]; fi++) {
+    if (only && (size_t)only != fi + 1) continue;
     sc_msg msg;
     sc_map *m;
     sc_accuracy acc;
