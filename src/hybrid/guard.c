@@ -540,21 +540,24 @@ static inline int grid_march_n(const guard_ctx *c, int n, double wmax,
   double r2 = DBL_EPSILON * wamp2;
   double ve[3], vf[3];
   vals_from(g, n, 0, cs, sn, ve);
+  /* t = q dt with one rounding (not a running sum, whose rounding would
+   * grow with the steps while the rotations follow the exact sum) */
   double t = 0, rerr = 0;
+  long q = 0;
   int m = 0;
   while (t < tmax) {
     double h = dt * (double)(1 << m), tn, ct[SC_GUARD_MAXFREQ],
            st[SC_GUARD_MAXFREQ];
     const double *cr, *sr;
     double rot_ulps = GUARD_ROT_ULPS + 4 * m;
-    int tail = !(t + h < tmax);
+    int tail = !((double)(q + (1L << m)) * dt < tmax);
     if (tail) {
       h = tmax - t, tn = tmax;
       rotation(g, h, ct, st);
       cr = ct, sr = st;
       rot_ulps = GUARD_ROT_ULPS + 4 * GUARD_GRID_LEVELS;
     } else {
-      tn = t + h;
+      tn = (double)(q + (1L << m)) * dt;
       while (have <= m) {
         if (have == 0) {
           for (int k = 0; k < n; k++) {
@@ -624,6 +627,7 @@ static inline int grid_march_n(const guard_ctx *c, int n, double wmax,
     if (decided) {
       at_start_root = 0;
       t = tn, rerr = nerr;
+      if (!tail) q += 1L << m;
       for (int k = 0; k < SC_GUARD_MAXFREQ; k++) cs[k] = ncs[k], sn[k] = nsn[k];
       ve[0] = vf[0], ve[1] = vf[1], ve[2] = vf[2];
       if (m + 1 < GUARD_GRID_LEVELS) m++;
@@ -633,10 +637,10 @@ static inline int grid_march_n(const guard_ctx *c, int n, double wmax,
      * which is not retried), then the adaptive march. */
     if (m > 0) {
       m--;
-      while (m > 0 && !(t + dt * (double)(1 << m) < tmax)) m--;
-      if (t + dt < tmax) continue;
+      while (m > 0 && !((double)(q + (1L << m)) * dt < tmax)) m--;
+      if ((double)(q + 1) * dt < tmax) continue;
     }
-    double tend = min2(t + dt, tmax);
+    double tend = min2((double)(q + 1) * dt, tmax);
     guard_terms ex;
     eval_terms(g, t, &ex);
     if (march(c, t, tend, &ex, at_start_root, min2(tend - t, 0.5 * SC_PI / wmax),
@@ -644,6 +648,7 @@ static inline int grid_march_n(const guard_ctx *c, int n, double wmax,
       return 1;
     at_start_root = 0;
     t = tend;
+    q++;
     anchor(g, t, cs, sn);
     vals_from(g, n, t, cs, sn, ve);
     rerr = 0;
