@@ -1,7 +1,14 @@
 /* Certified first-root location for guards made of a linear term and
  * sinusoids (hybrid.h, docs/events.md).
  *
- * The march covers (0, tmax] by intervals [t, t + h].  Write s = time from
+ * A guard with one sinusoid and no linear term has its roots in closed
+ * form.  Otherwise the grid march (below, "the grid march") samples the
+ * guard at multiples of a twelfth of the fastest period, with cos and sin
+ * carried by rotations, and decides each interval by cubic Hermite bounds;
+ * the intervals it cannot decide go to the adaptive march described here,
+ * which was the whole search before issue 9.
+ *
+ * The adaptive march covers its span by intervals [t, t + h].  Write s = time from
  * t, g0, g1, g2 = g, g', g'' at t, M3 >= |g'''|.  Taylor's theorem gives
  *   |g(t+s) - (g0 + g1 s + g2 s^2/2)| <= M3 s^3 / 6,
  *   |g'(t+s) - (g1 + g2 s)|           <= M3 s^2 / 2.
@@ -138,11 +145,6 @@ static double amplitude_bound(const sc_guard *g, const guard_terms *e,
   return quad_min(1, q0, q1, q2, h) - rem + cst;
 }
 
-/* Bracketed Newton on [lo, hi] where g(lo), g(hi) differ in sign and g is
- * monotone: start from the secant point; stop when g is within rounding of
- * zero, or when a Newton step inside the bracket is below the tolerance
- * (convergence is quadratic there, so the step itself bounds the error,
- * and the slope at the last point is the root's to O(step)). */
 /* cos and sin of x for |x| <= GUARD_SMALL_ANGLE by their Taylor
  * polynomials in x^2 (through x^15 and x^16: the truncation is below
  * 1e-18, the rounding a few ulps, as libm's), several times cheaper than
@@ -184,6 +186,12 @@ static void eval_near(const sc_guard *g, double t0, const double *c0,
   *v = g0, *d = g1, *d2 = g2;
 }
 
+/* Bracketed Halley/Newton on [lo, hi] where g(lo), g(hi) differ in sign
+ * and g is monotone: start from the root of the Hermite cubic; stop when g
+ * is within rounding of zero, when a step inside the bracket is below the
+ * tolerance (convergence is at least quadratic there, so the step bounds
+ * the error, and the slope at the last point is the root's to O(step)),
+ * or when the Taylor bound on the next error is below it. */
 static void refine(const sc_guard *g, const guard_size *z, double M3,
                    double lo, double glo, double dlo, double hi, double ghi,
                    double dhi, double atol, double rtol, sc_root *out) {
