@@ -728,6 +728,14 @@ int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
       closed_form(g, &c.z, c.amp[0], tmax, skip_start, out))
     return SC_OK;
   out->tangent = 0;
+  /* Out of reach: |c0 + c1 t| stays above the sum of the amplitudes (and
+   * the rounding) on all of [0, tmax], so g keeps the sign of c0. */
+  if (!skip_start) {
+    double lo = min2(fabs(g->c0), fabs(g->c0 + g->c1 * tmax));
+    if ((g->c0 > 0) == (g->c0 + g->c1 * tmax > 0) &&
+        lo > c.z.amp + round_at(&c.z, tmax))
+      return SC_OK;
+  }
   /* The bound M3 on the third derivative, term by term. */
   c.M3 = 0;
   for (int k = 0; k < g->n; k++) {
