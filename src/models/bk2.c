@@ -345,11 +345,17 @@ int sc_bk2_onset(const bk2_inst *b, const bk2_dpar *P, sc_dual d,
   return mode;
 }
 
+/* Two guards built from different onsets differ by the rounding of the
+ * states (positions of size ~1 + alpha |d|, a few ulps each, against
+ * coefficients of size (1 - mu) T_i): ~50 eps of the guard's size. */
+#define BK2_SAME_GUARD_EPS (50 * DBL_EPSILON)
+
 /* Two guards equal up to the rounding of building them from a state. */
 static int same_guard(const sc_guard *g, const sc_guard *h) {
   if (g->n != 1 || h->n != 1 || g->c1 != 0 || h->c1 != 0 || g->w[0] != h->w[0])
     return 0;
-  double tol = 1e-14 * (fabs(h->c0) + fabs(h->a[0]) + fabs(h->b[0]));
+  double tol =
+      BK2_SAME_GUARD_EPS * (fabs(h->c0) + fabs(h->a[0]) + fabs(h->b[0]));
   return fabs(g->c0 - h->c0) <= tol && fabs(g->a[0] - h->a[0]) <= tol &&
          fabs(g->b[0] - h->b[0]) <= tol;
 }
