@@ -696,7 +696,7 @@ int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
     if (!(g->w[k] > 0) || !isfinite(g->w[k]) || !isfinite(g->a[k]) ||
         !isfinite(g->b[k]))
       return SC_EINVAL;
-    wmax = fmax(wmax, g->w[k]);
+    if (g->w[k] > wmax) wmax = g->w[k]; /* (no libm call: none is NaN) */
   }
   /* A guard that starts within rounding of zero: a root at 0 if it moves
    * up through zero there (the events of MODEL.md are all upward
