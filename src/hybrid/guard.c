@@ -162,11 +162,11 @@ static inline void small_sincos(double x, double *s, double *c) {
 
 /* g and g' at t near t0, where cos and sin of every term are c0[], s0[]:
  * by angle addition with the small angles w (t - t0). */
-static void eval_near(const sc_guard *g, double t0, const double *c0,
-                      const double *s0, double t, double *v, double *d,
-                      double *d2) {
+static inline void eval_near(const sc_guard *g, int n, double t0,
+                             const double *c0, const double *s0, double t,
+                             double *v, double *d, double *d2) {
   double x = t - t0, g0 = g->c0 + g->c1 * t, g1 = g->c1, g2 = 0;
-  for (int k = 0; k < g->n; k++) {
+  for (int k = 0; k < n; k++) {
     double w = g->w[k], sx, cx;
     if (fabs(w * x) <= GUARD_SMALL_ANGLE) {
       small_sincos(w * x, &sx, &cx);
@@ -192,9 +192,10 @@ static void eval_near(const sc_guard *g, double t0, const double *c0,
  * tolerance (convergence is at least quadratic there, so the step bounds
  * the error, and the slope at the last point is the root's to O(step)),
  * or when the Taylor bound on the next error is below it. */
-static void refine(const sc_guard *g, const guard_size *z, double M3,
-                   double lo, double glo, double dlo, double hi, double ghi,
-                   double dhi, double atol, double rtol, sc_root *out) {
+static inline void refine_n(const sc_guard *g, int n, const guard_size *z,
+                            double M3, double lo, double glo, double dlo,
+                            double hi, double ghi, double dhi, double atol,
+                            double rtol, sc_root *out) {
   double t0, c0[SC_GUARD_MAXFREQ], s0[SC_GUARD_MAXFREQ];
   /* Start from the root of the cubic Hermite interpolant of g and g' at
    * both ends (a few Newton steps on the cubic, no trigonometry), which
@@ -219,11 +220,11 @@ static void refine(const sc_guard *g, const guard_size *z, double M3,
   /* cos and sin at the start from libm, once: the iterates stay close to
    * it, where angle addition with small angles is exact to a few ulps. */
   t0 = t;
-  for (int k = 0; k < g->n; k++)
+  for (int k = 0; k < n; k++)
     c0[k] = cos(g->w[k] * t0), s0[k] = sin(g->w[k] * t0);
   double v = 0, d = 0, d2 = 0, bracket = hi - lo;
   for (int it = 0; it < GUARD_MAX_REFINE; it++) {
-    eval_near(g, t0, c0, s0, t, &v, &d, &d2);
+    eval_near(g, n, t0, c0, s0, t, &v, &d, &d2);
     if (fabs(v) <= round_at(z, t)) {
       bracket = 0;
       break;
@@ -264,6 +265,18 @@ static void refine(const sc_guard *g, const guard_size *z, double M3,
   out->found = 1;
   out->slope = d;
   out->curv = d2;
+}
+
+/* refine_n with the number of terms a constant for bk2's guards. */
+static void refine(const sc_guard *g, const guard_size *z, double M3,
+                   double lo, double glo, double dlo, double hi, double ghi,
+                   double dhi, double atol, double rtol, sc_root *out) {
+  if (g->n == 1)
+    refine_n(g, 1, z, M3, lo, glo, dlo, hi, ghi, dhi, atol, rtol, out);
+  else if (g->n == 2)
+    refine_n(g, 2, z, M3, lo, glo, dlo, hi, ghi, dhi, atol, rtol, out);
+  else
+    refine_n(g, g->n, z, M3, lo, glo, dlo, hi, ghi, dhi, atol, rtol, out);
 }
 
 /* A single sinusoid and a constant: roots in closed form.  g = c0 +
