@@ -111,6 +111,57 @@ int main(void) {
               r.found, r.t);
     }
   }
+  /* A touch late in a long march (about a thousand grid steps of
+   * rotations before it, whose rounding the bounds must carry), with a
+   * linear term; by 1e-10, as g itself is known only to ~2e-12 at t = 700
+   * (the arguments w t round to ~2e-13): g = c0 + c1 (t - t0) + A cos(w1 (t - t0)) + B cos(w2 (t -
+   * t0)) has its highest maximum c0 + A + B = delta at t0 when c1 = 0;
+   * with c1 = 1e-4 the maximum moves by c1 / kappa and rises by
+   * c1^2 / (2 kappa), so c0 absorbs that. */
+  for (int sgn = -1; sgn <= 1; sgn += 2) {
+    double delta = sgn * 1e-10, T0 = 700.25, c1 = 1e-4;
+    double kappa = A * w1 * w1 + B * w2 * w2;
+    sc_guard g = {0};
+    g.n = 2;
+    g.c1 = c1;
+    g.c0 = delta - A - B - c1 * c1 / (2 * kappa) - c1 * T0;
+    g.w[0] = w1, g.a[0] = A * cos(w1 * T0), g.b[0] = A * sin(w1 * T0);
+    g.w[1] = w2, g.a[1] = B * cos(w2 * T0), g.b[1] = B * sin(w2 * T0);
+    sc_root r;
+    sc_guard_first_root(&g, T0 + 1, 0, 1e-15, 1e-14, &r);
+    /* the maximum is at T0 + c1 / kappa to first order; the roots lie
+     * sqrt(2 delta / kappa) either side */
+    double tmax_g = T0 + c1 / kappa;
+    if (delta > 0) {
+      tu_true(r.found, "late touch by 1e-10 with a linear term: found (t = "
+                       "%.17g, %d steps)",
+              r.t, r.steps);
+      tu_close("late near-tangent root time", r.t,
+               tmax_g - sqrt(2 * delta / kappa), 1e-7);
+    } else {
+      tu_true(!r.found, "late miss by 1e-10: no root (found = %d, t = %g)",
+              r.found, r.t);
+    }
+  }
+  /* A start root and a linear term (a threshold-like guard with the
+   * march from a skipped zero): against the dense search. */
+  {
+    sc_guard g = {0};
+    g.n = 1;
+    g.c1 = 0.05;
+    g.w[0] = 2.2, g.a[0] = 0.3, g.b[0] = -0.4;
+    g.c0 = -0.3;
+    sc_root r;
+    sc_guard_first_root(&g, 30, 1, 1e-15, 1e-14, &r);
+    double ref = dense_first_root(&g, 30, 1);
+    tu_close("skip_start with a linear term (grid march)", r.t, ref, 1e-12);
+    tu_close("slope returned at that root", r.slope,
+             0.05 + 2.2 * (-0.4 * cos(2.2 * ref) - 0.3 * sin(2.2 * ref)),
+             1e-9);
+    double g2 = -2.2 * 2.2 * (0.3 * cos(2.2 * ref) - 0.4 * sin(2.2 * ref));
+    /* g'' comes from the last refinement step: within M3 times it */
+    tu_close("g'' returned at that root", r.curv, g2, 1e-6);
+  }
   /* Single frequency and a constant: the closed form, near tangency too. */
   for (int sgn = -1; sgn <= 1; sgn += 2) {
     sc_guard g = {0};

@@ -43,6 +43,9 @@ typedef struct {
   double t;       /**< the root (tmax when none) */
   double bracket; /**< width of the interval known to hold the root */
   double slope;   /**< g'(t) at the root */
+  double curv;    /**< g'' at the root, or at the last refinement iterate
+                       (within M3 times the final step): for the grazing
+                       margin */
   int steps;      /**< intervals examined (for benchmarks) */
 } sc_root;
 

@@ -1428,8 +1428,13 @@ static int locate_ahead(sc_orbit_branch *b, segment *S, int dir) {
                     x->value, S->last_p + 2 * dpar, S->last_d + 2 * dd,
                     -x->value, &fx);
     }
-    if (!fx.ok || (fx.p - S->last_p) * dir < -1e-12 * (1 + fabs(S->last_p)))
-      continue;
+    /* A border in the state is met tangentially: the orbit point sits
+     * within rounding of it over a stretch of the parameter (its
+     * distance grows like the square of the parameter's), so the last
+     * accepted point may lie a little past the solution. */
+    double behind = (x->on_state ? BISECTION_REACH : 1e-12) *
+                    (1 + fabs(S->last_p));
+    if (!fx.ok || (fx.p - S->last_p) * dir < -behind) continue;
     if (!best.ok || fabs(fx.p - S->last_p) < fabs(best.p - S->last_p))
       best = fx, bbest = like;
   }

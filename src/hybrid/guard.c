@@ -1,7 +1,14 @@
 /* Certified first-root location for guards made of a linear term and
  * sinusoids (hybrid.h, docs/events.md).
  *
- * The march covers (0, tmax] by intervals [t, t + h].  Write s = time from
+ * A guard with one sinusoid and no linear term has its roots in closed
+ * form.  Otherwise the grid march (below, "the grid march") samples the
+ * guard at multiples of a twelfth of the fastest period, with cos and sin
+ * carried by rotations, and decides each interval by cubic Hermite bounds;
+ * the intervals it cannot decide go to the adaptive march described here,
+ * which was the whole search before issue 9.
+ *
+ * The adaptive march covers its span by intervals [t, t + h].  Write s = time from
  * t, g0, g1, g2 = g, g', g'' at t, M3 >= |g'''|.  Taylor's theorem gives
  *   |g(t+s) - (g0 + g1 s + g2 s^2/2)| <= M3 s^3 / 6,
  *   |g'(t+s) - (g1 + g2 s)|           <= M3 s^2 / 2.
@@ -57,11 +64,12 @@ typedef struct {
   double c0, c1, amp, wamp;
 } guard_size;
 
-/* The sizes, and each sinusoid's amplitude into amp[] (one hypot each). */
+/* The sizes, and each sinusoid's amplitude into amp[] (coefficients are
+ * far from overflow: sqrt of the sum of squares, not hypot). */
 static guard_size guard_sizes(const sc_guard *g, double *amp) {
   guard_size z = {fabs(g->c0), fabs(g->c1), 0, 0};
   for (int k = 0; k < g->n; k++) {
-    amp[k] = hypot(g->a[k], g->b[k]);
+    amp[k] = sqrt(g->a[k] * g->a[k] + g->b[k] * g->b[k]);
     z.amp += amp[k];
     z.wamp += amp[k] * g->w[k];
   }
@@ -137,14 +145,58 @@ static double amplitude_bound(const sc_guard *g, const guard_terms *e,
   return quad_min(1, q0, q1, q2, h) - rem + cst;
 }
 
-/* Bracketed Newton on [lo, hi] where g(lo), g(hi) differ in sign and g is
- * monotone: start from the secant point; stop when g is within rounding of
- * zero, or when a Newton step inside the bracket is below the tolerance
- * (convergence is quadratic there, so the step itself bounds the error,
- * and the slope at the last point is the root's to O(step)). */
-static void refine(const sc_guard *g, const guard_size *z, double lo,
-                   double glo, double dlo, double hi, double ghi, double dhi,
-                   double atol, double rtol, sc_root *out) {
+/* cos and sin of x for |x| <= GUARD_SMALL_ANGLE by their Taylor
+ * polynomials in x^2 (through x^15 and x^16: the truncation is below
+ * 1e-18, the rounding a few ulps, as libm's), several times cheaper than
+ * a libm call. */
+#define GUARD_SMALL_ANGLE 0.6
+static inline void small_sincos(double x, double *s, double *c) {
+  double z = x * x;
+  *s = x * (1 + z * (-1.0 / 6 + z * (1.0 / 120 + z * (-1.0 / 5040 +
+       z * (1.0 / 362880 + z * (-1.0 / 39916800 + z * (1.0 / 6227020800 +
+       z * (-1.0 / 1307674368000))))))));
+  *c = 1 + z * (-0.5 + z * (1.0 / 24 + z * (-1.0 / 720 + z * (1.0 / 40320 +
+       z * (-1.0 / 3628800 + z * (1.0 / 479001600 + z * (-1.0 / 87178291200 +
+       z * (1.0 / 20922789888000))))))));
+}
+
+/* g and g' at t near t0, where cos and sin of every term are c0[], s0[]:
+ * by angle addition with the small angles w (t - t0). */
+static inline void eval_near(const sc_guard *g, int n, double t0,
+                             const double *c0, const double *s0, double t,
+                             double *v, double *d, double *d2) {
+  double x = t - t0, g0 = g->c0 + g->c1 * t, g1 = g->c1, g2 = 0;
+  for (int k = 0; k < n; k++) {
+    double w = g->w[k], sx, cx;
+    if (fabs(w * x) <= GUARD_SMALL_ANGLE) {
+      small_sincos(w * x, &sx, &cx);
+    } else {
+      double sn, cs;
+      sn = sin(w * t), cs = cos(w * t);
+      double a = g->a[k] * cs + g->b[k] * sn;
+      g0 += a, g2 -= w * w * a;
+      g1 += w * (g->b[k] * cs - g->a[k] * sn);
+      continue;
+    }
+    double cs = c0[k] * cx - s0[k] * sx, sn = s0[k] * cx + c0[k] * sx;
+    double a = g->a[k] * cs + g->b[k] * sn;
+    g0 += a, g2 -= w * w * a;
+    g1 += w * (g->b[k] * cs - g->a[k] * sn);
+  }
+  *v = g0, *d = g1, *d2 = g2;
+}
+
+/* Bracketed Halley/Newton on [lo, hi] where g(lo), g(hi) differ in sign
+ * and g is monotone: start from the root of the Hermite cubic; stop when g
+ * is within rounding of zero, when a step inside the bracket is below the
+ * tolerance (convergence is at least quadratic there, so the step bounds
+ * the error, and the slope at the last point is the root's to O(step)),
+ * or when the Taylor bound on the next error is below it. */
+static inline void refine_n(const sc_guard *g, int n, const guard_size *z,
+                            double M3, double lo, double glo, double dlo,
+                            double hi, double ghi, double dhi, double atol,
+                            double rtol, sc_root *out) {
+  double t0, c0[SC_GUARD_MAXFREQ], s0[SC_GUARD_MAXFREQ];
   /* Start from the root of the cubic Hermite interpolant of g and g' at
    * both ends (a few Newton steps on the cubic, no trigonometry), which
    * is far closer than the secant point: one or two Newton steps on g
@@ -165,19 +217,39 @@ static void refine(const sc_guard *g, const guard_size *z, double lo,
     }
     t = lo + s;
   }
-  double v = 0, d = 0, bracket = hi - lo;
+  /* cos and sin at the start from libm, once: the iterates stay close to
+   * it, where angle addition with small angles is exact to a few ulps. */
+  t0 = t;
+  for (int k = 0; k < n; k++)
+    c0[k] = cos(g->w[k] * t0), s0[k] = sin(g->w[k] * t0);
+  double v = 0, d = 0, d2 = 0, bracket = hi - lo;
   for (int it = 0; it < GUARD_MAX_REFINE; it++) {
-    sc_guard_eval(g, t, &v, &d, NULL);
+    eval_near(g, n, t0, c0, s0, t, &v, &d, &d2);
     if (fabs(v) <= round_at(z, t)) {
       bracket = 0;
       break;
     }
     if ((v > 0) == (glo > 0)) lo = t, glo = v;
     else hi = t;
-    double tn = t - v / d;
+    /* Halley's step (Newton's where its correction is not small) */
+    double nt = v / d, corr = 1 - 0.5 * nt * d2 / d;
+    double tn = t - (corr > 0.5 && corr < 2 ? nt / corr : nt);
     if (d != 0 && tn > lo && tn < hi) {
-      if (fabs(tn - t) <= tol_at(tn, atol, rtol)) {
-        bracket = fabs(tn - t);
+      double dl = fabs(tn - t);
+      if (dl <= tol_at(tn, atol, rtol)) {
+        bracket = dl;
+        t = tn;
+        break;
+      }
+      /* Taylor: the root r has g(t) + g'(t)(r - t) + g''(xi)(r - t)^2/2
+       * = 0, so Newton's point is within |g''| (r - t)^2 / (2 |g'|) of r,
+       * with |r - t| <= 2 dl once that bound is below dl, and Halley's
+       * within as much again: if the bound is below the tolerance, stop
+       * without evaluating g again (slope moved to tn to first order). */
+      double est = 2 * (fabs(d2) + 2 * M3 * dl) * dl * dl / fabs(d) * 2;
+      if (est <= tol_at(tn, atol, rtol) && est < 0.25 * dl) {
+        bracket = est;
+        d += d2 * (tn - t);
         t = tn;
         break;
       }
@@ -192,6 +264,19 @@ static void refine(const sc_guard *g, const guard_size *z, double lo,
   out->bracket = bracket;
   out->found = 1;
   out->slope = d;
+  out->curv = d2;
+}
+
+/* refine_n with the number of terms a constant for bk2's guards. */
+static void refine(const sc_guard *g, const guard_size *z, double M3,
+                   double lo, double glo, double dlo, double hi, double ghi,
+                   double dhi, double atol, double rtol, sc_root *out) {
+  if (g->n == 1)
+    refine_n(g, 1, z, M3, lo, glo, dlo, hi, ghi, dhi, atol, rtol, out);
+  else if (g->n == 2)
+    refine_n(g, 2, z, M3, lo, glo, dlo, hi, ghi, dhi, atol, rtol, out);
+  else
+    refine_n(g, g->n, z, M3, lo, glo, dlo, hi, ghi, dhi, atol, rtol, out);
 }
 
 /* A single sinusoid and a constant: roots in closed form.  g = c0 +
@@ -205,98 +290,72 @@ static int closed_form(const sc_guard *g, const guard_size *z, double R,
   if (R <= E) return 0;
   double gap = R - fabs(c0);
   if (gap < -E) return 1; /* never reaches zero: out says not found */
-  double phi = atan2(b, a);
   const double twopi = 2 * SC_PI;
-  double asc, desc;
+  /* Phase vectors: with (a, b) = R (cos phi, sin phi) and
+   * (-c0, rs) = R (cos theta, sin theta), the ascending root's phase
+   * phi - theta and the descending one's phi + theta are the angles of
+   * the products (a + i b)(-c0 -+ i rs): one atan2, no fmod. */
+  double asc, desc, alpha, rs = 0;
   if (gap <= E) {
     /* touches: cos(w t - phi) = -sign(c0) */
-    asc = desc = c0 < 0 ? phi : phi + SC_PI;
+    asc = desc = c0 < 0 ? atan2(b, a) : atan2(-b, -a);
     out->tangent = 1;
   } else {
-    double theta = atan2(sqrt(gap * (R + fabs(c0))), -c0);
-    asc = phi - theta;
-    desc = phi + theta;
+    rs = sqrt(gap * (R + fabs(c0))); /* R sin(theta) */
+    asc = desc = -1;
   }
-  asc = fmod(asc, twopi);
-  if (asc < 0) asc += twopi;
-  desc = fmod(desc, twopi);
-  if (desc < 0) desc += twopi;
-  double alpha;
   if (skip_start) {
-    double g1;
-    sc_guard_eval(g, 0, NULL, &g1, NULL);
+    double g1 = w * b; /* g'(0) */
     if (g1 == 0 || out->tangent) return 0;
     /* the start root is of the type of g'(0): the next is the other type */
+    if (g1 < 0) asc = atan2(-b * c0 - a * rs, -a * c0 + b * rs);
+    else desc = atan2(a * rs - b * c0, -a * c0 - b * rs);
     alpha = g1 < 0 ? asc : desc;
+    if (alpha < 0) alpha += twopi;
     if (alpha * 1 <= 4 * DBL_EPSILON * twopi) alpha += twopi;
   } else {
-    alpha = fmin(asc, desc);
+    /* from below zero the first root ascends, from above it descends */
+    if (!out->tangent) {
+      if (c0 + a < 0) asc = atan2(-b * c0 - a * rs, -a * c0 + b * rs);
+      else desc = atan2(a * rs - b * c0, -a * c0 - b * rs);
+    }
+    alpha = c0 + a < 0 ? asc : desc;
+    if (alpha < 0) alpha += twopi;
   }
   double t = alpha / w;
   if (t <= tmax) {
     out->found = 1;
     out->t = t;
-    sc_guard_eval(g, t, NULL, &out->slope, NULL);
+    /* at a root R cos(w t - phi) = -c0: g' = +-w R sin(theta) (ascending
+     * or descending), g'' = w^2 c0 */
+    if (out->tangent) sc_guard_eval(g, t, NULL, &out->slope, NULL);
+    else out->slope = (skip_start ? w * b < 0 : c0 + a < 0) ? w * rs : -w * rs;
+    out->curv = w * w * c0;
     out->bracket = out->tangent ? 0 : E / fmax(fabs(out->slope), DBL_MIN);
   }
   return 1;
 }
 
-int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
-                        double atol, double rtol, sc_root *out) {
-  out->found = out->tangent = 0;
-  out->t = tmax;
-  out->bracket = 0;
-  out->slope = 0;
-  out->steps = 0;
-  if (!g || g->n < 0 || g->n > SC_GUARD_MAXFREQ || !isfinite(g->c0) ||
-      !isfinite(g->c1) || !(tmax > 0) || !isfinite(tmax) || !(atol > 0) ||
-      !(rtol >= 0))
-    return SC_EINVAL;
-  double wmax = 0;
-  for (int k = 0; k < g->n; k++) {
-    if (!(g->w[k] > 0) || !isfinite(g->w[k]) || !isfinite(g->a[k]) ||
-        !isfinite(g->b[k]))
-      return SC_EINVAL;
-    wmax = fmax(wmax, g->w[k]);
-  }
-  /* A guard that starts within rounding of zero: a root at 0 if it moves
-   * up through zero there (the events of MODEL.md are all upward
-   * crossings), otherwise the start root is skipped. */
-  double amp[SC_GUARD_MAXFREQ];
-  guard_size z = guard_sizes(g, amp); /* once per search */
-  guard_terms e;
-  eval_terms(g, 0, &e);
-  double g0 = e.g0, g1 = e.g1, g2 = e.g2;
-  if (fabs(g0) <= round_at(&z, 0)) {
-    int upward = g1 > 0 || (g1 == 0 && g2 > 0);
-    if (!skip_start && upward) {
-      out->found = 1;
-      out->t = 0;
-      out->slope = g1;
-      return SC_OK;
-    }
-    skip_start = 1;
-  }
-  if (g->n == 1 && g->c1 == 0 &&
-      closed_form(g, &z, amp[0], tmax, skip_start, out))
-    return SC_OK;
-  out->tangent = 0;
-  /* The bound M3 on the third derivative, term by term. */
-  double M3 = 0, m3[SC_GUARD_MAXFREQ];
-  for (int k = 0; k < g->n; k++) {
-    double w = g->w[k];
-    m3[k] = amp[k] * w * w * w;
-    M3 += m3[k];
-  }
-  /* First trial step: a quarter of the fastest period, or all of tmax. */
-  double h = wmax > 0 ? fmin(tmax, 0.5 * SC_PI / wmax) : tmax;
-  double t = 0;
-  int at_start_root = skip_start;
-  while (t < tmax) {
-    h = min2(h, tmax - t);
+/* What the march needs to know about one guard, computed once per search. */
+typedef struct {
+  const sc_guard *g;
+  guard_size z;
+  double amp[SC_GUARD_MAXFREQ], m3[SC_GUARD_MAXFREQ], M3;
+  double atol, rtol;
+} guard_ctx;
+
+/* The adaptive march on [t, tend], from the terms e at t: intervals are
+ * halved until test (A) or (B) passes.  Returns 1 with *out filled when it
+ * finds the first root there, 0 when [t, tend] holds none. */
+static int march(const guard_ctx *c, double t, double tend, guard_terms *e,
+                 int at_start_root, double h, sc_root *out) {
+  const sc_guard *g = c->g;
+  double atol = c->atol, rtol = c->rtol, M3 = c->M3;
+  double g0 = e->g0, g1 = e->g1, g2 = e->g2;
+  while (t < tend) {
+    h = min2(h, tend - t);
     out->steps++;
-    double E = round_at(&z, t + h);
+    double E = round_at(&c->z, t + h);
     double sigma = g0 > 0 ? 1 : -1;
     if (at_start_root) {
       /* g(0) = 0 by construction: its sign just after 0 is that of g1,
@@ -307,18 +366,20 @@ int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
       out->found = 1;
       out->t = t;
       out->slope = g1;
+      out->curv = g2;
       out->tangent = fabs(g1) * tol_at(t, atol, rtol) <= E;
-      return SC_OK;
+      return 1;
     }
     /* (A) no root in [t, t+h]: the quadratic with the global remainder,
      * or failing that (with several frequencies) the bound that takes
      * some terms by their amplitude. */
     if (!at_start_root &&
         (quad_min(sigma, g0, g1, g2, h) - M3 * h * h * h / 6 > E ||
-         (g->n > 1 && amplitude_bound(g, &e, amp, m3, sigma, t, h) > E))) {
+         (g->n > 1 &&
+          amplitude_bound(g, e, c->amp, c->m3, sigma, t, h) > E))) {
       t += h;
-      eval_terms(g, t, &e);
-      g0 = e.g0, g1 = e.g1, g2 = e.g2;
+      eval_terms(g, t, e);
+      g0 = e->g0, g1 = e->g1, g2 = e->g2;
       h *= 2;
       continue;
     }
@@ -333,14 +394,15 @@ int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
           out->found = 1;
           out->t = t + h;
           out->slope = ge1;
-          return SC_OK;
+          out->curv = ge2;
+          return 1;
         }
-        refine(g, &z, t, g0, g1, t + h, ge, ge1, atol, rtol, out);
-        return SC_OK;
+        refine(g, &c->z, M3, t, g0, g1, t + h, ge, ge1, atol, rtol, out);
+        return 1;
       }
       at_start_root = 0;
       t += h;
-      e = eh;
+      *e = eh;
       g0 = ge, g1 = ge1, g2 = ge2;
       h *= 2;
       continue;
@@ -353,17 +415,348 @@ int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
         /* degenerate start (g' = 0 too): step past it */
         at_start_root = 0;
         t += h;
-        eval_terms(g, t, &e);
-        g0 = e.g0, g1 = e.g1, g2 = e.g2;
+        eval_terms(g, t, e);
+        g0 = e->g0, g1 = e->g1, g2 = e->g2;
         continue;
       }
       out->found = 1;
       out->tangent = 1;
       out->t = t + 0.5 * h;
       out->bracket = h;
-      sc_guard_eval(g, out->t, NULL, &out->slope, NULL);
-      return SC_OK;
+      sc_guard_eval(g, out->t, NULL, &out->slope, &out->curv);
+      return 1;
     }
   }
+  return 0;
+}
+
+/* ---- the grid march ---------------------------------------------------
+ * Samples at t_j = j dt, dt = a twelfth of the fastest period, with cos
+ * and sin of every frequency carried from one sample to the next by a
+ * rotation through w dt (no libm call per sample; the rounding bound
+ * grows with the number of rotations).  Between two samples the guard is bounded by the cubic
+ * Hermite interpolant of g, g' at both ends, whose error is at most
+ * M4 dt^4/384 (M4 = sum R_k w_k^4 >= |g''''|), and g' likewise by that
+ * of g', g'' (M5 dt^4/384).  An interval is accepted as root-free when
+ * the cubic for g keeps the sign of g with that margin, or as holding
+ * exactly one root when the cubic for g' keeps one sign with its margin
+ * (then a sign change at the ends brackets the root for refine()).  An
+ * interval that passes neither goes to the adaptive march above, which
+ * decides that interval exactly as before (touches included); the grid
+ * then goes on from exact values.  Every interval is
+ * thus decided by a proof, and the intervals are contiguous from 0. */
+
+/* Twelve samples per period of the fastest frequency: w dt = pi/6, the
+ * Hermite remainder is 2e-4 of a term's amplitude, so only intervals
+ * where g comes that close to zero (roots, near-touches) need more. */
+#define GUARD_GRID_PER_PERIOD 12
+/* cos and sin of pi/6, the fastest term's rotation per sample. */
+#define GUARD_COS30 0.86602540378443864676
+#define GUARD_SIN30 0.5
+/* Each rotation adds at most GUARD_ROT_ULPS ulps to the error of cos and
+ * sin (two products and a sum, with the rotation's own cos and sin within
+ * half an ulp, and |(cos, sin)| within a few ulps of 1); the values
+ * restart exact from sincos at 0 and after every interval the adaptive
+ * march decided. */
+#define GUARD_ROT_ULPS 4.0
+
+/* Minimum of the Bernstein coefficients of the cubic with values p0, p1
+ * and slopes times the interval q0, q1 at the ends: a lower bound of the
+ * cubic over the interval (its graph lies in their convex hull). */
+static inline double bern_min(double p0, double q0, double p1, double q1) {
+  double b1 = p0 + q0 / 3, b2 = p1 - q1 / 3;
+  return min2(min2(p0, p1), min2(b1, b2));
+}
+
+/* Exact minimum over s in [0, h] of the cubic Hermite interpolant of
+ * values p0, p1 and slopes q0, q1 (per unit time) at the ends. */
+static double hermite_min(double p0, double q0, double p1, double q1,
+                          double h) {
+  double dg = (p1 - p0) / h;
+  double c2 = (3 * dg - 2 * q0 - q1) / h;
+  double c3 = (q0 + q1 - 2 * dg) / (h * h);
+  double m = min2(p0, p1);
+  /* p'(s) = q0 + 2 c2 s + 3 c3 s^2 */
+  double A = 3 * c3, B = 2 * c2, C = q0, r[2];
+  int nr = 0;
+  if (A == 0) {
+    if (B != 0) r[nr++] = -C / B;
+  } else {
+    double disc = B * B - 4 * A * C;
+    if (disc >= 0) {
+      double q = -0.5 * (B + (B >= 0 ? sqrt(disc) : -sqrt(disc)));
+      r[nr++] = q / A;
+      if (q != 0) r[nr++] = C / q;
+    }
+  }
+  for (int i = 0; i < nr; i++)
+    if (r[i] > 0 && r[i] < h)
+      m = min2(m, p0 + r[i] * (q0 + r[i] * (c2 + r[i] * c3)));
+  return m;
+}
+
+/* g, g', g'' at t from cos and sin of each term. */
+static inline void vals_from(const sc_guard *g, int n, double t,
+                             const double *cs, const double *sn, double *v) {
+  double g0 = g->c0 + g->c1 * t, g1 = g->c1, g2 = 0;
+  for (int k = 0; k < n; k++) {
+    double w = g->w[k];
+    double a = g->a[k] * cs[k] + g->b[k] * sn[k];
+    g0 += a;
+    g1 += w * (g->b[k] * cs[k] - g->a[k] * sn[k]);
+    g2 -= w * w * a;
+  }
+  v[0] = g0, v[1] = g1, v[2] = g2;
+}
+
+/* cos and sin of every term at t, from libm. */
+static inline void anchor(const sc_guard *g, double t, double *cs,
+                          double *sn) {
+  for (int k = 0; k < g->n; k++) {
+    cs[k] = cos(g->w[k] * t);
+    sn[k] = sin(g->w[k] * t);
+  }
+}
+
+/* Steps of the grid march: dt, 2 dt, 4 dt (a third of the fastest
+ * period at most, where the Hermite remainder is 5% of an amplitude). */
+#define GUARD_GRID_LEVELS 3
+
+/* cos, sin of w h for every term into c[], s[]: the Taylor series for
+ * small angles, libm otherwise. */
+static void rotation(const sc_guard *g, double h, double *c, double *s) {
+  for (int k = 0; k < g->n; k++) {
+    double x = g->w[k] * h;
+    if (x <= GUARD_SMALL_ANGLE) small_sincos(x, &s[k], &c[k]);
+    else s[k] = sin(x), c[k] = cos(x);
+  }
+}
+
+/* Returns 1 with *out filled when a root is found in (0, tmax], else 0. */
+static inline int grid_march_n(const guard_ctx *c, int n, double wmax,
+                               double tmax, int at_start_root, sc_root *out) {
+  const sc_guard *g = c->g;
+  double dt = 2 * SC_PI / (GUARD_GRID_PER_PERIOD * wmax);
+  /* rotations through w dt 2^m, made on first use */
+  double rc[GUARD_GRID_LEVELS][SC_GUARD_MAXFREQ];
+  double rs[GUARD_GRID_LEVELS][SC_GUARD_MAXFREQ];
+  int have = 0;
+  double cs[SC_GUARD_MAXFREQ] = {0}, sn[SC_GUARD_MAXFREQ] = {0};
+  double M4 = 0, M5 = 0, wamp2 = 0;
+  for (int k = 0; k < n; k++) {
+    double w = g->w[k];
+    cs[k] = 1, sn[k] = 0;
+    M4 += c->m3[k] * w;
+    M5 += c->m3[k] * w * w;
+    wamp2 += c->amp[k] * w * w;
+  }
+  /* The rounding of g, g', g'' at a sample: a constant, a part growing
+   * with t (the arguments w t) and one growing with the rotations since
+   * the last exact values (rerr ulps of cos and sin). */
+  const double ue = GUARD_ROUND_ULPS * DBL_EPSILON;
+  double e00 = ue * (c->z.c0 + c->z.amp), e01 = ue * (c->z.c1 + c->z.wamp);
+  double e10 = ue * (c->z.c1 + c->z.wamp), e11 = ue * wmax * c->z.wamp;
+  double e20 = ue * wamp2, e21 = ue * wmax * wamp2;
+  double r0 = DBL_EPSILON * c->z.amp, r1 = DBL_EPSILON * c->z.wamp;
+  double r2 = DBL_EPSILON * wamp2;
+  double ve[3], vf[3];
+  vals_from(g, n, 0, cs, sn, ve);
+  /* t = q dt with one rounding (not a running sum, whose rounding would
+   * grow with the steps while the rotations follow the exact sum) */
+  double t = 0, rerr = 0;
+  long q = 0;
+  int m = 0;
+  while (t < tmax) {
+    double h = dt * (double)(1 << m), tn, ct[SC_GUARD_MAXFREQ],
+           st[SC_GUARD_MAXFREQ];
+    const double *cr, *sr;
+    double rot_ulps = GUARD_ROT_ULPS + 4 * m;
+    int tail = !((double)(q + (1L << m)) * dt < tmax);
+    if (tail) {
+      h = tmax - t, tn = tmax;
+      rotation(g, h, ct, st);
+      cr = ct, sr = st;
+      rot_ulps = GUARD_ROT_ULPS + 4 * GUARD_GRID_LEVELS;
+    } else {
+      tn = (double)(q + (1L << m)) * dt;
+      while (have <= m) {
+        if (have == 0) {
+          for (int k = 0; k < n; k++) {
+            if (g->w[k] == wmax) rc[0][k] = GUARD_COS30, rs[0][k] = GUARD_SIN30;
+            else small_sincos(g->w[k] * dt, &rs[0][k], &rc[0][k]);
+          }
+        } else {
+          /* double angles: cos 2x = 1 - 2 sin^2 x, sin 2x = 2 sin x cos x */
+          for (int k = 0; k < n; k++) {
+            double cc = rc[have - 1][k], ss = rs[have - 1][k];
+            rc[have][k] = 1 - 2 * ss * ss;
+            rs[have][k] = 2 * ss * cc;
+          }
+        }
+        have++;
+      }
+      cr = rc[m], sr = rs[m];
+    }
+    double ncs[SC_GUARD_MAXFREQ] = {0}, nsn[SC_GUARD_MAXFREQ] = {0};
+    for (int k = 0; k < n; k++) {
+      ncs[k] = cs[k] * cr[k] - sn[k] * sr[k];
+      nsn[k] = sn[k] * cr[k] + cs[k] * sr[k];
+    }
+    double nerr = rerr + rot_ulps;
+    vals_from(g, n, tn, ncs, nsn, vf);
+    out->steps++;
+    double E = e00 + e01 * tn + r0 * nerr;
+    double E1 = e10 + e11 * tn + r1 * nerr;
+    double E2 = e20 + e21 * tn + r2 * nerr;
+    double h4 = h * h * h * h / 384, rem0 = M4 * h4, rem1 = M5 * h4;
+    double g0 = ve[0], G0 = vf[0];
+    double sigma;
+    int decided = 0;
+    if (at_start_root) {
+      sigma = ve[1] != 0 ? (ve[1] > 0 ? 1 : -1) : (ve[2] > 0 ? 1 : -1);
+    } else {
+      sigma = g0 > 0 ? 1 : -1;
+      if (fabs(g0) <= E) sigma = 0; /* at a root: the march decides */
+    }
+    int same = sigma != 0 && !at_start_root && sigma * G0 > E;
+    /* (A) no root: the cubic of g keeps its sign with margin (rounding
+     * of the values and of the slopes times h; twice that for the exact
+     * minimum, whose own arithmetic rounds too) */
+    if (same) {
+      double marg = rem0 + E + h * E1;
+      if (bern_min(sigma * g0, sigma * ve[1] * h, sigma * G0,
+                   sigma * vf[1] * h) > marg ||
+          hermite_min(sigma * g0, sigma * ve[1], sigma * G0, sigma * vf[1],
+                      h) > 2 * marg)
+        decided = 1;
+    }
+    /* (B) g' keeps one sign: g strictly monotone on [t, tn] */
+    if (!decided && sigma != 0) {
+      double s1 = ve[1] > 0 ? 1 : -1;
+      double dmin = bern_min(s1 * ve[1], s1 * ve[2] * h, s1 * vf[1],
+                             s1 * vf[2] * h);
+      if (dmin > rem1 + E1 + h * E2) {
+        if (same || (at_start_root && s1 == sigma && s1 * G0 > E)) {
+          decided = 1; /* monotone, no sign change past the start */
+        } else if (!at_start_root && sigma * G0 <= 0 && fabs(G0) > E) {
+          refine(g, &c->z, c->M3, t, g0, ve[1], tn, G0, vf[1], c->atol, c->rtol,
+                 out);
+          return 1;
+        }
+      }
+    }
+    if (decided) {
+      at_start_root = 0;
+      t = tn, rerr = nerr;
+      if (!tail) q += 1L << m;
+      for (int k = 0; k < SC_GUARD_MAXFREQ; k++) cs[k] = ncs[k], sn[k] = nsn[k];
+      ve[0] = vf[0], ve[1] = vf[1], ve[2] = vf[2];
+      if (m + 1 < GUARD_GRID_LEVELS) m++;
+      continue;
+    }
+    /* Undecided: a shorter step, down to dt (below the tail's length,
+     * which is not retried), then the adaptive march. */
+    if (m > 0) {
+      m--;
+      while (m > 0 && !((double)(q + (1L << m)) * dt < tmax)) m--;
+      if ((double)(q + 1) * dt < tmax) continue;
+    }
+    double tend = min2((double)(q + 1) * dt, tmax);
+    guard_terms ex;
+    eval_terms(g, t, &ex);
+    if (march(c, t, tend, &ex, at_start_root, min2(tend - t, 0.5 * SC_PI / wmax),
+              out))
+      return 1;
+    at_start_root = 0;
+    t = tend;
+    q++;
+    anchor(g, t, cs, sn);
+    vals_from(g, n, t, cs, sn, ve);
+    rerr = 0;
+    m = 0;
+  }
+  return 0;
+}
+
+/* The march with the number of terms a constant, so that the compiler
+ * unrolls its loops (bk2's guards have one or two terms). */
+static int grid_march(const guard_ctx *c, double wmax, double tmax,
+                      int at_start_root, sc_root *out) {
+  switch (c->g->n) {
+  case 1:
+    return grid_march_n(c, 1, wmax, tmax, at_start_root, out);
+  case 2:
+    return grid_march_n(c, 2, wmax, tmax, at_start_root, out);
+  default:
+    return grid_march_n(c, c->g->n, wmax, tmax, at_start_root, out);
+  }
+}
+
+int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
+                        double atol, double rtol, sc_root *out) {
+  out->found = out->tangent = 0;
+  out->t = tmax;
+  out->bracket = 0;
+  out->slope = 0;
+  out->curv = 0;
+  out->steps = 0;
+  if (!g || g->n < 0 || g->n > SC_GUARD_MAXFREQ || !isfinite(g->c0) ||
+      !isfinite(g->c1) || !(tmax > 0) || !isfinite(tmax) || !(atol > 0) ||
+      !(rtol >= 0))
+    return SC_EINVAL;
+  double wmax = 0;
+  for (int k = 0; k < g->n; k++) {
+    if (!(g->w[k] > 0) || !isfinite(g->w[k]) || !isfinite(g->a[k]) ||
+        !isfinite(g->b[k]))
+      return SC_EINVAL;
+    if (g->w[k] > wmax) wmax = g->w[k]; /* (no libm call: none is NaN) */
+  }
+  /* A guard that starts within rounding of zero: a root at 0 if it moves
+   * up through zero there (the events of MODEL.md are all upward
+   * crossings), otherwise the start root is skipped. */
+  guard_ctx c;
+  c.g = g;
+  c.z = guard_sizes(g, c.amp); /* once per search */
+  c.atol = atol, c.rtol = rtol;
+  guard_terms e; /* at 0: cos = 1, sin = 0 */
+  e.g0 = g->c0, e.g1 = g->c1, e.g2 = 0;
+  for (int k = 0; k < g->n; k++) {
+    double w = g->w[k];
+    e.v[k] = g->a[k], e.d[k] = w * g->b[k];
+    e.g0 += e.v[k], e.g1 += e.d[k], e.g2 -= w * w * e.v[k];
+  }
+  double g0 = e.g0, g1 = e.g1, g2 = e.g2;
+  if (fabs(g0) <= round_at(&c.z, 0)) {
+    int upward = g1 > 0 || (g1 == 0 && g2 > 0);
+    if (!skip_start && upward) {
+      out->found = 1;
+      out->t = 0;
+      out->slope = g1;
+      out->curv = g2;
+      return SC_OK;
+    }
+    skip_start = 1;
+  }
+  if (g->n == 1 && g->c1 == 0 &&
+      closed_form(g, &c.z, c.amp[0], tmax, skip_start, out))
+    return SC_OK;
+  out->tangent = 0;
+  /* Out of reach: |c0 + c1 t| stays above the sum of the amplitudes (and
+   * the rounding) on all of [0, tmax], so g keeps the sign of c0. */
+  if (!skip_start) {
+    double lo = min2(fabs(g->c0), fabs(g->c0 + g->c1 * tmax));
+    if ((g->c0 > 0) == (g->c0 + g->c1 * tmax > 0) &&
+        lo > c.z.amp + round_at(&c.z, tmax))
+      return SC_OK;
+  }
+  /* The bound M3 on the third derivative, term by term. */
+  c.M3 = 0;
+  for (int k = 0; k < g->n; k++) {
+    double w = g->w[k];
+    c.m3[k] = c.amp[k] * w * w * w;
+    c.M3 += c.m3[k];
+  }
+  if (wmax > 0) grid_march(&c, wmax, tmax, skip_start, out);
+  else march(&c, 0, tmax, &e, skip_start, tmax, out);
   return SC_OK;
 }

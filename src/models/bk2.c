@@ -62,6 +62,7 @@ static int bk2_setup(void *vinst, const double *p, const int *opt,
   b->vs = b->frozen ? 0 : b->v;
   b->dstar = sc_bk2_dstar(b->alpha, b->beta);
   sc_bk2_dparams(b, 0, &b->p0); /* value-only evaluations start from it */
+  b->search = sc_guard_first_root;
   if (b->vw && b->frozen)
     return sc_fail(msg, SC_EINVAL,
                    "bk2: friction = velocity-weakening with driver = frozen "
@@ -75,6 +76,7 @@ static int bk2_setup(void *vinst, const double *p, const int *opt,
                    "bk2: friction = velocity-weakening is not available yet "
                    "(valid: coulomb)");
   if (b->numerical) return sc_bk2_num_setup(b, msg);
+  sc_bk2_first_restick(b);
   return SC_OK;
 }
 
@@ -591,6 +593,42 @@ static void phase_borders(const bk2_dpar *P, const mode_flow *f, int fresh,
   }
 }
 
+/* Two guards built from different onsets differ by the rounding of the
+ * states (positions of size ~1 + alpha |d|, a few ulps each, against
+ * coefficients of size (1 - mu) T_i): ~50 eps of the guard's size. */
+#define BK2_SAME_GUARD_EPS (50 * DBL_EPSILON)
+
+/* Two guards equal up to the rounding of building them from a state. */
+static int same_guard(const sc_guard *g, const sc_guard *h) {
+  if (g->n != 1 || h->n != 1 || g->c1 != 0 || h->c1 != 0 || g->w[0] != h->w[0])
+    return 0;
+  double tol =
+      BK2_SAME_GUARD_EPS * (fabs(h->c0) + fabs(h->a[0]) + fabs(h->b[0]));
+  return fabs(g->c0 - h->c0) <= tol && fabs(g->a[0] - h->a[0]) <= tol &&
+         fabs(g->b[0] - h->b[0]) <= tol;
+}
+
+static mode_flow flow_make(const bk2_dpar *P, int mode, const bk2_state *x0);
+static sc_guard guard_restick(const bk2_dpar *P, const mode_flow *f, int i);
+static double guard_horizon(const sc_guard *g);
+
+void sc_bk2_first_restick(bk2_inst *b) {
+  for (int i = 1; i <= 2; i++) {
+    bk2_state x;
+    /* an onset of block i: any d on its side of d* */
+    double d = i == 1 ? b->dstar - 1e-6 : b->dstar + 1e-6;
+    int mode = sc_bk2_onset(b, &b->p0, sc_dconst(d, 0), &x);
+    mode_flow f = flow_make(&b->p0, mode, &x);
+    b->first_g[i - 1] = guard_restick(&b->p0, &f, i);
+    b->first_ok[i - 1] =
+        mode == i &&
+        b->search(&b->first_g[i - 1], guard_horizon(&b->first_g[i - 1]), 1,
+                  b->acc.event_atol, b->acc.event_rtol,
+                  &b->first_r[i - 1]) == SC_OK &&
+        b->first_r[i - 1].found;
+  }
+}
+
 /* One slip phase with exact flows: find its end (the first event, or the
  * event the code forces), the next mode, and the state there.  `fresh`
  * bit i-1: block i started slipping at this phase's start (U_i = Vs by
@@ -631,7 +669,13 @@ static int exact_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
     for (int i = 0; i < ng; i++) {
       int skip = kind[i] < 3 && (fresh & kind[i]);
       double lim = first < 0 ? tmax : r[first].t + atol + rtol * r[first].t;
-      int st = sc_guard_first_root(&g[i], lim, skip, atol, rtol, &r[i]);
+      int st = SC_OK;
+      if (skip && mode != SC_BK2_SLIP12 && b->first_ok[kind[i] - 1] &&
+          b->first_r[kind[i] - 1].t <= lim &&
+          same_guard(&g[i], &b->first_g[kind[i] - 1]))
+        r[i] = b->first_r[kind[i] - 1]; /* the slip from a GSP: d-free */
+      else
+        st = b->search(&g[i], lim, skip, atol, rtol, &r[i]);
       if (st)
         return sc_fail(msg, SC_EINTERNAL,
                        "bk2: malformed guard in mode %d (parameters out of "

@@ -4,6 +4,7 @@
 #define SC_MODELS_BK2_IMPL_H
 
 #include "hybrid/dual.h"
+#include "slipcont/hybrid.h"
 #include "slipcont/models.h"
 
 typedef struct bk2_num bk2_num; /* numerical-flow workspace (GSL) */
@@ -23,6 +24,18 @@ typedef struct {
   double mu, w1, w2, vs, dstar; /* derived */
   bk2_num *num;                 /* owned; NULL for exact flows */
   bk2_dpar p0;                  /* the parameters without derivatives */
+  /* The first-root search of the exact flows: sc_guard_first_root, set
+   * by bk2_setup; tests put a frozen earlier search here to check that a
+   * faster one changes nothing but speed (tests/test_map_equiv.c). */
+  int (*search)(const sc_guard *g, double tmax, int skip_start, double atol,
+                double rtol, sc_root *out);
+  /* The re-stick guard of block i in a slip that starts from a GSP does
+   * not depend on d (its amplitude is (1 - mu) T_i / (1 + alpha)): its
+   * guard and first root, found once by sc_bk2_first_restick() (exact
+   * flows), and whether they are there. */
+  sc_guard first_g[2];
+  sc_root first_r[2];
+  int first_ok[2];
 } bk2_inst;
 
 
@@ -88,6 +101,9 @@ typedef int (*bk2_phase_fn)(void *ctx, int mode, const bk2_state *x0,
                             double duration);
 
 void sc_bk2_dparams(const bk2_inst *b, int nd, bk2_dpar *P);
+/* Fill first_g, first_r, first_ok with b->search (again after changing
+ * the search). */
+void sc_bk2_first_restick(bk2_inst *b);
 int sc_bk2_onset(const bk2_inst *b, const bk2_dpar *P, sc_dual d,
                  bk2_state *x);
 void sc_bk2_event_shift(const bk2_dpar *P, sc_dual gval, double slope,

@@ -1,0 +1,88 @@
+/* Event-map iterates per CPU second on one core, the workloads of issue 9
+ * (docs/performance.md, "Event map: the certified search"):
+ *
+ *   bench_events [repeats] [iterates] [figure: 0 both, 1, 2]
+ *
+ *   fig 5.6  bk2, alpha 2.9, beta 1, phi 1.25, V 0.018, driver moving,
+ *            the orbit from d0 = 0.02 (chaotic)
+ *   fig 5.8  bk2, alpha 3.5, beta 2.5, V 0.025, driver frozen, from 0.02
+ *
+ * Each repeat iterates the map `iterates` times (default 200000) along
+ * the orbit with values only (as sweeps and charts do); the median rate
+ * over `repeats` (default 5) is printed, with the orbit's last point and
+ * a checksum so that two builds can be compared on the same work. */
+#define _POSIX_C_SOURCE 200809L
+#include <stdio.h>
+#include <stdlib.h>
+#include <time.h>
+
+#include "slipcont/map.h"
+
+static double cpu(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static int cmp(const void *a, const void *b) {
+  double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
+int main(int argc, char **argv) {
+  int repeats = argc > 1 ? atoi(argv[1]) : 5;
+  long n = argc > 2 ? atol(argv[2]) : 200000;
+  int only = argc > 3 ? atoi(argv[3]) : 0;
+  if (repeats < 1 || repeats > 101 || n < 1 || only < 0 || only > 2) {
+    fprintf(stderr, "usage: bench_events [repeats 1..101] [iterates >= 1] "
+                    "[figure 0 (both), 1 or 2]\n");
+    return 1;
+  }
+  const struct {
+    const char *name;
+    double alpha, beta, v;
+    const char *driver;
+  } figs[] = {
+      {"fig 5.6 (alpha 2.9, beta 1, V 0.018, moving, d0 0.02)", 2.9, 1, 0.018,
+       "moving"},
+      {"fig 5.8 (alpha 3.5, beta 2.5, V 0.025, frozen, d0 0.02)", 3.5, 2.5,
+       0.025, "frozen"},
+  };
+  for (size_t fi = 0; fi < sizeof figs / sizeof figs[0]; fi++) {
+    if (only && (size_t)only != fi + 1) continue;
+    sc_msg msg;
+    sc_map *m;
+    sc_accuracy acc;
+    sc_accuracy_preset(&acc, "default", NULL);
+    if (sc_map_alloc("bk2", &acc, &m, &msg) ||
+        sc_map_set_param_by_name(m, "alpha", figs[fi].alpha, &msg) ||
+        sc_map_set_param_by_name(m, "beta", figs[fi].beta, &msg) ||
+        sc_map_set_param_by_name(m, "v", figs[fi].v, &msg) ||
+        sc_map_set_option(m, "driver", figs[fi].driver, &msg)) {
+      fprintf(stderr, "bench_events: %s\n", msg.text);
+      return 1;
+    }
+    double rates[101], d = 0.02, sum = 0;
+    for (int rep = 0; rep < repeats; rep++) {
+      sc_map_value r;
+      d = 0.02, sum = 0;
+      double t0 = cpu();
+      for (long k = 0; k < n; k++) {
+        if (sc_map_eval(m, d, 0, &r, &msg)) {
+          fprintf(stderr, "bench_events: %s\n", msg.text);
+          return 1;
+        }
+        d = r.f;
+        sum += d;
+      }
+      rates[rep] = (double)n / (cpu() - t0);
+    }
+    qsort(rates, (size_t)repeats, sizeof rates[0], cmp);
+    printf("%s: %.4g iterates/CPU-s (median of %d; min %.4g, max %.4g); "
+           "d_%ld = %.17g, sum %.17g\n",
+           figs[fi].name, rates[repeats / 2], repeats, rates[0],
+           rates[repeats - 1], n, d, sum);
+    sc_map_free(m);
+  }
+  return 0;
+}
