@@ -1271,13 +1271,19 @@ static int segment_accept(sc_orbit_branch *b, segment *S, const double *u) {
              u[1]);
     int pushed = push_job(b, q, u[1], u[0], 1, 0, origin);
     pushed += push_job(b, q, u[1], u[0], -1, 0, origin);
-    special_rec *r = add_special(b, SC_PT_EP, S->branch, period, u[1], u[0],
-                                 NAN, NAN);
+    /* The end is the last point of minimal period `period` (the segment
+     * met the period-q branch between it and this one). */
+    int first = isnan(S->p_first);
+    special_rec *r = add_special(b, SC_PT_EP, S->branch, period,
+                                 first ? u[1] : S->last_p,
+                                 first ? u[0] : S->last_d, S->last_mult,
+                                 NAN);
     if (r)
       snprintf(r->note, sizeof r->note,
-               "the orbit's minimal period fell to %d: the segment met the "
-               "period-%d branch and ends here%s",
-               q, q, pushed ? "; that branch is followed" : "");
+               "the segment met the period-%d branch between here and "
+               "%.12g, where the orbit's minimal period is %d: it ends "
+               "here%s",
+               q, u[1], q, pushed ? "; that branch is followed" : "");
     return 1;
   }
   sc_map_value v;
