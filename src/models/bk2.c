@@ -13,6 +13,7 @@
 
 #include "hybrid/dual.h"
 #include "models/bk2_impl.h"
+#include "models/bk2_quad.h"
 #include "hybrid/hybrid_impl.h"
 #include "slipcont/hybrid.h"
 
@@ -73,6 +74,10 @@ static int bk2_setup(void *vinst, const double *p, const int *opt,
     return sc_fail(msg, SC_EINVAL,
                    "bk2: friction = velocity-weakening is not available yet "
                    "(valid: coulomb)");
+  if (b->numerical && acc->precision == SC_PRECISION_QUAD)
+    return sc_fail(msg, SC_EINVAL,
+                   "bk2: precision = quad needs flows = exact (the numerical "
+                   "flows are double only)");
   if (b->numerical) return sc_bk2_num_setup(b, msg);
   return SC_OK;
 }
@@ -500,6 +505,9 @@ _Static_assert(1 + 4 <= SC_NDIR, "bk2 needs d and four parameters");
 static int bk2_eval(void *vinst, double d, unsigned flags, sc_map_value *out,
                     sc_msg *msg) {
   const bk2_inst *b = vinst;
+  if (b->acc.precision == SC_PRECISION_QUAD) /* bk2_quad.c */
+    return sc_bk2_quad_eval(b->alpha, b->beta, b->phi, b->v, b->frozen,
+                            b->acc.max_events, d, flags, out, msg);
   bk2_dpar P;
   int nd = (flags & SC_EVAL_DERIV) ? 5 : 0;
   if (nd) sc_bk2_dparams(b, nd, &P);

@@ -1,1 +1,2 @@
-list(APPEND SC_SOURCES src/models/smooth_maps.c src/models/bk2.c src/models/bk2_numerical.c)
+list(APPEND SC_SOURCES src/models/smooth_maps.c src/models/bk2.c src/models/bk2_numerical.c
+  src/models/bk2_quad.c)
