@@ -280,6 +280,73 @@ static void derivatives(void) {
            (double)worst, 0, 1e-15);
 }
 
+/* Each preset held to its promise (docs/accuracy.md, "Promises") against
+ * the quad path, on random points away from borders (the itineraries
+ * agree; within rounding of a border either side may be taken), with
+ * S = 1 + beta + (1 + alpha)|d| the size of the onset state, g = 1 + |f'|
+ * the gain, and r = min(1, |d - d*|, graze margin, threshold gap) the
+ * distance to the nearest border:
+ *   exact flows:     |df| <= 64 eps S g,      |df'| <= E' S g / r,
+ *   numerical flows: |df| <= 10 tol S g,      |df'| <= 1e3 tol S g / r,
+ * eps = DBL_EPSILON, tol = the preset's ode tolerance, and E' = 1024 eps
+ * for default and precise, 1e-8 for fast (its events stop at a relative
+ * 1e-9, and f' takes the event time's error at first order). */
+typedef struct {
+  const char *preset, *flows;
+  double f_unit, df_unit; /* the bounds' constants, as above */
+} promise;
+
+static void presets(int n) {
+  const promise pr[] = {
+      {"fast", "exact", 64 * DBL_EPSILON, 1e-8},
+      {"default", "exact", 64 * DBL_EPSILON, 1024 * DBL_EPSILON},
+      {"precise", "exact", 64 * DBL_EPSILON, 1024 * DBL_EPSILON},
+      {"fast", "numerical", 10 * 1e-7, 1e3 * 1e-7},
+      {"default", "numerical", 10 * 1e-10, 1e3 * 1e-10},
+      {"precise", "numerical", 10 * 1e-13, 1e3 * 1e-13},
+  };
+  for (size_t k = 0; k < sizeof pr / sizeof pr[0]; k++) {
+    double wf = 0, wdf = 0;
+    int compared = 0;
+    rng_state = 0x51ed2385ULL; /* the same sample for every preset */
+    for (int i = 0; i < n; i++) {
+      double alpha = logu(0.3, 30);
+      double beta = i % 3 == 0 ? 1 : logu(0.2, 5);
+      double phi = i % 4 == 0 ? 1.25 : 1.05 + 2 * urand();
+      double v = i % 10 == 0 ? 0 : 0.1 * urand();
+      int frozen = i % 2;
+      double d = -0.5 + urand();
+      sc_map *mq = make(alpha, beta, phi, v, frozen, SC_PRECISION_QUAD);
+      sc_map *md = make(alpha, beta, phi, v, frozen, SC_PRECISION_DOUBLE);
+      sc_accuracy acc;
+      sc_accuracy_preset(&acc, pr[k].preset, NULL);
+      sc_map_value rd, rq;
+      if (md && mq && !sc_map_set_accuracy(md, &acc, NULL) &&
+          !sc_map_set_option(md, "flows", pr[k].flows, NULL) &&
+          !sc_map_eval(mq, d, SC_EVAL_DERIV | SC_EVAL_ITINERARY, &rq, NULL) &&
+          !sc_map_eval(md, d, SC_EVAL_DERIV | SC_EVAL_ITINERARY, &rd, NULL) &&
+          strcmp(rd.itinerary, rq.itinerary) == 0 && isfinite(rq.dfdd)) {
+        double S = 1 + beta + (1 + alpha) * fabs(d), g = 1 + fabs(rq.dfdd);
+        double r = fmin(1, border_dist(&rq));
+        wf = fmax(wf, fabs(rd.f - rq.f) / (S * g));
+        wdf = fmax(wdf, fabs(rd.dfdd - rq.dfdd) * r / (S * g));
+        compared++;
+      }
+      sc_map_free(md);
+      sc_map_free(mq);
+    }
+    char what[160];
+    tu_true(compared >= n * 9 / 10, "%s, %s flows: %d of %d points compared",
+            pr[k].preset, pr[k].flows, compared, n);
+    snprintf(what, sizeof what, "%s, %s flows: max |df| / (S g) within %g",
+             pr[k].preset, pr[k].flows, pr[k].f_unit);
+    tu_close(what, wf, 0, pr[k].f_unit);
+    snprintf(what, sizeof what, "%s, %s flows: max |df'| r / (S g) within %g",
+             pr[k].preset, pr[k].flows, pr[k].df_unit);
+    tu_close(what, wdf, 0, pr[k].df_unit);
+  }
+}
+
 /* The switch: scene key, accuracy check, refusal with numerical flows. */
 static void selection(void) {
   sc_accuracy acc;
@@ -317,5 +384,6 @@ int main(void) {
   lone_slips();
   energy();
   derivatives();
+  presets(300);
   return tu_finish();
 }
