@@ -3,3 +3,8 @@
 sc_add_test(test_quad)
 sc_add_test(test_extremes)
 set_tests_properties(test_extremes PROPERTIES TIMEOUT 300)
+# The precision key through the program, with its example scene.
+add_test(NAME accuracy_cli
+  COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/accuracy_cli.sh
+          $<TARGET_FILE:slipcont_cli> ${PROJECT_SOURCE_DIR})
+set_tests_properties(accuracy_cli PROPERTIES TIMEOUT 300)
