@@ -186,7 +186,7 @@ int main(int argc, char **argv) {
   fprintf(gp,
           "set terminal pngcairo size 900,600\nset output '%s/branch.png'\n"
           "set datafile separator ','\nset logscale xy\nset grid\n"
-          "set format y \"10^{%%L}\"\n"
+          "set format y \"10^{%%L}\"\nset key below\n"
           "set title \"fig 5.8 special points: error against time "
           "(reference: quad)\"\nset xlabel \"seconds per run\"\n"
           "set ylabel \"max |p - p_{quad}| over matched points\"\n"

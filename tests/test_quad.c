@@ -1,7 +1,7 @@
 /* The quad-precision path of bk2 (src/models/bk2_quad.c): the double path
  * against it on thousands of points across the parameters (both drivers,
  * beta = 1 and not, V = 0), and the quad path against identities of the
- * closed forms that hold exactly (MODEL.md): the beta = 1 symmetry
+ * closed forms that hold exactly (docs/derivations.md): the beta = 1 symmetry
  * f(-d) = -f(d), f(d) = d + 2 (1 - mu) / (1 + alpha) for a lone slip of
  * block 1 with the driver frozen, the energy balance of an iterate with
  * the driver frozen, and its derivatives against quad differences.  The

@@ -1,4 +1,4 @@
-/* The event map of the two-block model (MODEL.md) in quadruple precision:
+/* The event map of the two-block model (docs/derivations.md) in quadruple precision:
  * closed-form flows, certified first-root location of every guard, and
  * forward-mode derivatives (d and the four parameters), all in __float128
  * (libquadmath).  It is written for clarity, not speed, and shares no code
@@ -241,7 +241,7 @@ static void qrefine(const qguard *g, const qsize *z, Q lo, Q glo, Q hi, Q ghi,
 /* The first root of g in (0, tmax].  skip_start: g(0) = 0 by construction
  * (a block that just started slipping); that root is not an event.  A g(0)
  * within rounding of zero is otherwise an event only if g moves up through
- * zero (every event of MODEL.md is a guard reaching zero from below). */
+ * zero (every event of the model is a guard reaching zero from below). */
 static void qfirst_root(const qguard *g, Q tmax, int skip_start, qroot *r) {
   r->found = r->tangent = 0;
   r->t = tmax;
@@ -512,7 +512,7 @@ static int qphase(const qpar *P, int mode, int fresh, qstate *x, qevents *ev,
                    "bk2 (quad): no event within %.6g time units of slip "
                    "mode %s: the slip does not end",
                    (double)tmax, mode_name(mode));
-  /* ties within the time tolerance: re-sticks first (MODEL.md); two
+  /* ties within the time tolerance: re-sticks first (docs/events.md); two
    * re-sticks at once end both slips */
   int both = 0;
   for (int i = 0; i < ng; i++) {
@@ -581,7 +581,7 @@ int sc_bk2q_eval(const sc_bk2q_params *p, Q d, int nd, sc_bk2q_value *out,
   qd dd = qvar(d, 0, nd);
   qstate x;
   int mode;
-  /* the onset (MODEL.md, "The event map"): block 1 first iff d < d* */
+  /* the onset (docs/derivations.md, section 3): block 1 first iff d < d* */
   if (d < P.dstar) {
     x.y1 = qaddc(qmul(P.alpha, dd, nd), 1);
     x.y2 = qadd(x.y1, dd, nd);
@@ -607,7 +607,7 @@ int sc_bk2q_eval(const sc_bk2q_params *p, Q d, int nd, sc_bk2q_value *out,
       out->y1 = x.y1.v;
       out->y2 = x.y2.v;
       for (int k = 0; k < nd; k++) out->df[k] = f.d[k];
-      /* single-block slip from a GSP: f(d) = d + c exactly (MODEL.md) */
+      /* single-block slip from a GSP: f(d) = d + c exactly (docs/derivations.md) */
       out->neutral = out->nphases == 1 && first_mode != SC_BK2_SLIP12;
       if (out->neutral && nd) out->df[0] = 1;
       Q s1 = qspring(&P, x.y1, x.y2).v, s2 = qspring(&P, x.y2, x.y1).v;

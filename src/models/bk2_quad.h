@@ -2,7 +2,7 @@
  * in quadruple precision (__float128, GCC's libquadmath), selected by
  * sc_accuracy.precision = SC_PRECISION_QUAD.  Slow (tens of times the
  * double path), it is the reference every other path is measured against
- * (docs/accuracy.md).  The same physics as bk2.c (MODEL.md), written
+ * (docs/accuracy.md).  The same physics as bk2.c (docs/derivations.md), written
  * independently in one type. */
 #ifndef SC_MODELS_BK2_QUAD_H
 #define SC_MODELS_BK2_QUAD_H
