@@ -111,6 +111,9 @@ static const known_case known[] = {
      "D3: f' NaN at a re-stick slope that rounds to 0"},
     {"f' is NaN where f is differentiable", 1, 100, 1000, 0, -1, 1e-13,
      "D3: f' NaN next to d* with V_s = 0"},
+    /* ... and with V = 1e-12, a finite f' 1e5 times too large */
+    {"f' outside the promise", 1, 0, 1000, 1e-12, 0, 1e-13,
+     "D3: f' wrong next to d* with V_s ~ 0"},
     {NULL, 0, 0, 0, 0, 0, 0, NULL},
 };
 
@@ -304,15 +307,15 @@ int main(int argc, char **argv) {
   if (long_run) max_events = 128;
   static const double A_fast[] = {1e-3, 1, 1e3}, B_fast[] = {1e-2, 1, 1e2},
                       P_fast[] = {1 + 1e-6, 1.25, 1e3},
-                      V_fast[] = {0, 0.025, 1e2};
+                      V_fast[] = {0, 1e-12, 0.025, 1e2};
   static const double A_long[] = {1e-3, 1e-2, 0.1, 1, 10, 100, 1e3},
                       B_long[] = {1e-2, 0.1, 1, 2.5, 10, 100},
                       P_long[] = {1 + 1e-6, 1.25, 10, 1e3},
-                      V_long[] = {0, 0.025, 1, 100};
+                      V_long[] = {0, 1e-12, 0.025, 1, 100};
   const double *A = long_run ? A_long : A_fast, *B = long_run ? B_long : B_fast,
                *P = long_run ? P_long : P_fast, *V = long_run ? V_long : V_fast;
   int na = long_run ? 7 : 3, nb = long_run ? 6 : 3, np = long_run ? 4 : 3,
-      nv = long_run ? 4 : 3;
+      nv = long_run ? 5 : 4;
   int fails = 0, grazings = 0, only = -1;
   if (long_run && argc > 2) only = atoi(argv[2]);
   for (int ia = 0; ia < na; ia++)

@@ -283,8 +283,13 @@ static void qfirst_root(const qguard *g, Q tmax, int skip_start, qroot *r) {
         return;
       }
       sigma = g0 > 0 ? 1 : -1;
-      /* no root in [t, t + h] */
-      if (qquad_min(sigma, g0, g1, g2, h) - z.m3 * h * h * h / 6 > E) {
+      /* no root in [t, t + h]: the Taylor quadratic with its remainder
+       * keeps the sign of g, or the line c0 + c1 t does, with a margin
+       * larger than the sum of the sinusoids' amplitudes (which lets a
+       * slow line, V ~ 1e-12, be followed in doubling steps) */
+      Q l0 = sigma * (g->c0 + g->c1 * t), l1 = sigma * (g->c0 + g->c1 * (t + h));
+      if (qquad_min(sigma, g0, g1, g2, h) - z.m3 * h * h * h / 6 > E ||
+          fminq(l0, l1) - z.amp > E) {
         t += h;
         qg_eval(g, t, &g0, &g1, &g2);
         h *= 2;
@@ -504,7 +509,10 @@ static int qphase(const qpar *P, int mode, int fresh, qstate *x, qevents *ev,
   int first = -1;
   for (int i = 0; i < ng; i++) {
     int skip = kind[i] < 3 && (fresh & kind[i]);
-    qfirst_root(&g[i], tmax, skip, &r[i]);
+    /* a later guard matters only up to the earliest root so far (plus
+     * the tie tolerance) */
+    Q lim = first < 0 ? tmax : r[first].t + qtol_at(r[first].t);
+    qfirst_root(&g[i], lim, skip, &r[i]);
     if (r[i].found && (first < 0 || r[i].t < r[first].t)) first = i;
   }
   if (first < 0)
