@@ -29,9 +29,10 @@
 #include "test_util.h"
 
 /* The promise of the default preset with exact flows (docs/accuracy.md):
- * |f - f_quad| <= PROMISE_F eps S (1 + |f'|), S = 1 + beta + (1 + alpha)
- * |d| the size of the onset state: the rounding of the onset state is
- * carried to f with the gain f'.  f' has the gain of f'' / f', which
+ * |f - f_quad| <= PROMISE_F eps S (1 + |f'|) n, S = 1 + beta + (1 +
+ * alpha)|d| the size of the onset state, n the number of slip phases:
+ * the rounding of the onset state is carried to f with the gain f', and
+ * each phase adds its own.  f' has the gain of f'' / f', which
  * grows like 1 / (distance to the border) next to d* (f' ~ |d - d*|^-1/2)
  * and next to grazing (f' ~ margin^-1/2): |f' - f'_quad| <= PROMISE_DF
  * eps S (1 + |f'|) / min(1, distance), the distance being the smallest
@@ -81,14 +82,16 @@ static sc_map *make(const pcase *c, int precision) {
  * (docs/accuracy.md, "Defects found"): a failing case matches an entry
  * when the failure is `bad`, its alpha, beta, phi are those given (0:
  * any), its V is (-1: any), its driver is (-1: either) and |d - d*| <=
- * dmax.  Each entry must be hit at least once, so that a fix in the
- * double path shows up here (then remove the entry). */
+ * dmax.  Each entry marked in_fast must be hit at least once by the fast
+ * grid, so that a fix in the double path shows up here (then remove the
+ * entry); the others occur in the long sweep only. */
 typedef struct {
   const char *bad;
   double alpha, beta, phi, v;
   int frozen;
   double dmax;
   const char *why;
+  int in_fast; /* 1: the fast grid must hit it */
 } known_case;
 
 static const known_case known[] = {
@@ -97,24 +100,28 @@ static const known_case known[] = {
      * not taken, and the iterate ends as a lone slip with that block far
      * beyond its threshold (a silently wrong itinerary). */
     {"a block ends beyond its threshold", 0, 100, 0, -1, -1, 1e-14,
-     "D1: threshold guard positive at t = 0 by rounding, trigger missed"},
+     "D1: threshold guard positive at t = 0 by rounding, trigger missed", 1},
     /* D2: alpha = 1000, beta = 1, V = 100: at d* (the synchronous orbit,
      * f(0) = 0 exactly) and 1e-15 from it, two re-sticks within rounding
      * of each other are separated: f = 5.3e-7 instead of 0. */
     {"a block ends beyond its threshold", 1000, 1, 1.25, 100, 0, 1e-14,
-     "D2: synchronous re-sticks split"},
+     "D2: synchronous re-sticks split", 1},
     {"f outside the promise", 1000, 1, 1.25, 100, 0, 1e-14,
-     "D2: synchronous re-sticks split"},
+     "D2: synchronous re-sticks split", 1},
+    /* ... and 1e-12 from d* at V >= 1 with small alpha (long sweep): the
+     * last block to re-stick differs, f and f' differ by 1e-4 relative */
+    {"itineraries differ away from a border", 0, 1, 0, -1, 0, 1e-11,
+     "D2: near-synchronous re-sticks ordered wrongly", 0},
     /* D3: f' = NaN with SC_OK where the event slope rounds to 0 but f is
      * differentiable (quad: finite f'). */
     {"f' is NaN where f is differentiable", 0, 1, 0, 100, 0, 1e-14,
-     "D3: f' NaN at a re-stick slope that rounds to 0"},
+     "D3: f' NaN at a re-stick slope that rounds to 0", 1},
     {"f' is NaN where f is differentiable", 1, 100, 1000, 0, -1, 1e-13,
-     "D3: f' NaN next to d* with V_s = 0"},
+     "D3: f' NaN next to d* with V_s = 0", 1},
     /* ... and with V = 1e-12, a finite f' 1e5 times too large */
     {"f' outside the promise", 1, 0, 1000, 1e-12, 0, 1e-13,
-     "D3: f' wrong next to d* with V_s ~ 0"},
-    {NULL, 0, 0, 0, 0, 0, 0, NULL},
+     "D3: f' wrong next to d* with V_s ~ 0", 1},
+    {NULL, 0, 0, 0, 0, 0, 0, NULL, 0},
 };
 
 #define NKNOWN (sizeof known / sizeof known[0] - 1)
@@ -145,7 +152,16 @@ static int check_case(sc_map *md, sc_map *mq, const pcase *c, double d,
   double S = 1 + c->beta + (1 + c->alpha) * fabs(d);
   double eps = DBL_EPSILON;
   double near = BORDER_ULPS * eps * S;
-  /* distance to the nearest border either path saw */
+  /* the re-stick guards are velocities of size ~ 1 + V: their margins
+   * are within rounding below BORDER_ULPS eps (S + V) */
+  double near_v = BORDER_ULPS * eps * (S + c->v);
+  int border = border_dist <= 1e-12 * fmax(1, fabs(d)) ||
+               rd.dstar_dist <= near || fabs(rd.gsp_gap) <= near ||
+               rd.graze_margin <= near_v;
+  if (!s2)
+    border = border || rq.dstar_dist <= near || fabs(rq.gsp_gap) <= near ||
+             rq.graze_margin <= near_v;
+  /* distance to the nearest border either path saw (f' promise) */
   double bd = fmin(fmin(rd.dstar_dist, rd.graze_margin), fabs(rd.gsp_gap));
   if (!s2)
     bd = fmin(bd, fmin(fmin(rq.dstar_dist, rq.graze_margin),
@@ -153,9 +169,8 @@ static int check_case(sc_map *md, sc_map *mq, const pcase *c, double d,
   if (s1) bd = s2 ? HUGE_VAL : fmin(fmin(rq.dstar_dist, rq.graze_margin),
                                      fabs(rq.gsp_gap));
   bd = fmin(bd, border_dist);
-  /* within 1e-12 of a located border either side may be taken: its
-   * location carries the rounding of the state */
-  int border = bd <= near || border_dist <= 1e-12 * fmax(1, fabs(d));
+  /* rounding accumulates over the slip phases of the iterate */
+  double nph = s1 ? 1 : fmax(1, rd.nphases);
   const char *bad = NULL;
   char detail[SC_MSG_LEN + 32] = "";
   ncase++;
@@ -193,16 +208,16 @@ static int check_case(sc_map *md, sc_map *mq, const pcase *c, double d,
     int same = strcmp(rd.itinerary, rq.itinerary) == 0;
     if (!same) {
       if (!border) bad = "itineraries differ away from a border";
-      else if (rq.dstar_dist <= near && ef > PROMISE_F * eps * S * gain)
+      else if (rq.dstar_dist <= near && ef > PROMISE_F * eps * S * gain * nph)
         /* f is continuous at d*: the other side gives the same f */
         bad = "itineraries differ at d* and f with them";
       else {
         nborder++;
         return 1;
       }
-    } else if (ef > PROMISE_F * eps * S * gain) {
+    } else if (ef > PROMISE_F * eps * S * gain * nph) {
       snprintf(detail, sizeof detail, " (|df| = %.3g > %.3g)", ef,
-               PROMISE_F * eps * S * gain);
+               PROMISE_F * eps * S * gain * nph);
       bad = "f outside the promise";
     } else if (isfinite(rq.dfdd) && isfinite(rd.dfdd) &&
                fabs(rd.dfdd - rq.dfdd) >
@@ -354,8 +369,8 @@ int main(int argc, char **argv) {
          "%d borders located\n",
          ncase, nok, nrefused, nborder, nknown, grazings);
   tu_int("cases outside the promise (see FAIL lines above)", fails, 0);
-  for (size_t i = 0; i < NKNOWN; i++)
-    tu_true(known_hits[i] > 0, "known defect %zu seen %ld times (none: "
+  for (size_t i = 0; i < NKNOWN && !long_run; i++)
+    tu_true(known_hits[i] > 0 || !known[i].in_fast, "known defect %zu seen %ld times (none: "
             "fixed? then remove it from known[]): %s", i, known_hits[i],
             known[i].why);
   tu_true(grazings >= (long_run ? 100 : 10), "borders found: %d", grazings);
