@@ -284,10 +284,10 @@ static void derivatives(void) {
  * the quad path, on random points away from borders (the itineraries
  * agree; within rounding of a border either side may be taken), with
  * S = 1 + beta + (1 + alpha)|d| the size of the onset state, g = 1 + |f'|
- * the gain, and r = min(1, |d - d*|, graze margin, threshold gap) the
- * distance to the nearest border:
- *   exact flows:     |df| <= 64 eps S g,      |df'| <= E' S g / r,
- *   numerical flows: |df| <= 10 tol S g,      |df'| <= 1e3 tol S g / r,
+ * the gain, n the number of slip phases, and r = min(1, |d - d*|, graze
+ * margin, threshold gap) the distance to the nearest border:
+ *   exact flows:     |df| <= 64 eps S g n,    |df'| <= E' S g / r,
+ *   numerical flows: |df| <= 10 tol S g n,    |df'| <= 1e3 tol S g / r,
  * eps = DBL_EPSILON, tol = the preset's ode tolerance, and E' = 1024 eps
  * for default and precise, 1e-8 for fast (its events stop at a relative
  * 1e-9, and f' takes the event time's error at first order). */
@@ -328,7 +328,7 @@ static void presets(int n) {
           strcmp(rd.itinerary, rq.itinerary) == 0 && isfinite(rq.dfdd)) {
         double S = 1 + beta + (1 + alpha) * fabs(d), g = 1 + fabs(rq.dfdd);
         double r = fmin(1, border_dist(&rq));
-        wf = fmax(wf, fabs(rd.f - rq.f) / (S * g));
+        wf = fmax(wf, fabs(rd.f - rq.f) / (S * g * rq.nphases));
         wdf = fmax(wdf, fabs(rd.dfdd - rq.dfdd) * r / (S * g));
         compared++;
       }
@@ -338,7 +338,7 @@ static void presets(int n) {
     char what[160];
     tu_true(compared >= n * 9 / 10, "%s, %s flows: %d of %d points compared",
             pr[k].preset, pr[k].flows, compared, n);
-    snprintf(what, sizeof what, "%s, %s flows: max |df| / (S g) within %g",
+    snprintf(what, sizeof what, "%s, %s flows: max |df| / (S g n) within %g",
              pr[k].preset, pr[k].flows, pr[k].f_unit);
     tu_close(what, wf, 0, pr[k].f_unit);
     snprintf(what, sizeof what, "%s, %s flows: max |df'| r / (S g) within %g",
