@@ -71,12 +71,12 @@ typedef struct {
 } msetting;
 
 typedef struct {
-  double time;     /* seconds per evaluation (median) */
-  double err_f;    /* max |f - f_quad| */
-  double med_f;    /* median |f - f_quad| */
-  double err_df;   /* max |f' - f'_quad| / (1 + |f'_quad|) */
-  int itin_diff;   /* points whose itinerary differs from quad's */
-  int undef_diff;  /* points defined in one and not the other */
+  double time;    /* seconds per evaluation (median) */
+  double err_f;   /* max |f - f_quad| */
+  double med_f;   /* median |f - f_quad| */
+  double err_df;  /* max |f' - f'_quad| / (1 + |f'_quad|) */
+  int itin_diff;  /* points whose itinerary differs from quad's */
+  int undef_diff; /* points defined in one and not the other */
 } mresult;
 
 static sc_map *make_map(const pset *p, const char *flows, const char *preset,
@@ -109,8 +109,10 @@ static void make_sample(void) {
     sc_map_value r;
     double d = 0.02;
     for (int k = 0; k < 300 + NPERSET / 2; k++) {
-      if (sc_map_eval(m, d, 0, &r, NULL)) d = 0.02;
-      else d = r.f;
+      if (sc_map_eval(m, d, 0, &r, NULL))
+        d = 0.02;
+      else
+        d = r.f;
       if (k >= 300) pts[s][k - 300] = d;
     }
     for (int i = 0; i < NPERSET / 2; i++)
@@ -124,9 +126,11 @@ static void run_map(const msetting *st, int repeats, mresult *res) {
   static double errs[NPTS];
   int ne = 0;
   memset(res, 0, sizeof *res);
-  for (int rep = 0; rep < repeats; rep++) times[rep] = 0;
+  for (int rep = 0; rep < repeats; rep++)
+    times[rep] = 0;
   for (int s = 0; s < NSETS; s++) {
-    sc_map *m = make_map(&sets[s], st->flows, st->preset, st->ode_tol, st->quad);
+    sc_map *m =
+        make_map(&sets[s], st->flows, st->preset, st->ode_tol, st->quad);
     sc_map_value r;
     double sink = 0;
     for (int rep = 0; rep < repeats; rep++) {
@@ -137,8 +141,8 @@ static void run_map(const msetting *st, int repeats, mresult *res) {
     }
     if (sink == 42) printf(" ");
     for (int i = 0; i < NPERSET; i++) {
-      int rs = sc_map_eval(m, pts[s][i], SC_EVAL_DERIV | SC_EVAL_ITINERARY,
-                           &r, NULL);
+      int rs = sc_map_eval(m, pts[s][i], SC_EVAL_DERIV | SC_EVAL_ITINERARY, &r,
+                           NULL);
       if (rs || ref_st[s][i]) {
         res->undef_diff += (rs != 0) != (ref_st[s][i] != 0);
         continue;
@@ -167,7 +171,8 @@ static void pareto(int n, const double *x, const double *y, int *front) {
   for (int i = 0; i < n; i++) {
     front[i] = 1;
     for (int j = 0; j < n; j++)
-      if (j != i && x[j] <= x[i] && y[j] <= y[i] && (x[j] < x[i] || y[j] < y[i]))
+      if (j != i && x[j] <= x[i] && y[j] <= y[i] &&
+          (x[j] < x[i] || y[j] < y[i]))
         front[i] = 0;
   }
 }
@@ -213,7 +218,8 @@ static void write_front(const char *dir, const char *stem, int n,
   snprintf(path, sizeof path, "%s/%s-front.csv", dir, stem);
   FILE *f = fopen(path, "w");
   if (!f) return;
-  for (int i = 0; i < k; i++) fprintf(f, "%.17g,%.17g\n", x[idx[i]], y[idx[i]]);
+  for (int i = 0; i < k; i++)
+    fprintf(f, "%.17g,%.17g\n", x[idx[i]], y[idx[i]]);
   fclose(f);
 }
 
@@ -279,8 +285,8 @@ int main(int argc, char **argv) {
   snprintf(path, sizeof path, "%s/tables.md", dir);
   FILE *md = fopen(path, "w");
   if (!md) {
-    fprintf(stderr, "bench_accuracy: cannot write %s (does %s exist?)\n",
-            path, dir);
+    fprintf(stderr, "bench_accuracy: cannot write %s (does %s exist?)\n", path,
+            dir);
     return 1;
   }
 
@@ -289,9 +295,8 @@ int main(int argc, char **argv) {
   for (int s = 0; s < NSETS; s++) {
     sc_map *q = make_map(&sets[s], "exact", "default", 0, 1);
     for (int i = 0; i < NPERSET; i++)
-      ref_st[s][i] = sc_map_eval(q, pts[s][i],
-                                 SC_EVAL_DERIV | SC_EVAL_ITINERARY,
-                                 &ref[s][i], NULL);
+      ref_st[s][i] = sc_map_eval(
+          q, pts[s][i], SC_EVAL_DERIV | SC_EVAL_ITINERARY, &ref[s][i], NULL);
     sc_map_free(q);
   }
   msetting ms[MAXSET];
@@ -317,12 +322,13 @@ int main(int argc, char **argv) {
   if (!csv) return 1;
   fprintf(csv, "setting,seconds_per_eval,max_err_f,median_err_f,"
                "max_rel_err_df,itinerary_differs,undefined_differs\n");
-  fprintf(md, "Map: %d points (%d per parameter set: fig 5.6, fig 5.8, fig "
-              "5.12, alpha 8), errors against the quad path, time per "
-              "value-only evaluation (median of %d passes, one core).\n\n"
-              "| setting | time per f (us) | max abs err f | median abs err f "
-              "| max rel err f' | itinerary differs | defined differs |\n"
-              "|---|---|---|---|---|---|---|\n",
+  fprintf(md,
+          "Map: %d points (%d per parameter set: fig 5.6, fig 5.8, fig "
+          "5.12, alpha 8), errors against the quad path, time per "
+          "value-only evaluation (median of %d passes, one core).\n\n"
+          "| setting | time per f (us) | max abs err f | median abs err f "
+          "| max rel err f' | itinerary differs | defined differs |\n"
+          "|---|---|---|---|---|---|---|\n",
           NPTS, NPERSET, repeats);
   double xs[MAXSET], yf[MAXSET], yd[MAXSET];
   for (int i = 0; i < nm; i++) {
@@ -330,9 +336,9 @@ int main(int argc, char **argv) {
     fprintf(csv, "%s,%.6g,%.6g,%.6g,%.6g,%d,%d\n", ms[i].label, mr[i].time,
             mr[i].err_f, mr[i].med_f, mr[i].err_df, mr[i].itin_diff,
             mr[i].undef_diff);
-    fprintf(md, "| %s | %.4g | %.3g | %.3g | %.3g | %d | %d |\n",
-            ms[i].label, 1e6 * mr[i].time, mr[i].err_f, mr[i].med_f,
-            mr[i].err_df, mr[i].itin_diff, mr[i].undef_diff);
+    fprintf(md, "| %s | %.4g | %.3g | %.3g | %.3g | %d | %d |\n", ms[i].label,
+            1e6 * mr[i].time, mr[i].err_f, mr[i].med_f, mr[i].err_df,
+            mr[i].itin_diff, mr[i].undef_diff);
     fflush(md);
     xs[i] = mr[i].time;
     /* quad against itself is 0: plotted at the floor */
@@ -386,20 +392,22 @@ int main(int argc, char **argv) {
   csv = fopen(path, "w");
   if (!csv) return 1;
   fprintf(csv, "setting,seconds,fraction_differs\n");
-  fprintf(md, "\nCharts: fig 5.7(a) (driver frozen, d0 = 0), alpha and beta "
-              "over [1, 20] on %ld x %ld cells, max period 16; reference: "
-              "preset precise, transient %ld, confirm %d, period-rtol %g "
-              "(%.3g s).  Unless named, a setting is transient 1000, "
-              "confirm 4, preset default (period-rtol 1e-6).  One thread.\n\n"
-              "| setting | time (s) | cells classified differently |\n"
-              "|---|---|---|\n",
+  fprintf(md,
+          "\nCharts: fig 5.7(a) (driver frozen, d0 = 0), alpha and beta "
+          "over [1, 20] on %ld x %ld cells, max period 16; reference: "
+          "preset precise, transient %ld, confirm %d, period-rtol %g "
+          "(%.3g s).  Unless named, a setting is transient 1000, "
+          "confirm 4, preset default (period-rtol 1e-6).  One thread.\n\n"
+          "| setting | time (s) | cells classified differently |\n"
+          "|---|---|---|\n",
           steps, steps, reference.transient, reference.confirm,
           reference.period_rtol, tref);
   double cx[MAXSET], cy[MAXSET];
   for (int i = 0; i < nc; i++) {
     double t = run_chart(&cs[i], steps, cur);
     long diff = 0;
-    for (long k = 0; k < np; k++) diff += cur[k].period != refc[k].period;
+    for (long k = 0; k < np; k++)
+      diff += cur[k].period != refc[k].period;
     double frac = (double)diff / (double)np;
     if (strcmp(cs[i].label, "transient 1000") == 0)
       memcpy(def, cur, (size_t)np * sizeof *cur);
@@ -420,8 +428,7 @@ int main(int argc, char **argv) {
   sc_map *q = chart_map("precise", reference.period_rtol, 1);
   sc_period *pd;
   sc_msg msg;
-  if (sc_period_alloc(16, reference.confirm, reference.period_rtol, &pd,
-                      &msg))
+  if (sc_period_alloc(16, reference.confirm, reference.period_rtol, &pd, &msg))
     return 1;
   int checked = 0, agree = 0, ndis = 0, nrand = 0;
   unsigned long long rs = 12345;
@@ -444,14 +451,16 @@ int main(int argc, char **argv) {
     checked++;
     agree += pr.period == refc[k].period;
     if (pr.period != refc[k].period)
-      fprintf(md, "\nquad disagrees with the reference at alpha = %.17g, "
-                  "beta = %.17g: %d vs %d\n",
+      fprintf(md,
+              "\nquad disagrees with the reference at alpha = %.17g, "
+              "beta = %.17g: %d vs %d\n",
               sc_chart_x(&s, k % steps), sc_chart_y(&s, k / steps), pr.period,
               refc[k].period);
   }
-  fprintf(md, "\nQuad check of the reference chart: %d of %d cells (%d where "
-              "the default setting disagrees, %d at random) get the same "
-              "class with the quad path.\n",
+  fprintf(md,
+          "\nQuad check of the reference chart: %d of %d cells (%d where "
+          "the default setting disagrees, %d at random) get the same "
+          "class with the quad path.\n",
           agree, checked, ndis, nrand);
   sc_period_free(pd);
   sc_map_free(q);
@@ -462,8 +471,7 @@ int main(int argc, char **argv) {
   const char *stems[] = {"map-f", "map-df", "chart"};
   for (int i = 0; i < 3; i++) {
     char cmd[1100];
-    snprintf(cmd, sizeof cmd, "gnuplot '%s/%s.gp' 2>/dev/null", dir,
-             stems[i]);
+    snprintf(cmd, sizeof cmd, "gnuplot '%s/%s.gp' 2>/dev/null", dir, stems[i]);
     if (system(cmd) != 0)
       fprintf(stderr, "bench_accuracy: gnuplot failed on %s.gp\n", stems[i]);
   }

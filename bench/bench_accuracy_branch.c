@@ -6,8 +6,8 @@
  *
  * Fig 5.8's orbits (driver frozen, beta = 2.5, alpha in [2.8, 4]) are
  * continued from three starts without branch switching (period 2 from
- * alpha = 3 over [3, 4], period 6 from 3.3, period 4 from 3.75), once per setting:
- * each preset with arclength steps hmax = 0.02, 0.01, 0.005.  The
+ * alpha = 3 over [3, 4], period 6 from 3.3, period 4 from 3.75), once per
+ * setting: each preset with arclength steps hmax = 0.02, 0.01, 0.005.  The
  * reference is the same run with the quad path, preset precise, hmax =
  * 0.005.  Every special point of the reference other than an end point
  * is matched with the point of the same label and period nearest in the
@@ -124,10 +124,11 @@ int main(int argc, char **argv) {
     fprintf(stderr, "bench_accuracy_branch: cannot write into %s\n", dir);
     return 1;
   }
-  fprintf(md, "\nSpecial points: fig 5.8's orbits (driver frozen, beta = "
-              "2.5) from three starts, no branch switching; reference: "
-              "quad, preset precise, hmax 0.005 (%.3g s, %lu map "
-              "evaluations, %d special points:",
+  fprintf(md,
+          "\nSpecial points: fig 5.8's orbits (driver frozen, beta = "
+          "2.5) from three starts, no branch switching; reference: "
+          "quad, preset precise, hmax 0.005 (%.3g s, %lu map "
+          "evaluations, %d special points:",
           tref, nev, nref);
   for (int i = 0; i < nref; i++)
     fprintf(md, " %s(m=%d) %.15g%s", ref[i].label, ref[i].period, ref[i].p,
@@ -140,7 +141,8 @@ int main(int argc, char **argv) {
   for (int i = 0; i < nref; i++)
     fprintf(md, " %s%d %.4f |", ref[i].label, ref[i].period, ref[i].p);
   fprintf(md, "\n|---|---|---|---|---|");
-  for (int i = 0; i < nref; i++) fprintf(md, "---|");
+  for (int i = 0; i < nref; i++)
+    fprintf(md, "---|");
   fprintf(md, "\n");
   fprintf(csv, "setting,seconds,max_err_lp_pd,max_err_other,missing\n");
   const char *presets[] = {"fast", "default", "precise"};
@@ -162,21 +164,24 @@ int main(int argc, char **argv) {
           missing++;
           continue;
         }
-        int fold_flip = strcmp(ref[i].label, "LP") == 0 ||
-                        strcmp(ref[i].label, "PD") == 0;
-        if (fold_flip) e_lp = fmax(e_lp, best);
-        else e_other = fmax(e_other, best);
+        int fold_flip =
+            strcmp(ref[i].label, "LP") == 0 || strcmp(ref[i].label, "PD") == 0;
+        if (fold_flip)
+          e_lp = fmax(e_lp, best);
+        else
+          e_other = fmax(e_other, best);
       }
       char label[64];
       snprintf(label, sizeof label, "%s hmax %g", presets[ip], hs[ih]);
       fprintf(md, "| %s | %.3g | %lu | %.3g | %.3g |", label, t, nev, e_lp,
               e_other);
       for (int i = 0; i < nref; i++)
-        if (errs[i] > 1e-3) fprintf(md, " - |");
-        else fprintf(md, " %.2g |", errs[i]);
+        if (errs[i] > 1e-3)
+          fprintf(md, " - |");
+        else
+          fprintf(md, " %.2g |", errs[i]);
       fprintf(md, "\n");
-      fprintf(csv, "%s,%.6g,%.6g,%.6g,%d\n", label, t, e_lp, e_other,
-              missing);
+      fprintf(csv, "%s,%.6g,%.6g,%.6g,%d\n", label, t, e_lp, e_other, missing);
     }
   fclose(csv);
   fclose(md);
@@ -200,6 +205,7 @@ int main(int argc, char **argv) {
   fclose(gp);
   char cmd[1100];
   snprintf(cmd, sizeof cmd, "gnuplot '%s/branch.gp' 2>/dev/null", dir);
-  if (system(cmd) != 0) fprintf(stderr, "bench_accuracy_branch: gnuplot failed\n");
+  if (system(cmd) != 0)
+    fprintf(stderr, "bench_accuracy_branch: gnuplot failed\n");
   return 0;
 }

@@ -164,10 +164,10 @@ static int check_case(sc_map *md, sc_map *mq, const pcase *c, double d,
   /* distance to the nearest border either path saw (f' promise) */
   double bd = fmin(fmin(rd.dstar_dist, rd.graze_margin), fabs(rd.gsp_gap));
   if (!s2)
-    bd = fmin(bd, fmin(fmin(rq.dstar_dist, rq.graze_margin),
-                       fabs(rq.gsp_gap)));
-  if (s1) bd = s2 ? HUGE_VAL : fmin(fmin(rq.dstar_dist, rq.graze_margin),
-                                     fabs(rq.gsp_gap));
+    bd = fmin(bd, fmin(fmin(rq.dstar_dist, rq.graze_margin), fabs(rq.gsp_gap)));
+  if (s1)
+    bd = s2 ? HUGE_VAL
+            : fmin(fmin(rq.dstar_dist, rq.graze_margin), fabs(rq.gsp_gap));
   bd = fmin(bd, border_dist);
   /* rounding accumulates over the slip phases of the iterate */
   double nph = s1 ? 1 : fmax(1, rd.nphases);
@@ -176,7 +176,8 @@ static int check_case(sc_map *md, sc_map *mq, const pcase *c, double d,
   ncase++;
   if (s1) {
     /* a refusal: a negative status with a message */
-    if (s1 > 0 || m1.text[0] == '\0') bad = "refusal without a message";
+    if (s1 > 0 || m1.text[0] == '\0')
+      bad = "refusal without a message";
     else if (s2 == SC_OK && !border)
       bad = "double refuses where quad answers, away from a border";
     else {
@@ -186,8 +187,10 @@ static int check_case(sc_map *md, sc_map *mq, const pcase *c, double d,
   } else if (!isfinite(rd.f)) {
     bad = "f is not finite";
   } else if (rd.gsp_gap < -near) {
-    snprintf(detail, sizeof detail, " (gsp gap %.3g: a threshold crossing "
-             "was missed)", rd.gsp_gap);
+    snprintf(detail, sizeof detail,
+             " (gsp gap %.3g: a threshold crossing "
+             "was missed)",
+             rd.gsp_gap);
     bad = "a block ends beyond its threshold";
   } else if (!isfinite(rd.dfdd) && !(rd.dstar_dist == 0 && c->v == 0) &&
              !(rd.dstar_dist == 0 && c->frozen)) {
@@ -207,7 +210,8 @@ static int check_case(sc_map *md, sc_map *mq, const pcase *c, double d,
     double ef = fabs(rd.f - rq.f), gain = 1 + fabs(rq.dfdd);
     int same = strcmp(rd.itinerary, rq.itinerary) == 0;
     if (!same) {
-      if (!border) bad = "itineraries differ away from a border";
+      if (!border)
+        bad = "itineraries differ away from a border";
       else if (rq.dstar_dist <= near && ef > PROMISE_F * eps * S * gain * nph)
         /* f is continuous at d*: the other side gives the same f */
         bad = "itineraries differ at d* and f with them";
@@ -223,7 +227,8 @@ static int check_case(sc_map *md, sc_map *mq, const pcase *c, double d,
                fabs(rd.dfdd - rq.dfdd) >
                    PROMISE_DF * eps * S * gain / fmin(1, bd)) {
       snprintf(detail, sizeof detail, " (|df'| = %.3g > %.3g)",
-               fabs(rd.dfdd - rq.dfdd), PROMISE_DF * eps * S * gain / fmin(1, bd));
+               fabs(rd.dfdd - rq.dfdd),
+               PROMISE_DF * eps * S * gain / fmin(1, bd));
       bad = "f' outside the promise";
     }
   }
@@ -240,11 +245,10 @@ static int check_case(sc_map *md, sc_map *mq, const pcase *c, double d,
          "graze %.3g %s\n"
          "     quad:   status %d f=%.17g f'=%.17g itinerary %s gap %.3g "
          "graze %.3g %s\n",
-         why ? "KNOWN" : "FAIL", bad, detail, where, c->alpha, c->beta,
-         c->phi, c->v, drv(c->frozen), d, d - sc_bk2_dstar(c->alpha, c->beta),
-         s1, rd.f, rd.dfdd, rd.itinerary, rd.gsp_gap, rd.graze_margin,
-         m1.text, s2, rq.f, rq.dfdd, rq.itinerary, rq.gsp_gap,
-         rq.graze_margin, m2.text);
+         why ? "KNOWN" : "FAIL", bad, detail, where, c->alpha, c->beta, c->phi,
+         c->v, drv(c->frozen), d, d - sc_bk2_dstar(c->alpha, c->beta), s1, rd.f,
+         rd.dfdd, rd.itinerary, rd.gsp_gap, rd.graze_margin, m1.text, s2, rq.f,
+         rq.dfdd, rq.itinerary, rq.gsp_gap, rq.graze_margin, m2.text);
   if (why) {
     nknown++;
     return 1;
@@ -266,8 +270,8 @@ static int near_dstar(sc_map *md, sc_map *mq, const pcase *c, int long_run) {
                            HUGE_VAL, "near d*");
     }
     for (size_t i = 0; i < sizeof far / sizeof far[0]; i++)
-      fails += !check_case(md, mq, c, ds + sgn * far[i] * scale, HUGE_VAL,
-                           "far");
+      fails +=
+          !check_case(md, mq, c, ds + sgn * far[i] * scale, HUGE_VAL, "far");
   }
   fails += !check_case(md, mq, c, ds, HUGE_VAL, "at d*");
   return fails;
@@ -277,8 +281,7 @@ static int near_dstar(sc_map *md, sc_map *mq, const pcase *c, int long_run) {
  * it by bisection in quad, and check both sides at 1e-15 .. 1e-3. */
 static int near_grazing(sc_map *md, sc_map *mq, const pcase *c, int nscan,
                         int maxfound, int *found) {
-  sc_bk2q_params qp = {c->alpha, c->beta, c->phi, c->v, c->frozen,
-                       max_events};
+  sc_bk2q_params qp = {c->alpha, c->beta, c->phi, c->v, c->frozen, max_events};
   double ds = sc_bk2_dstar(c->alpha, c->beta);
   double scale = (1 + c->beta) / (1 + c->alpha);
   int fails = 0;
@@ -287,7 +290,8 @@ static int near_grazing(sc_map *md, sc_map *mq, const pcase *c, int nscan,
   int sa = sc_bk2q_eval(&qp, x0, 0, &a, NULL);
   int here = 0;
   for (int i = 1; i <= nscan && here < maxfound; i++) {
-    double x = x0 + (x1 - x0) * i / nscan, xp = x0 + (x1 - x0) * (i - 1) / nscan;
+    double x = x0 + (x1 - x0) * i / nscan,
+           xp = x0 + (x1 - x0) * (i - 1) / nscan;
     int sb = sc_bk2q_eval(&qp, x, 0, &b, NULL);
     int change = !sa && !sb && strcmp(a.itinerary, b.itinerary) != 0 &&
                  !((xp < ds) != (x < ds));
@@ -301,16 +305,18 @@ static int near_grazing(sc_map *md, sc_map *mq, const pcase *c, int nscan,
       sc_quad mid = (lo + hi) / 2;
       sc_bk2q_value r;
       if (sc_bk2q_eval(&qp, mid, 0, &r, NULL)) break;
-      if (strcmp(r.itinerary, lo_v.itinerary) == 0) lo = mid;
-      else hi = mid;
+      if (strcmp(r.itinerary, lo_v.itinerary) == 0)
+        lo = mid;
+      else
+        hi = mid;
     }
     double dg = (double)((lo + hi) / 2);
     static const double off[] = {1e-15, 1e-12, 1e-9, 1e-6, 1e-3};
     for (int sgn = -1; sgn <= 1; sgn += 2)
       for (size_t k = 0; k < sizeof off / sizeof off[0]; k++)
-        fails += !check_case(md, mq, c, dg + sgn * off[k] * fmax(1, fabs(dg)),
-                             off[k] * fmax(1, fabs(dg)),
-                             "near a grazing/crossing");
+        fails +=
+            !check_case(md, mq, c, dg + sgn * off[k] * fmax(1, fabs(dg)),
+                        off[k] * fmax(1, fabs(dg)), "near a grazing/crossing");
     (*found)++;
     here++;
   }
@@ -359,8 +365,8 @@ int main(int argc, char **argv) {
             double t1 = (double)clock() / CLOCKS_PER_SEC;
             if (long_run && t1 - t0 > 1)
               printf("slow case: %.2f s of CPU at alpha=%g beta=%g phi=%g "
-                     "v=%g %s\n", t1 - t0, c.alpha, c.beta, c.phi, c.v,
-                     drv(c.frozen));
+                     "v=%g %s\n",
+                     t1 - t0, c.alpha, c.beta, c.phi, c.v, drv(c.frozen));
             sc_map_free(md);
             sc_map_free(mq);
           }
@@ -370,9 +376,10 @@ int main(int argc, char **argv) {
          ncase, nok, nrefused, nborder, nknown, grazings);
   tu_int("cases outside the promise (see FAIL lines above)", fails, 0);
   for (size_t i = 0; i < NKNOWN && !long_run; i++)
-    tu_true(known_hits[i] > 0 || !known[i].in_fast, "known defect %zu seen %ld times (none: "
-            "fixed? then remove it from known[]): %s", i, known_hits[i],
-            known[i].why);
+    tu_true(known_hits[i] > 0 || !known[i].in_fast,
+            "known defect %zu seen %ld times (none: "
+            "fixed? then remove it from known[]): %s",
+            i, known_hits[i], known[i].why);
   tu_true(grazings >= (long_run ? 100 : 10), "borders found: %d", grazings);
   return tu_finish();
 }

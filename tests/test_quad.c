@@ -32,8 +32,8 @@ static double logu(double lo, double hi) {
   return exp(log(lo) + (log(hi) - log(lo)) * urand());
 }
 
-static sc_map *make(double alpha, double beta, double phi, double v,
-                    int frozen, int precision) {
+static sc_map *make(double alpha, double beta, double phi, double v, int frozen,
+                    int precision) {
   sc_accuracy acc;
   sc_msg msg;
   sc_map *m;
@@ -75,15 +75,15 @@ static void double_vs_quad(int n) {
     double d = -0.5 + urand();
     sc_map *md = make(alpha, beta, phi, v, frozen, SC_PRECISION_DOUBLE);
     sc_map *mq = make(alpha, beta, phi, v, frozen, SC_PRECISION_QUAD);
-    if (!tu_true(md && mq, "map allocation"))
-      goto next;
+    if (!tu_true(md && mq, "map allocation")) goto next;
     sc_map_value rd, rq;
     sc_msg m1, m2;
     unsigned fl = SC_EVAL_ITINERARY | SC_EVAL_DERIV;
     int s1 = sc_map_eval(md, d, fl, &rd, &m1);
     int s2 = sc_map_eval(mq, d, fl, &rq, &m2);
     if (s1 || s2) {
-      if (s1 == s2) undef++;
+      if (s1 == s2)
+        undef++;
       else {
         status_far++;
         printf("status differs: double %d quad %d at alpha=%.17g beta=%.17g "
@@ -95,7 +95,8 @@ static void double_vs_quad(int n) {
     if (strcmp(rd.itinerary, rq.itinerary) != 0) {
       /* Allowed only within rounding of a border, where the side taken
        * is decided by the last bits. */
-      if (border_dist(&rq) <= 1e-9) itin_near++;
+      if (border_dist(&rq) <= 1e-9)
+        itin_near++;
       else {
         itin_far++;
         printf("itinerary differs far from a border: %s vs %s at "
@@ -124,17 +125,20 @@ static void double_vs_quad(int n) {
   printf("double vs quad: %d points, %d compared, %d undefined in both, %d "
          "itineraries differ within 1e-9 of a border\n",
          n, compared, undef, itin_near);
-  tu_true(compared >= n * 9 / 10, "at least 90%% of the points compared "
-          "(%d of %d)", compared, n);
+  tu_true(compared >= n * 9 / 10,
+          "at least 90%% of the points compared "
+          "(%d of %d)",
+          compared, n);
   tu_int("status differs (one path undefined, the other not)", status_far, 0);
   tu_int("itineraries that differ away from a border", itin_far, 0);
-  tu_true(itin_near <= n / 100, "itineraries differing next to a border: "
-          "%d (at most 1%%)", itin_near);
+  tu_true(itin_near <= n / 100,
+          "itineraries differing next to a border: "
+          "%d (at most 1%%)",
+          itin_near);
   /* Measured worst (docs/accuracy.md): ~1 for f, ~10 for f'.  The bound
    * 16 leaves room for other libm's sin/cos (1 ulp each, a few per
    * iterate); a wrong closed form would be off by 1e10 units or more. */
-  tu_close("double vs quad: max |df| / (eps (1+alpha)(1+|d|))", worst_f, 0,
-           16);
+  tu_close("double vs quad: max |df| / (eps (1+alpha)(1+|d|))", worst_f, 0, 16);
   tu_close("double vs quad: max f' error in units", worst_df, 0, 64);
   tu_close("double vs quad: max df/dp error in units", worst_dp, 0, 64);
 }
@@ -191,10 +195,12 @@ static void lone_slips(void) {
     sc_bk2q_value r;
     if (sc_bk2q_eval(&p, d, 0, &r, NULL)) continue;
     Q c;
-    if (strcmp(r.itinerary, "1") == 0) c = 2 * (1 - mu) / (1 + (Q)alpha), n1++;
+    if (strcmp(r.itinerary, "1") == 0)
+      c = 2 * (1 - mu) / (1 + (Q)alpha), n1++;
     else if (strcmp(r.itinerary, "2") == 0)
       c = -2 * (Q)beta * (1 - mu) / (1 + (Q)alpha), n2++;
-    else continue;
+    else
+      continue;
     worst = fmaxq(worst, fabsq(r.f - d - c) / (1 + (Q)alpha * fabsq(d)));
   }
   tu_true(n1 >= 50 && n2 >= 50, "lone slips sampled: block 1 %d, block 2 %d",
@@ -217,21 +223,25 @@ static void energy(void) {
     Q a = alpha, b = beta, mu = 1 / (Q)phi;
     Q d = (Q)(-0.6 + 1.2 * urand());
     Q dstar = (b - 1) / (1 + 2 * a), y1, y2;
-    if (d < dstar) y1 = 1 + a * d, y2 = y1 + d;
-    else y2 = b - a * d, y1 = y2 - d;
+    if (d < dstar)
+      y1 = 1 + a * d, y2 = y1 + d;
+    else
+      y2 = b - a * d, y1 = y2 - d;
     sc_bk2q_value r;
     if (sc_bk2q_eval(&p, d, 0, &r, NULL)) continue;
     Q h0 = (y1 * y1 + y2 * y2 + a * (y1 - y2) * (y1 - y2)) / 2 - mu * y1 -
            b * mu * y2;
-    Q h1 = (r.y1 * r.y1 + r.y2 * r.y2 + a * (r.y1 - r.y2) * (r.y1 - r.y2)) /
-               2 - mu * r.y1 - b * mu * r.y2;
+    Q h1 = (r.y1 * r.y1 + r.y2 * r.y2 + a * (r.y1 - r.y2) * (r.y1 - r.y2)) / 2 -
+           mu * r.y1 - b * mu * r.y2;
     Q size = 1 + (1 + a) * (y1 * y1 + y2 * y2);
     worst = fmaxq(worst, fabsq(h1 - h0) / size);
     n++;
     multi += r.nphases > 1;
   }
-  tu_true(n >= 350 && multi >= 50, "energy: %d points, %d with several "
-          "phases", n, multi);
+  tu_true(n >= 350 && multi >= 50,
+          "energy: %d points, %d with several "
+          "phases",
+          n, multi);
   tu_close("frozen: max |H(end) - H(onset)| / size / eps_quad",
            (double)(worst / qeps()), 0, 1e4);
 }
@@ -257,18 +267,24 @@ static void derivatives(void) {
       if (k == 4 && frozen) continue; /* f does not depend on V */
       sc_bk2q_params pl = p, ph = p;
       Q dl = dd, dh = dd, step = h;
-      if (k == 0) dl -= h, dh += h;
+      if (k == 0)
+        dl -= h, dh += h;
       else {
-        Q *ql = k == 1 ? &pl.alpha : k == 2 ? &pl.beta : k == 3 ? &pl.phi
-                                                                 : &pl.v;
-        Q *qh = k == 1 ? &ph.alpha : k == 2 ? &ph.beta : k == 3 ? &ph.phi
-                                                                 : &ph.v;
+        Q *ql = k == 1   ? &pl.alpha
+                : k == 2 ? &pl.beta
+                : k == 3 ? &pl.phi
+                         : &pl.v;
+        Q *qh = k == 1   ? &ph.alpha
+                : k == 2 ? &ph.beta
+                : k == 3 ? &ph.phi
+                         : &ph.v;
         step = h * (1 + (Q)par[k - 1]);
         *ql -= step, *qh += step;
       }
       if (sc_bk2q_eval(&pl, dl, 0, &lo, NULL) ||
           sc_bk2q_eval(&ph, dh, 0, &hi, NULL) ||
-          strcmp(lo.itinerary, r.itinerary) || strcmp(hi.itinerary, r.itinerary))
+          strcmp(lo.itinerary, r.itinerary) ||
+          strcmp(hi.itinerary, r.itinerary))
         continue;
       Q fd = (hi.f - lo.f) / (2 * step);
       worst = fmaxq(worst, fabsq(fd - r.df[k]) / (1 + fabsq(r.df[k])));
@@ -358,8 +374,10 @@ static void selection(void) {
   tu_int("precision = quad set", acc.precision, SC_PRECISION_QUAD);
   tu_int("precision = single refused",
          sc_accuracy_set(&acc, "precision", "single", &msg), SC_EINVAL);
-  tu_true(strstr(msg.text, "double|quad") != NULL, "message names the valid "
-          "values: %s", msg.text);
+  tu_true(strstr(msg.text, "double|quad") != NULL,
+          "message names the valid "
+          "values: %s",
+          msg.text);
   acc.precision = 7;
   tu_int("precision = 7 refused by the check", sc_accuracy_check(&acc, &msg),
          SC_EINVAL);

@@ -1,6 +1,6 @@
-/* The event map of the two-block model (docs/derivations.md) in quadruple precision:
- * closed-form flows, certified first-root location of every guard, and
- * forward-mode derivatives (d and the four parameters), all in __float128
+/* The event map of the two-block model (docs/derivations.md) in quadruple
+ * precision: closed-form flows, certified first-root location of every guard,
+ * and forward-mode derivatives (d and the four parameters), all in __float128
  * (libquadmath).  It is written for clarity, not speed, and shares no code
  * with the double path (bk2.c, src/hybrid/guard.c), so that comparing the
  * two measures the double path's error rather than repeating it
@@ -60,17 +60,20 @@ static qd qvar(Q v, int dir, int nd) {
 }
 static qd qadd(qd a, qd b, int nd) {
   a.v += b.v;
-  for (int k = 0; k < nd; k++) a.d[k] += b.d[k];
+  for (int k = 0; k < nd; k++)
+    a.d[k] += b.d[k];
   return a;
 }
 static qd qsub(qd a, qd b, int nd) {
   a.v -= b.v;
-  for (int k = 0; k < nd; k++) a.d[k] -= b.d[k];
+  for (int k = 0; k < nd; k++)
+    a.d[k] -= b.d[k];
   return a;
 }
 static qd qscale(qd a, Q s, int nd) {
   a.v *= s;
-  for (int k = 0; k < nd; k++) a.d[k] *= s;
+  for (int k = 0; k < nd; k++)
+    a.d[k] *= s;
   return a;
 }
 static qd qaddc(qd a, Q c) {
@@ -79,17 +82,20 @@ static qd qaddc(qd a, Q c) {
 }
 static qd qmul(qd a, qd b, int nd) {
   qd r = qc(a.v * b.v);
-  for (int k = 0; k < nd; k++) r.d[k] = a.d[k] * b.v + a.v * b.d[k];
+  for (int k = 0; k < nd; k++)
+    r.d[k] = a.d[k] * b.v + a.v * b.d[k];
   return r;
 }
 static qd qdiv(qd a, qd b, int nd) {
   qd r = qc(a.v / b.v);
-  for (int k = 0; k < nd; k++) r.d[k] = (a.d[k] - r.v * b.d[k]) / b.v;
+  for (int k = 0; k < nd; k++)
+    r.d[k] = (a.d[k] - r.v * b.d[k]) / b.v;
   return r;
 }
 static qd qsqrt(qd a, int nd) {
   qd r = qc(sqrtq(a.v));
-  for (int k = 0; k < nd; k++) r.d[k] = a.d[k] / (2 * r.v);
+  for (int k = 0; k < nd; k++)
+    r.d[k] = a.d[k] / (2 * r.v);
   return r;
 }
 /* sin and cos of the dual w t at a plain time t (t carries no derivative:
@@ -159,8 +165,7 @@ static void qosc_at(const qosc *o, Q t, int nd, qd *q, qd *p, Q *acc) {
   qd Ac = qmul(o->A, c, nd), Bs = qmul(o->B, s, nd);
   *q = qadd(qadd(o->s0, qscale(o->s1, t, nd), nd), qadd(Ac, Bs, nd), nd);
   *p = qadd(o->s1,
-            qmul(o->w, qsub(qmul(o->B, c, nd), qmul(o->A, s, nd), nd), nd),
-            nd);
+            qmul(o->w, qsub(qmul(o->B, c, nd), qmul(o->A, s, nd), nd), nd), nd);
   *acc = -o->w.v * o->w.v * (Ac.v + Bs.v);
 }
 
@@ -221,8 +226,10 @@ static void qrefine(const qguard *g, const qsize *z, Q lo, Q glo, Q hi, Q ghi,
   for (int it = 0; it < QMAX_REFINE; it++) {
     qg_eval(g, t, &v, &d, NULL);
     if (fabsq(v) <= qround_at(z, t)) break;
-    if ((v > 0) == (glo > 0)) lo = t, glo = v;
-    else hi = t;
+    if ((v > 0) == (glo > 0))
+      lo = t, glo = v;
+    else
+      hi = t;
     Q tn = t - v / d;
     if (d != 0 && tn > lo && tn < hi) {
       Q step = fabsq(tn - t);
@@ -287,7 +294,8 @@ static void qfirst_root(const qguard *g, Q tmax, int skip_start, qroot *r) {
        * keeps the sign of g, or the line c0 + c1 t does, with a margin
        * larger than the sum of the sinusoids' amplitudes (which lets a
        * slow line, V ~ 1e-12, be followed in doubling steps) */
-      Q l0 = sigma * (g->c0 + g->c1 * t), l1 = sigma * (g->c0 + g->c1 * (t + h));
+      Q l0 = sigma * (g->c0 + g->c1 * t),
+        l1 = sigma * (g->c0 + g->c1 * (t + h));
       if (qquad_min(sigma, g0, g1, g2, h) - z.m3 * h * h * h / 6 > E ||
           fminq(l0, l1) - z.amp > E) {
         t += h;
@@ -298,7 +306,8 @@ static void qfirst_root(const qguard *g, Q tmax, int skip_start, qroot *r) {
     }
     /* g strictly monotone on [t, t + h] */
     Q d0 = g1, dh = g1 + g2 * h;
-    if ((d0 > 0) == (dh > 0) && fminq(fabsq(d0), fabsq(dh)) > z.m3 * h * h / 2) {
+    if ((d0 > 0) == (dh > 0) &&
+        fminq(fabsq(d0), fabsq(dh)) > z.m3 * h * h / 2) {
       Q e0, e1, e2;
       qg_eval(g, t + h, &e0, &e1, &e2);
       if (!at_start && (e0 * sigma <= 0 || fabsq(e0) <= E)) {
@@ -365,11 +374,13 @@ static qflow qflow_make(const qpar *P, int mode, const qstate *x0) {
   f.x0 = *x0;
   qd F1 = qmul(P->alpha, P->vs, nd);
   if (mode == SC_BK2_SLIP1) {
-    f.o1 = qosc_make(x0->y1, x0->u1, qadd(P->k1, qmul(P->alpha, x0->y2, nd), nd),
-                     F1, P->w1, nd);
+    f.o1 =
+        qosc_make(x0->y1, x0->u1, qadd(P->k1, qmul(P->alpha, x0->y2, nd), nd),
+                  F1, P->w1, nd);
   } else if (mode == SC_BK2_SLIP2) {
-    f.o1 = qosc_make(x0->y2, x0->u2, qadd(P->k2, qmul(P->alpha, x0->y1, nd), nd),
-                     F1, P->w1, nd);
+    f.o1 =
+        qosc_make(x0->y2, x0->u2, qadd(P->k2, qmul(P->alpha, x0->y1, nd), nd),
+                  F1, P->w1, nd);
   } else {
     f.o1 = qosc_make(qadd(x0->y1, x0->y2, nd), qadd(x0->u1, x0->u2, nd),
                      qadd(P->k1, P->k2, nd), qc(0), qc(1), nd);
@@ -454,16 +465,21 @@ static int qtake_event(const qpar *P, int mode, int kind, Q slope,
   int nd = P->nd;
   if (nd) {
     qd gv;
-    if (kind == 1) gv = qsub(x->u1, P->vs, nd);
-    else if (kind == 2) gv = qsub(x->u2, P->vs, nd);
-    else if (mode == SC_BK2_SLIP1) gv = qsub(qspring(P, x->y2, x->y1), P->beta, nd);
-    else gv = qaddc(qspring(P, x->y1, x->y2), -1);
+    if (kind == 1)
+      gv = qsub(x->u1, P->vs, nd);
+    else if (kind == 2)
+      gv = qsub(x->u2, P->vs, nd);
+    else if (mode == SC_BK2_SLIP1)
+      gv = qsub(qspring(P, x->y2, x->y1), P->beta, nd);
+    else
+      gv = qaddc(qspring(P, x->y1, x->y2), -1);
     Q xdot[4] = {x->u1.v, x->u2.v, acc[0], acc[1]};
     qd *xs[4] = {&x->y1, &x->y2, &x->u1, &x->u2};
     for (int k = 0; k < nd; k++) {
       /* g' = 0: the event time is not differentiable: NaN says so */
       Q dt = slope != 0 ? -gv.d[k] / slope : (Q)NAN;
-      for (int i = 0; i < 4; i++) xs[i]->d[k] += xdot[i] * dt;
+      for (int i = 0; i < 4; i++)
+        xs[i]->d[k] += xdot[i] * dt;
     }
   }
   if (kind == 1) {
@@ -504,7 +520,8 @@ static int qphase(const qpar *P, int mode, int fresh, qstate *x, qevents *ev,
     kind[ng++] = 3;
   }
   Q tmax = 0;
-  for (int i = 0; i < ng; i++) tmax = fmaxq(tmax, qhorizon(&g[i]));
+  for (int i = 0; i < ng; i++)
+    tmax = fmaxq(tmax, qhorizon(&g[i]));
   qroot r[2];
   int first = -1;
   for (int i = 0; i < ng; i++) {
@@ -526,8 +543,10 @@ static int qphase(const qpar *P, int mode, int fresh, qstate *x, qevents *ev,
   for (int i = 0; i < ng; i++) {
     if (i == first || !r[i].found) continue;
     if (fabsq(r[i].t - r[first].t) <= qtol_at(r[first].t)) {
-      if (kind[first] == 3) first = i;
-      else if (kind[i] < 3) both = 1;
+      if (kind[first] == 3)
+        first = i;
+      else if (kind[i] < 3)
+        both = 1;
     }
   }
   Q t = r[first].t, acc[2];
@@ -614,8 +633,10 @@ int sc_bk2q_eval(const sc_bk2q_params *p, Q d, int nd, sc_bk2q_value *out,
       out->f = f.v;
       out->y1 = x.y1.v;
       out->y2 = x.y2.v;
-      for (int k = 0; k < nd; k++) out->df[k] = f.d[k];
-      /* single-block slip from a GSP: f(d) = d + c exactly (docs/derivations.md) */
+      for (int k = 0; k < nd; k++)
+        out->df[k] = f.d[k];
+      /* single-block slip from a GSP: f(d) = d + c exactly
+       * (docs/derivations.md) */
       out->neutral = out->nphases == 1 && first_mode != SC_BK2_SLIP12;
       if (out->neutral && nd) out->df[0] = 1;
       Q s1 = qspring(&P, x.y1, x.y2).v, s2 = qspring(&P, x.y2, x.y1).v;
@@ -649,7 +670,8 @@ int sc_bk2_quad_eval(double alpha, double beta, double phi, double v,
   out->f = (double)q.f;
   if (nd) {
     out->dfdd = (double)q.df[0];
-    for (int k = 0; k < 4; k++) out->dfdp[k] = (double)q.df[k + 1];
+    for (int k = 0; k < 4; k++)
+      out->dfdp[k] = (double)q.df[k + 1];
   }
   out->neutral = q.neutral;
   out->nphases = q.nphases;

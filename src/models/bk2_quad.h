@@ -24,26 +24,26 @@ typedef struct {
 
 /* One iterate in quad. */
 typedef struct {
-  sc_quad f;                     /* f(d) */
-  sc_quad y1, y2;                /* positions at the next GSP */
-  sc_quad df[SC_BK2Q_NDIR];      /* df/dd, df/dalpha, /dbeta, /dphi, /dv
-                                    (nd = 5); NaN where not differentiable */
-  int nphases;                   /* slip phases */
-  int neutral;                   /* single-block slip from a GSP: f' = 1 */
-  int tangent;                   /* a guard only touched zero */
-  double graze_margin;           /* as sc_map_value (models.h) */
+  sc_quad f;                /* f(d) */
+  sc_quad y1, y2;           /* positions at the next GSP */
+  sc_quad df[SC_BK2Q_NDIR]; /* df/dd, df/dalpha, /dbeta, /dphi, /dv
+                               (nd = 5); NaN where not differentiable */
+  int nphases;              /* slip phases */
+  int neutral;              /* single-block slip from a GSP: f' = 1 */
+  int tangent;              /* a guard only touched zero */
+  double graze_margin;      /* as sc_map_value (models.h) */
   int graze_block, graze_mode;
-  double gsp_gap;                /* as sc_map_value */
+  double gsp_gap; /* as sc_map_value */
   int gap_block;
-  double dstar_dist;             /* |d - d*| */
-  char itinerary[SC_ITIN_LEN];   /* as sc_map_value */
+  double dstar_dist;           /* |d - d*| */
+  char itinerary[SC_ITIN_LEN]; /* as sc_map_value */
 } sc_bk2q_value;
 
 /* f(d) in quad; nd = 0 (value only) or SC_BK2Q_NDIR (with derivatives).
  * Returns SC_OK, SC_EUNDEF (no return to a GSP, with the reason in msg),
  * SC_EINVAL (non-finite d, bad parameters). */
-int sc_bk2q_eval(const sc_bk2q_params *p, sc_quad d, int nd,
-                 sc_bk2q_value *out, sc_msg *msg);
+int sc_bk2q_eval(const sc_bk2q_params *p, sc_quad d, int nd, sc_bk2q_value *out,
+                 sc_msg *msg);
 
 /* The model's eval() for precision = quad: d and the parameters are
  * taken exactly as doubles, f and its derivatives rounded to double. */
