@@ -15,7 +15,8 @@
  * where none is found within 1e-3), the plot the largest over the folds
  * and flips and over the borders.  Writes
  * OUTDIR/branch.csv, branch.gp, branch.png (if gnuplot runs) and appends
- * a table to OUTDIR/tables.md. */
+ * a table to OUTDIR/tables.md, and a second one for the logistic map,
+ * whose special points are known exactly (run_logistic()). */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
@@ -104,6 +105,76 @@ static double run(const bsetting *s, spt *pts, int *npts, unsigned long *nev) {
   return t;
 }
 
+/* The logistic map x -> r x (1 - x), whose special points are known
+ * exactly: flips at r = 3, 1 + sqrt(6) and r_3 = 3.5440903595519228536
+ * (period 4 -> 8, a published constant), the period-3 fold at
+ * 1 + 2 sqrt(2).  Period 1 from r = 2.8 with branch switching up to
+ * period 8, and period 3 from r = 3.84.  Returns the run's time and the
+ * largest |p - exact| (missing points counted in *missing). */
+static double run_logistic(const char *preset, double hmax, double *err,
+                           int *missing, unsigned long *nev) {
+  const struct {
+    const char *label;
+    int period;
+    double p;
+  } exact[] = {
+      {"PD", 1, 3.0},
+      {"PD", 2, 3.4494897427831781}, /* 1 + sqrt(6) */
+      {"PD", 4, 3.5440903595519229},
+      {"LP", 3, 3.8284271247461901}, /* 1 + 2 sqrt(2) */
+  };
+  sc_accuracy acc;
+  sc_msg msg;
+  sc_map *m;
+  sc_accuracy_preset(&acc, preset, NULL);
+  if (sc_map_alloc("logistic", &acc, &m, &msg) ||
+      sc_map_set_param_by_name(m, "r", 2.8, &msg)) {
+    fprintf(stderr, "bench_accuracy_branch: %s\n", msg.text);
+    exit(1);
+  }
+  sc_orbit_branch_spec sp = {
+      .param = 0,
+      .from = 2.8,
+      .to = 3.9,
+      .period = 1,
+      .d0 = 0.6,
+      .switch_pd = 1,
+      .max_points = 4000,
+      .max_branches = 16,
+      .max_period = 8,
+      .hmax = hmax,
+  };
+  sc_orbit_branch *ob;
+  double t0 = now();
+  unsigned long e0 = sc_map_nevals(m);
+  int st = sc_orbit_branch_alloc(m, &sp, &ob, &msg);
+  if (!st) st = sc_orbit_branch_add_start(ob, 3.84, 0.1494, 3, &msg);
+  if (!st) st = sc_orbit_branch_run(ob, &msg);
+  double t = now() - t0;
+  if (st) {
+    fprintf(stderr, "bench_accuracy_branch: logistic: %s\n", msg.text);
+    exit(1);
+  }
+  *nev = sc_map_nevals(m) - e0;
+  *err = 0;
+  *missing = 0;
+  for (size_t k = 0; k < sizeof exact / sizeof exact[0]; k++) {
+    double best = HUGE_VAL;
+    for (size_t i = 0; i < sc_orbit_branch_nspecial(ob); i++) {
+      sc_orbit_special_info q;
+      if (sc_orbit_branch_special(ob, i, &q)) continue;
+      if (strcmp(sc_point_label_text(q.label), exact[k].label) == 0 &&
+          q.period == exact[k].period)
+        best = fmin(best, fabs(q.p - exact[k].p));
+    }
+    if (best > 1e-3) (*missing)++;
+    else *err = fmax(*err, best);
+  }
+  sc_orbit_branch_free(ob);
+  sc_map_free(m);
+  return t;
+}
+
 int main(int argc, char **argv) {
   if (argc < 2) {
     fprintf(stderr, "usage: bench_accuracy_branch OUTDIR\n");
@@ -182,6 +253,20 @@ int main(int argc, char **argv) {
           fprintf(md, " %.2g |", errs[i]);
       fprintf(md, "\n");
       fprintf(csv, "%s,%.6g,%.6g,%.6g,%d\n", label, t, e_lp, e_other, missing);
+    }
+  fprintf(md, "\nThe logistic map against its exact special points "
+              "(flips at 3, 1 + sqrt(6), 3.5440903595519229, the period-3 "
+              "fold at 1 + 2 sqrt(2)): period 1 from r = 2.8 with branch "
+              "switching to period 8, period 3 from r = 3.84.\n\n"
+              "| setting | time (s) | map evaluations | max abs p - exact "
+              "| missing |\n|---|---|---|---|---|\n");
+  for (int ip = 0; ip < 3; ip++)
+    for (int ih = 0; ih < 3; ih++) {
+      double err;
+      int missing;
+      double t = run_logistic(presets[ip], hs[ih], &err, &missing, &nev);
+      fprintf(md, "| %s hmax %g | %.3g | %lu | %.3g | %d |\n", presets[ip],
+              hs[ih], t, nev, err, missing);
     }
   fclose(csv);
   fclose(md);
