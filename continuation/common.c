@@ -150,6 +150,12 @@ static int check_field(const sc_accuracy *acc, size_t i, sc_msg *msg) {
 
 int sc_accuracy_check(const sc_accuracy *acc, sc_msg *msg) {
   if (!acc) return sc_fail(msg, SC_EINVAL, "sc_accuracy_check: NULL");
+  if (acc->precision != SC_PRECISION_DOUBLE &&
+      acc->precision != SC_PRECISION_QUAD)
+    return sc_fail(msg, SC_EINVAL,
+                   "sc_accuracy_check: precision = %d out of range (valid: "
+                   "SC_PRECISION_DOUBLE, SC_PRECISION_QUAD)",
+                   acc->precision);
   for (size_t i = 0; i < NFIELDS; i++) {
     int st = check_field(acc, i, msg);
     if (st) return st;
@@ -159,6 +165,17 @@ int sc_accuracy_check(const sc_accuracy *acc, sc_msg *msg) {
 
 int sc_accuracy_set(sc_accuracy *acc, const char *name, const char *value,
                     sc_msg *msg) {
+  if (strcmp(name, "precision") == 0) {
+    if (value && strcmp(value, "double") == 0)
+      acc->precision = SC_PRECISION_DOUBLE;
+    else if (value && strcmp(value, "quad") == 0)
+      acc->precision = SC_PRECISION_QUAD;
+    else
+      return sc_fail(msg, SC_EINVAL,
+                     "precision = '%s' is not valid (valid: double|quad)",
+                     value ? value : "");
+    return SC_OK;
+  }
   for (size_t i = 0; i < NFIELDS; i++) {
     if (strcmp(fields[i].name, name) != 0) continue;
     char *base = (char *)acc + fields[i].offset;

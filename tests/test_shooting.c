@@ -374,7 +374,7 @@ int main(void) {
   setvbuf(stdout, NULL, _IOLBF, 0);
   test_logistic();
   const int p019[] = {2, 4, 8, 16, 24, 32};
-  test_chaotic(0.019, p019, 6, 150, 100, 1);
+  test_chaotic(0.019, p019, 6, 400, 100, 1);
   const int p0175[] = {32};
   test_chaotic(0.0175, p0175, 1, 400, 1e6, 0);
   test_neutral();

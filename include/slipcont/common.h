@@ -88,7 +88,15 @@ typedef struct {
   double fd_step;      /**< finite-difference relative step (cross-checks) */
   double period_rtol;  /**< period detection: tolerance / attractor size */
   int max_events;      /**< slip phases per iterate before f is undefined */
+  int precision;       /**< SC_PRECISION_DOUBLE (every preset), or
+                            SC_PRECISION_QUAD: bk2's exact flows and event
+                            location in __float128 (slow; the reference,
+                            see docs/accuracy.md); scene key
+                            `precision = double|quad` */
 } sc_accuracy;
+
+/** Values of sc_accuracy.precision. */
+enum { SC_PRECISION_DOUBLE = 0, SC_PRECISION_QUAD = 1 };
 
 /** Names accepted by sc_accuracy_preset(). */
 #define SC_ACCURACY_PRESETS "fast, default, precise"
@@ -107,7 +115,8 @@ int sc_accuracy_check(const sc_accuracy *acc, sc_msg *msg);
 
 /**
  * @brief Set one field by name (the names of the struct members with '_'
- * written as '-': "event-rtol", "newton-maxiter", ...), from text.
+ * written as '-': "event-rtol", "newton-maxiter", ...), from text;
+ * "precision" takes the words "double" or "quad".
  * @return SC_OK, or SC_EINVAL for an unknown name, a malformed number,
  *         NaN or an out-of-range value.
  */

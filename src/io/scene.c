@@ -47,6 +47,9 @@ static const sc_key_info output_keys[] = {
 static const sc_key_info accuracy_keys[] = {
     {"preset", SC_KEY_CHOICE, 0, "default", 0, 0, 0, 0, "fast|default|precise",
      "applied first, whatever its place in the section; then each field"},
+    {"precision", SC_KEY_CHOICE, 0, "double", 0, 0, 0, 0, "double|quad",
+     "arithmetic of bk2's exact flows: quad is __float128, slow, the "
+     "reference (docs/accuracy.md)"},
 };
 
 const sc_key_info *sc_scene_section_keys(const char *section, size_t *n) {

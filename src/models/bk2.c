@@ -14,6 +14,7 @@
 #include "hybrid/dual.h"
 #include "models/bk2_impl.h"
 #include "models/bk2_jet.h"
+#include "models/bk2_quad.h"
 #include "hybrid/hybrid_impl.h"
 #include "slipcont/hybrid.h"
 
@@ -75,6 +76,10 @@ static int bk2_setup(void *vinst, const double *p, const int *opt,
     return sc_fail(msg, SC_EINVAL,
                    "bk2: friction = velocity-weakening is not available yet "
                    "(valid: coulomb)");
+  if (b->numerical && acc->precision == SC_PRECISION_QUAD)
+    return sc_fail(msg, SC_EINVAL,
+                   "bk2: precision = quad needs flows = exact (the numerical "
+                   "flows are double only)");
   if (b->numerical) return sc_bk2_num_setup(b, msg);
   sc_bk2_first_restick(b);
   return SC_OK;
@@ -629,6 +634,21 @@ void sc_bk2_first_restick(bk2_inst *b) {
   }
 }
 
+/* Rounding of a guard's value, in ulps of the size of its terms. */
+#define ROOT_ROUND_ULPS 8.0
+
+/* The interval a root is known in whatever the search's own bracket: the
+ * rounding of g near it over its slope (two equal guards built from
+ * different states, or searched over different horizons, may return
+ * roots this far apart). */
+static double root_window(const sc_guard *g, const sc_root *r) {
+  double size = fabs(g->c0) + fabs(g->c1) * r->t;
+  for (int k = 0; k < g->n; k++)
+    size += (fabs(g->a[k]) + fabs(g->b[k])) * (1 + g->w[k] * r->t);
+  double E = ROOT_ROUND_ULPS * DBL_EPSILON * size;
+  return r->bracket + (r->slope != 0 ? E / fabs(r->slope) : 0);
+}
+
 /* One slip phase with exact flows: find its end (the first event, or the
  * event the code forces), the next mode, and the state there.  `fresh`
  * bit i-1: block i started slipping at this phase's start (U_i = Vs by
@@ -659,6 +679,14 @@ static int exact_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
   }
   if (mode != SC_BK2_SLIP12) {
     g[ng] = guard_threshold(P, &f);
+    if (ev->onset) {
+      /* its value at 0 as the onset formula gives it, not as rounding
+       * builds it from the state (next to d* the sign can flip, and the
+       * other block's trigger be missed) */
+      double g0;
+      sc_guard_eval(&g[ng], 0, &g0, NULL, NULL);
+      g[ng].c0 += ev->onset_gap - g0;
+    }
     kind[ng++] = BK2_EV_THRESHOLD;
   }
   sc_root r[2];
@@ -668,7 +696,11 @@ static int exact_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
   if (!ev->force) {
     for (int i = 0; i < ng; i++) {
       int skip = kind[i] < 3 && (fresh & kind[i]);
-      double lim = first < 0 ? tmax : r[first].t + atol + rtol * r[first].t;
+      /* (past the earliest root by its tie tolerance, so that a tie is
+       * seen from either guard) */
+      double lim = first < 0 ? tmax
+                             : r[first].t + 2 * (atol + rtol * r[first].t +
+                                                 root_window(&g[first], &r[first]));
       int st = SC_OK;
       if (skip && mode != SC_BK2_SLIP12 && b->first_ok[kind[i] - 1] &&
           b->first_r[kind[i] - 1].t <= lim &&
@@ -689,11 +721,16 @@ static int exact_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
                      "no event within %.6g time units of slip mode %s: the "
                      "slip does not end",
                      tmax, mode_name(mode));
-    /* Ties within the event tolerance: re-sticks go first (docs/model.md);
-     * two re-sticks at once end the slip of both blocks. */
+    /* Ties within the event tolerance, or within the intervals the two
+     * roots are known to lie in (a root can be known no better than the
+     * rounding of its guard over its slope): re-sticks go first
+     * (docs/model.md); two re-sticks at once end the slip of both blocks
+     * (at V = 100 and alpha = 1000 the synchronous re-sticks of beta = 1
+     * are ~1e-12 apart by rounding alone). */
     for (int i = 0; i < ng; i++) {
       if (i == first || !r[i].found) continue;
-      double tol = atol + rtol * r[first].t;
+      double tol = atol + rtol * r[first].t + root_window(&g[first], &r[first]) +
+                   root_window(&g[i], &r[i]);
       if (fabs(r[i].t - r[first].t) <= tol) {
         if (kind[first] == BK2_EV_THRESHOLD) first = i;
         else if (kind[i] < 3) both = 1;
@@ -927,6 +964,10 @@ int sc_bk2_iterate_ex(const bk2_inst *b, const bk2_dpar *P, sc_dual d,
       fpos += 2;
     }
     ev.phase = n + 1;
+    ev.onset = n == 0 && mode != SC_BK2_SLIP12;
+    if (ev.onset) /* S_j - T_j of the stuck block j at the onset */
+      ev.onset_gap = (1 + 2 * b->alpha) *
+                     (mode == SC_BK2_SLIP1 ? d.v - b->dstar : b->dstar - d.v);
     int next = sc_bk2_phase(b, P, mode, fresh, x, &dur, &ev, msg);
     if (next < 0) return next;
     out->nphases++;
@@ -986,6 +1027,14 @@ static int nonfinite_derivative(const bk2_inst *b, double d, int st,
 static int bk2_eval(void *vinst, double d, unsigned flags, sc_map_value *out,
                     sc_msg *msg) {
   const bk2_inst *b = vinst;
+  if (b->acc.precision == SC_PRECISION_QUAD) { /* bk2_quad.c */
+    if (flags & SC_EVAL_DERIV2)
+      return sc_fail(msg, SC_EINVAL,
+                     "bk2: second derivatives are computed in double only "
+                     "(valid with SC_EVAL_DERIV2: precision = double)");
+    return sc_bk2_quad_eval(b->alpha, b->beta, b->phi, b->v, b->frozen,
+                            b->acc.max_events, d, flags, out, msg);
+  }
   if (flags & SC_EVAL_DERIV2)
     return sc_bk2_eval_jet(b, d, flags, out, NULL, msg);
   bk2_dpar P;

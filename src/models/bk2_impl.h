@@ -60,6 +60,11 @@ typedef struct {
   unsigned char rec[2];
   sc_border_list *borders;
   int phase;
+  /* The first phase after a GSP: the stuck block's S - T at its start,
+   * exactly (1 + 2 alpha)(d - d*) up to sign, which the guard built from
+   * the rounded onset state may get wrong in sign next to d*. */
+  int onset;
+  double onset_gap;
   /* borders whose own code differs from the iterate's in one phase
    * (sc_border.alt): filled in when the iterate's code is complete */
   struct {

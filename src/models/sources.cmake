@@ -1,2 +1,3 @@
 list(APPEND SC_SOURCES src/models/smooth_maps.c src/models/bk2.c src/models/bk2_numerical.c
-  src/models/bk2_jet.c)
+  src/models/bk2_jet.c
+  src/models/bk2_quad.c)

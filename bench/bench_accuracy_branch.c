@@ -1,0 +1,296 @@
+/* Located special points against time (docs/accuracy.md, "Special
+ * points"), through the public branch API only (branch.h), so that it
+ * reads whatever labels and values the branch code reports:
+ *
+ *   build/bench/bench_accuracy_branch OUTDIR
+ *
+ * Fig 5.8's orbits (driver frozen, beta = 2.5, alpha in [2.8, 4]) are
+ * continued from three starts without branch switching (period 2 from
+ * alpha = 3 over [3, 4], period 6 from 3.3, period 4 from 3.75), once per
+ * setting: each preset with arclength steps hmax = 0.02, 0.01, 0.005.  The
+ * reference is the same run with the quad path, preset precise, hmax =
+ * 0.005.  Every special point of the reference other than an end point
+ * is matched with the point of the same label and period nearest in the
+ * parameter; the table gives each point's error |p - p_ref| (or "-"
+ * where none is found within 1e-3), the plot the largest over the folds
+ * and flips and over the borders.  Writes
+ * OUTDIR/branch.csv, branch.gp, branch.png (if gnuplot runs) and appends
+ * a table to OUTDIR/tables.md, and a second one for the logistic map,
+ * whose special points are known exactly (run_logistic()). */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "slipcont/branch.h"
+#include "slipcont/map.h"
+
+#define MAXPTS 256
+
+static double now(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+typedef struct {
+  char label[8];
+  int period;
+  double p, d;
+} spt;
+
+typedef struct {
+  const char *preset;
+  double hmax;
+  int quad;
+} bsetting;
+
+/* One run; returns its time and fills pts (special points, no EP). */
+static double run(const bsetting *s, spt *pts, int *npts, unsigned long *nev) {
+  sc_accuracy acc;
+  sc_msg msg;
+  sc_map *m;
+  sc_accuracy_preset(&acc, s->preset, NULL);
+  acc.precision = s->quad ? SC_PRECISION_QUAD : SC_PRECISION_DOUBLE;
+  if (sc_map_alloc("bk2", &acc, &m, &msg) ||
+      sc_map_set_param_by_name(m, "alpha", 3.0, &msg) ||
+      sc_map_set_param_by_name(m, "beta", 2.5, &msg) ||
+      sc_map_set_option(m, "driver", "frozen", &msg)) {
+    fprintf(stderr, "bench_accuracy_branch: %s\n", msg.text);
+    exit(1);
+  }
+  sc_orbit_branch_spec sp = {
+      .param = (size_t)sc_map_param_index(m, "alpha"),
+      .from = 3.0,
+      .to = 4.0,
+      .period = 2,
+      .d0 = 0.2253,
+      .switch_pd = 0,
+      .max_points = 4000,
+      .max_branches = 8,
+      .max_period = 16,
+      .h0 = 0,
+      .hmax = s->hmax,
+  };
+  sc_orbit_branch *ob;
+  double t0 = now();
+  unsigned long e0 = sc_map_nevals(m);
+  int st = sc_orbit_branch_alloc(m, &sp, &ob, &msg);
+  if (!st) st = sc_orbit_branch_add_start(ob, 3.3, 0.0991, 6, &msg);
+  if (!st) st = sc_orbit_branch_add_start(ob, 3.75, 0.2075, 4, &msg);
+  if (!st) st = sc_orbit_branch_run(ob, &msg);
+  double t = now() - t0;
+  if (st) {
+    fprintf(stderr, "bench_accuracy_branch: %s (%s)\n", msg.text,
+            sc_strerror(st));
+    exit(1);
+  }
+  *nev = sc_map_nevals(m) - e0;
+  *npts = 0;
+  for (size_t i = 0; i < sc_orbit_branch_nspecial(ob) && *npts < MAXPTS; i++) {
+    sc_orbit_special_info sp_i;
+    if (sc_orbit_branch_special(ob, i, &sp_i)) continue;
+    const char *lab = sc_point_label_text(sp_i.label);
+    if (strcmp(lab, "EP") == 0) continue;
+    spt *q = &pts[(*npts)++];
+    snprintf(q->label, sizeof q->label, "%s", lab);
+    q->period = sp_i.period;
+    q->p = sp_i.p;
+    q->d = sp_i.d;
+  }
+  sc_orbit_branch_free(ob);
+  sc_map_free(m);
+  return t;
+}
+
+/* The logistic map x -> r x (1 - x), whose special points are known
+ * exactly: flips at r = 3, 1 + sqrt(6) and r_3 = 3.5440903595519228536
+ * (period 4 -> 8, a published constant), the period-3 fold at
+ * 1 + 2 sqrt(2).  Period 1 from r = 2.8 with branch switching up to
+ * period 8, and period 3 from r = 3.84.  Returns the run's time and the
+ * largest |p - exact| (missing points counted in *missing). */
+static double run_logistic(const char *preset, double hmax, double *err,
+                           int *missing, unsigned long *nev) {
+  const struct {
+    const char *label;
+    int period;
+    double p;
+  } exact[] = {
+      {"PD", 1, 3.0},
+      {"PD", 2, 3.4494897427831781}, /* 1 + sqrt(6) */
+      {"PD", 4, 3.5440903595519229},
+      {"LP", 3, 3.8284271247461901}, /* 1 + 2 sqrt(2) */
+  };
+  sc_accuracy acc;
+  sc_msg msg;
+  sc_map *m;
+  sc_accuracy_preset(&acc, preset, NULL);
+  if (sc_map_alloc("logistic", &acc, &m, &msg) ||
+      sc_map_set_param_by_name(m, "r", 2.8, &msg)) {
+    fprintf(stderr, "bench_accuracy_branch: %s\n", msg.text);
+    exit(1);
+  }
+  sc_orbit_branch_spec sp = {
+      .param = 0,
+      .from = 2.8,
+      .to = 3.9,
+      .period = 1,
+      .d0 = 0.6,
+      .switch_pd = 1,
+      .max_points = 4000,
+      .max_branches = 16,
+      .max_period = 8,
+      .hmax = hmax,
+  };
+  sc_orbit_branch *ob;
+  double t0 = now();
+  unsigned long e0 = sc_map_nevals(m);
+  int st = sc_orbit_branch_alloc(m, &sp, &ob, &msg);
+  if (!st) st = sc_orbit_branch_add_start(ob, 3.84, 0.1494, 3, &msg);
+  if (!st) st = sc_orbit_branch_run(ob, &msg);
+  double t = now() - t0;
+  if (st) {
+    fprintf(stderr, "bench_accuracy_branch: logistic: %s\n", msg.text);
+    exit(1);
+  }
+  *nev = sc_map_nevals(m) - e0;
+  *err = 0;
+  *missing = 0;
+  for (size_t k = 0; k < sizeof exact / sizeof exact[0]; k++) {
+    double best = HUGE_VAL;
+    for (size_t i = 0; i < sc_orbit_branch_nspecial(ob); i++) {
+      sc_orbit_special_info q;
+      if (sc_orbit_branch_special(ob, i, &q)) continue;
+      if (strcmp(sc_point_label_text(q.label), exact[k].label) == 0 &&
+          q.period == exact[k].period)
+        best = fmin(best, fabs(q.p - exact[k].p));
+    }
+    if (best > 1e-3) (*missing)++;
+    else *err = fmax(*err, best);
+  }
+  sc_orbit_branch_free(ob);
+  sc_map_free(m);
+  return t;
+}
+
+int main(int argc, char **argv) {
+  if (argc < 2) {
+    fprintf(stderr, "usage: bench_accuracy_branch OUTDIR\n");
+    return 2;
+  }
+  const char *dir = argv[1];
+  static spt ref[MAXPTS], cur[MAXPTS];
+  int nref, ncur;
+  unsigned long nev;
+  const bsetting refs = {"precise", 0.005, 1};
+  double tref = run(&refs, ref, &nref, &nev);
+  char path[512];
+  snprintf(path, sizeof path, "%s/tables.md", dir);
+  FILE *md = fopen(path, "a");
+  snprintf(path, sizeof path, "%s/branch.csv", dir);
+  FILE *csv = fopen(path, "w");
+  if (!md || !csv) {
+    fprintf(stderr, "bench_accuracy_branch: cannot write into %s\n", dir);
+    return 1;
+  }
+  fprintf(md,
+          "\nSpecial points: fig 5.8's orbits (driver frozen, beta = "
+          "2.5) from three starts, no branch switching; reference: "
+          "quad, preset precise, hmax 0.005 (%.3g s, %lu map "
+          "evaluations, %d special points:",
+          tref, nev, nref);
+  for (int i = 0; i < nref; i++)
+    fprintf(md, " %s(m=%d) %.15g%s", ref[i].label, ref[i].period, ref[i].p,
+            i + 1 < nref ? "," : "");
+  fprintf(md, ").\n\nError |p - p_ref| of each reference point (\"-\": "
+              "no point of that label and period within 1e-3), and the "
+              "largest over the folds and flips (LP, PD) and over the "
+              "others (borders):\n\n| setting | time (s) | map evaluations "
+              "| max LP/PD | max others |");
+  for (int i = 0; i < nref; i++)
+    fprintf(md, " %s%d %.4f |", ref[i].label, ref[i].period, ref[i].p);
+  fprintf(md, "\n|---|---|---|---|---|");
+  for (int i = 0; i < nref; i++)
+    fprintf(md, "---|");
+  fprintf(md, "\n");
+  fprintf(csv, "setting,seconds,max_err_lp_pd,max_err_other,missing\n");
+  const char *presets[] = {"fast", "default", "precise"};
+  const double hs[] = {0.02, 0.01, 0.005};
+  for (int ip = 0; ip < 3; ip++)
+    for (int ih = 0; ih < 3; ih++) {
+      bsetting s = {presets[ip], hs[ih], 0};
+      double t = run(&s, cur, &ncur, &nev);
+      double e_lp = 0, e_other = 0, errs[MAXPTS];
+      int missing = 0;
+      for (int i = 0; i < nref; i++) {
+        double best = HUGE_VAL;
+        for (int j = 0; j < ncur; j++)
+          if (strcmp(cur[j].label, ref[i].label) == 0 &&
+              cur[j].period == ref[i].period)
+            best = fmin(best, fabs(cur[j].p - ref[i].p));
+        errs[i] = best;
+        if (best > 1e-3) { /* not the same point */
+          missing++;
+          continue;
+        }
+        int fold_flip =
+            strcmp(ref[i].label, "LP") == 0 || strcmp(ref[i].label, "PD") == 0;
+        if (fold_flip)
+          e_lp = fmax(e_lp, best);
+        else
+          e_other = fmax(e_other, best);
+      }
+      char label[64];
+      snprintf(label, sizeof label, "%s hmax %g", presets[ip], hs[ih]);
+      fprintf(md, "| %s | %.3g | %lu | %.3g | %.3g |", label, t, nev, e_lp,
+              e_other);
+      for (int i = 0; i < nref; i++)
+        if (errs[i] > 1e-3)
+          fprintf(md, " - |");
+        else
+          fprintf(md, " %.2g |", errs[i]);
+      fprintf(md, "\n");
+      fprintf(csv, "%s,%.6g,%.6g,%.6g,%d\n", label, t, e_lp, e_other, missing);
+    }
+  fprintf(md, "\nThe logistic map against its exact special points "
+              "(flips at 3, 1 + sqrt(6), 3.5440903595519229, the period-3 "
+              "fold at 1 + 2 sqrt(2)): period 1 from r = 2.8 with branch "
+              "switching to period 8, period 3 from r = 3.84.\n\n"
+              "| setting | time (s) | map evaluations | max abs p - exact "
+              "| missing |\n|---|---|---|---|---|\n");
+  for (int ip = 0; ip < 3; ip++)
+    for (int ih = 0; ih < 3; ih++) {
+      double err;
+      int missing;
+      double t = run_logistic(presets[ip], hs[ih], &err, &missing, &nev);
+      fprintf(md, "| %s hmax %g | %.3g | %lu | %.3g | %d |\n", presets[ip],
+              hs[ih], t, nev, err, missing);
+    }
+  fclose(csv);
+  fclose(md);
+  snprintf(path, sizeof path, "%s/branch.gp", dir);
+  FILE *gp = fopen(path, "w");
+  if (!gp) return 1;
+  fprintf(gp,
+          "set terminal pngcairo size 900,600\nset output '%s/branch.png'\n"
+          "set datafile separator ','\nset logscale xy\nset grid\n"
+          "set format y \"10^{%%L}\"\nset key below\n"
+          "set title \"fig 5.8 special points: error against time "
+          "(reference: quad)\"\nset xlabel \"seconds per run\"\n"
+          "set ylabel \"max |p - p_{quad}| over matched points\"\n"
+          "plot '%s/branch.csv' every ::1 using 2:($3 > 1e-17 ? $3 : 1e-17) "
+          "with points pt 7 ps 1.2 title 'folds and flips (LP, PD)', \\\n"
+          "     '' every ::1 using 2:($3 > 1e-17 ? $3 : 1e-17):1 with labels "
+          "offset 0.8,0.6 left font ',8' notitle, \\\n"
+          "     '' every ::1 using 2:($4 > 1e-17 ? $4 : 1e-17) with points "
+          "pt 5 ps 1.2 title 'borders (GR, CS, SW, DI)'\n",
+          dir, dir);
+  fclose(gp);
+  char cmd[1100];
+  snprintf(cmd, sizeof cmd, "gnuplot '%s/branch.gp' 2>/dev/null", dir);
+  if (system(cmd) != 0)
+    fprintf(stderr, "bench_accuracy_branch: gnuplot failed\n");
+  return 0;
+}
