@@ -632,7 +632,7 @@ static void newton_on_state(sc_orbit_branch *b, int period,
     /* d_on(p): the border of any one iterate at p says where it is */
     sc_border_list *l = &b->bl_tmp;
     if (set_p(b->m, ip, p) ||
-        sc_map_eval_ex(b->m, like->d_on, SC_EVAL_DERIV, NULL, NULL,
+        sc_map_eval_ex(b->m, like->d_on, SC_EVAL_VALUE, NULL, NULL,
                        (l->n = 0, l), &v, NULL)) {
       snprintf(fx->why, sizeof fx->why, "cannot evaluate the map at %.17g",
                p);

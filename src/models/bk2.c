@@ -64,6 +64,11 @@ static int bk2_setup(void *vinst, const double *p, const int *opt,
   b->dstar = sc_bk2_dstar(b->alpha, b->beta);
   sc_bk2_dparams(b, 0, &b->p0); /* value-only evaluations start from it */
   b->search = sc_guard_first_root;
+  if (b->v > 0 && b->v < DBL_MIN)
+    return sc_fail(msg, SC_EINVAL,
+                   "bk2: v = %g is subnormal: the event horizons divide by "
+                   "it (valid: 0, or v >= %g)",
+                   b->v, DBL_MIN);
   if (b->vw && b->frozen)
     return sc_fail(msg, SC_EINVAL,
                    "bk2: friction = velocity-weakening with driver = frozen "
@@ -1017,7 +1022,16 @@ _Static_assert(1 + 4 <= SC_NDIR, "bk2 needs d and four parameters");
  * resolves): say so rather than return NaN with SC_OK. */
 static int nonfinite_derivative(const bk2_inst *b, double d, int st,
                                 const sc_map_value *out, sc_msg *msg) {
-  if (st || isfinite(out->dfdd)) return st;
+  if (st) return st;
+  /* At d* itself with V_s = 0, f' is unbounded from both sides: the
+   * both-start-together branch's derivative is not f'. */
+  if (d == b->dstar && b->vs == 0)
+    return sc_fail(msg, SC_ENONFINITE,
+                   "bk2: f' does not exist at d = d* = %.17g with the "
+                   "driver frozen or V = 0 (it grows like |d - d*|^(-1/2) "
+                   "on both sides)",
+                   d);
+  if (isfinite(out->dfdd)) return st;
   return sc_fail(msg, SC_ENONFINITE,
                  "bk2: f'(%.17g) is not finite: an event with zero slope "
                  "(d - d* = %.3g; next to d* f' grows like |d - d*|^(-1/2))",
@@ -1072,8 +1086,17 @@ static int bk2_eval_ex(void *vinst, double d, unsigned flags,
   bk2_state x;
   int st = sc_bk2_iterate_ex(b, &P, sc_dvar(d, 0, nd), flags, force, code,
                              borders, &x, out, NULL, NULL, msg);
-  return (flags & SC_EVAL_DERIV) ? nonfinite_derivative(b, d, st, out, msg)
-                                 : st;
+  if (st || !(flags & SC_EVAL_DERIV)) return st;
+  /* a forced code at d* (a switching's own system) has the derivative of
+   * that system: only a NaN is refused there */
+  if (force && force->n > 0)
+    return isfinite(out->dfdd)
+               ? SC_OK
+               : sc_fail(msg, SC_ENONFINITE,
+                         "bk2: f'(%.17g) along the forced code is not "
+                         "finite: an event with zero slope",
+                         d);
+  return nonfinite_derivative(b, d, st, out, msg);
 }
 
 /* ---- trajectories --------------------------------------------------- */
