@@ -241,6 +241,23 @@ static int advance_to(bk2_num *n, int w, gsl_odeiv2_system *sys, double t0,
   return GSL_SUCCESS;
 }
 
+/* One accepted step of at most hmax towards tend (h: the step to try,
+ * updated). */
+static int num_step(bk2_num *n, int w, gsl_odeiv2_system *sys, double *t,
+                    double tend, double *h, double hmax, double *y, int mode,
+                    sc_msg *msg) {
+  double hc = fmin(*h, hmax);
+  int st = gsl_odeiv2_evolve_apply(n->evol[w], n->ctrl[w], n->step[w], sys,
+                                   t, tend, &hc, y);
+  if (st != GSL_SUCCESS)
+    return sc_fail(msg, SC_ENOCONV,
+                   "bk2: ODE integration failed in mode %d at tau = %.6g "
+                   "(GSL: %s)",
+                   mode, *t, gsl_strerror(st));
+  *h = hc;
+  return SC_OK;
+}
+
 static double fastest_period(const bk2_inst *b, int mode) {
   return 2 * SC_PI / (mode == SC_BK2_SLIP12 ? b->w2 : b->w1);
 }
@@ -358,15 +375,8 @@ static int num_scan(const bk2_inst *b, const bk2_dpar *P, int mode,
   while (t < tmax) {
     double t0 = t;
     memcpy(y0, y, sizeof y);
-    double hc = fmin(h, hmax);
-    int st = gsl_odeiv2_evolve_apply(n->evol[w], n->ctrl[w], n->step[w], &sys,
-                                     &t, tmax, &hc, y);
-    if (st != GSL_SUCCESS)
-      return sc_fail(msg, SC_ENOCONV,
-                     "bk2: ODE integration failed in mode %d at tau = %.6g "
-                     "(GSL: %s)",
-                     mode, t, gsl_strerror(st));
-    h = hc;
+    int st = num_step(n, w, &sys, &t, tmax, &h, hmax, y, mode, msg);
+    if (st) return st;
     rhs(t, y, dy1, &ctx);
     int done = t > tevent;
     for (int k = 0; k < ng; k++) {
@@ -602,15 +612,8 @@ int sc_bk2_num_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
   while (t < tend) {
     double t0 = t;
     memcpy(y0, y, sizeof y);
-    double hc = fmin(h, hmax);
-    int st = gsl_odeiv2_evolve_apply(n->evol[w], n->ctrl[w], n->step[w], &sys,
-                                     &t, tend, &hc, y);
-    if (st != GSL_SUCCESS)
-      return sc_fail(msg, SC_ENOCONV,
-                     "bk2: ODE integration failed in mode %d at tau = %.6g "
-                     "(GSL: %s)",
-                     mode, t, gsl_strerror(st));
-    h = hc;
+    int st = num_step(n, w, &sys, &t, tend, &h, hmax, y, mode, msg);
+    if (st) return st;
     ev->steps++;
     rhs(t, y, dy1, &ctx);
     double step = t - t0, troot = -1;
