@@ -45,8 +45,42 @@ static const pset sets[] = {
  * points whose itineraries differ (within the integration error of a
  * discontinuity of f) and counting the itineraries that contain each
  * mode. */
+/* The smallest |m| of the borders of one exact iterate at d. */
+static double nearest_border(sc_map *m, double d) {
+  sc_border bl[256];
+  sc_border_list l = {bl, 256, 0};
+  sc_map_value v;
+  if (sc_map_eval_ex(m, d, SC_EVAL_VALUE, NULL, NULL, &l, &v, NULL))
+    return 0;
+  double best = HUGE_VAL;
+  for (size_t i = 0; i < l.n && i < l.cap; i++)
+    best = fmin(best, fabs(bl[i].value));
+  return best;
+}
+
+/* Exact against numerical flows at ODE tolerance tol on a grid of d for
+ * every parameter set: the largest |f difference| where the itineraries
+ * agree.  Itineraries (or one map undefined) may differ only within
+ * BORDER_NEAR of a border of the exact iterate; others are counted in
+ * *far (NULL: not counted). */
+#define BORDER_NEAR 1e-6
+static int compared_points;
+static double exact_vs_numerical_far(double tol, int *modes_seen, int *far);
 static double exact_vs_numerical(double tol, int *modes_seen) {
+  int far = 0;
+  double w = exact_vs_numerical_far(tol, modes_seen, &far);
+  if (modes_seen) {
+    tu_int("itineraries differing away from a border (|m| > 1e-6)", far, 0);
+    tu_true(compared_points >= 9 * 121 * (int)NSETS / 10,
+            "f compared at %d of %d points (itineraries agree)",
+            compared_points, 121 * (int)NSETS);
+  }
+  return w;
+}
+
+static double exact_vs_numerical_far(double tol, int *modes_seen, int *far) {
   double worst = 0;
+  compared_points = 0;
   for (size_t s = 0; s < NSETS; s++) {
     sc_map *ex = make(sets[s].alpha, sets[s].beta, sets[s].v, sets[s].driver);
     sc_map *nu = make(sets[s].alpha, sets[s].beta, sets[s].v, sets[s].driver);
@@ -59,7 +93,16 @@ static double exact_vs_numerical(double tol, int *modes_seen) {
       double d = -0.3 + 0.6 * i / 120 + 1e-4;
       char i1[SC_ITIN_LEN], i2[SC_ITIN_LEN];
       double f1 = feval(ex, d, i1), f2 = feval(nu, d, i2);
-      if (isnan(f1) || isnan(f2) || strcmp(i1, i2) != 0) continue;
+      if (isnan(f1) != isnan(f2) || (!isnan(f1) && strcmp(i1, i2) != 0)) {
+        if (nearest_border(ex, d) > BORDER_NEAR) {
+          (*far)++;
+          printf("  exact %s, numerical %s at d = %.17g (set %zu, tol %g)\n",
+                 i1, i2, d, s, tol);
+        }
+        continue;
+      }
+      if (isnan(f1)) continue;
+      compared_points++;
       worst = fmax(worst, fabs(f1 - f2));
       if (modes_seen) {
         if (strchr(i1, '1') && !strstr(i1, "12")) modes_seen[0] = 1;
