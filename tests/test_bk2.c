@@ -528,6 +528,59 @@ static void test_border_derivatives(void) {
           skipped, checked);
 }
 
+/* Exact and numerical flows give the same borders: the same number and
+ * names, values within the ODE tolerance's reach, at points
+ * whose itineraries agree (away from borders, where they may not). */
+static void test_borders_numerical(void) {
+  int compared = 0, names = 0, worse = 0;
+  double worst = 0;
+  for (size_t s = 0; s < NSETS; s++) {
+    sc_map *ex = make(sets[s].alpha, sets[s].beta, sets[s].v, sets[s].driver);
+    sc_map *nu = make(sets[s].alpha, sets[s].beta, sets[s].v, sets[s].driver);
+    sc_map_set_option(nu, "flows", "numerical", NULL);
+    for (int i = 0; i <= 30; i++) {
+      double d = -0.3 + 0.6 * i / 30 + 1e-4;
+      sc_border b1[128], b2[128];
+      sc_border_list l1 = {b1, 128, 0}, l2 = {b2, 128, 0};
+      sc_map_value v1, v2;
+      if (sc_map_eval_ex(ex, d, SC_EVAL_ITINERARY, NULL, NULL, &l1, &v1,
+                         NULL) ||
+          sc_map_eval_ex(nu, d, SC_EVAL_ITINERARY, NULL, NULL, &l2, &v2,
+                         NULL) ||
+          strcmp(v1.itinerary, v2.itinerary) != 0)
+        continue;
+      compared++;
+      if (l1.n != l2.n) {
+        names++;
+        printf("  %zu exact against %zu numerical borders at d = %g (set "
+               "%zu)\n", l1.n, l2.n, d, s);
+        continue;
+      }
+      for (size_t k = 0; k < l1.n && k < 128; k++) {
+        size_t j = 0;
+        while (j < l2.n && j < 128 && strcmp(b1[k].name, b2[j].name) != 0)
+          j++;
+        if (j >= l2.n || j >= 128) {
+          names++;
+          printf("  '%s' (exact) not among the numerical borders\n",
+                 b1[k].name);
+          continue;
+        }
+        double e = fabs(b1[k].value - b2[j].value);
+        worst = fmax(worst, e);
+        if (e > 1e-7) worse++;
+      }
+    }
+    sc_map_free(ex);
+    sc_map_free(nu);
+  }
+  tu_true(compared >= 100, "borders compared at %d points", compared);
+  tu_int("points where the borders' names differ", names, 0);
+  /* ODE tolerance 1e-10 (default): values agree far below 1e-7 */
+  tu_int("border values apart by more than 1e-7", worse, 0);
+  printf("(largest difference %.3g)\n", worst);
+}
+
 /* Within a few ulps of d* with the driver frozen, f' is beyond what
  * double resolves: each evaluation with derivatives gives a finite f' or
  * SC_ENONFINITE with a message, never NaN with SC_OK. */
@@ -553,6 +606,7 @@ int main(void) {
   test_derivatives();
   test_border_derivatives();
   test_near_dstar();
+  test_borders_numerical();
   test_properties();
   test_reference();
   test_bad_input();
