@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The whole test suite, as CI runs it: install, build with warnings as
-# errors, run ctest; then again under AddressSanitizer and UBSan; then the
+# errors, run ctest; install and build examples/downstream against the
+# installed package (CMake and pkg-config, shared and static); then again under AddressSanitizer and UBSan; then the
 # MPI build's distributed-chart test.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -10,6 +11,10 @@ echo "== release build, -Werror =="
 cmake -S . -B build-ci -DCMAKE_BUILD_TYPE=Release -DSLIPCONT_WERROR=ON >/dev/null
 cmake --build build-ci -j"$jobs"
 (cd build-ci && ctest --output-on-failure -j"$jobs")
+echo "== install, and a downstream project built against it =="
+rm -rf build-ci/prefix
+cmake --install build-ci --prefix build-ci/prefix >/dev/null
+sh examples/downstream/check.sh build-ci/prefix build-ci/downstream
 echo "== AddressSanitizer + UndefinedBehaviorSanitizer =="
 cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DSLIPCONT_WERROR=ON \
   -DSLIPCONT_SANITIZE=ON >/dev/null

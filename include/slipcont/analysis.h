@@ -27,7 +27,7 @@ extern "C" {
  * point exactly @p to; steps = 1 gives @p from only.
  * @return the point; NaN for i >= steps or steps = 0.
  */
-double sc_grid_point(double from, double to, size_t steps, size_t i);
+SC_API double sc_grid_point(double from, double to, size_t steps, size_t i);
 
 /** Largest period sc_sweep_period() looks for. */
 #define SC_SWEEP_PERIOD_MAX 16
@@ -43,7 +43,7 @@ double sc_grid_point(double from, double to, size_t steps, size_t i);
  * @return the period, or 0 if none was found ("chaos or a period above
  *         pmax"); -1 for n = 0 or a non-finite value.
  */
-int sc_sweep_period(const double *x, size_t n, double rtol, int pmax);
+SC_API int sc_sweep_period(const double *x, size_t n, double rtol, int pmax);
 
 /** Order of a sweep over the parameter grid. */
 typedef enum {
@@ -101,8 +101,8 @@ typedef struct sc_sweep sc_sweep;
  * @return SC_OK; SC_EINVAL for a bad spec (the message names the field
  *         and its valid range); SC_ENOMEM.
  */
-int sc_sweep_alloc(const sc_map *m, const sc_sweep_spec *spec,
-                   sc_sweep **out, sc_msg *msg);
+SC_API int sc_sweep_alloc(const sc_map *m, const sc_sweep_spec *spec,
+                          sc_sweep **out, sc_msg *msg);
 
 /**
  * @brief Run the sweep.  With SC_SEED_FIXED the parameter values are
@@ -119,10 +119,10 @@ int sc_sweep_alloc(const sc_map *m, const sc_sweep_spec *spec,
  *         the model (SC_EINTERNAL, SC_ENOMEM, SC_EINVAL from a refused
  *         parameter value), with the message.
  */
-int sc_sweep_run(sc_sweep *s, sc_msg *msg);
+SC_API int sc_sweep_run(sc_sweep *s, sc_msg *msg);
 
 /** Number of points: steps, times 2 for SC_SWEEP_BOTH. */
-size_t sc_sweep_npoints(const sc_sweep *s);
+SC_API size_t sc_sweep_npoints(const sc_sweep *s);
 
 /**
  * @brief Point @p i (0 <= i < sc_sweep_npoints()), in the order of the
@@ -130,17 +130,17 @@ size_t sc_sweep_npoints(const sc_sweep *s);
  * decreasing parameter.  The kept iterates stay owned by @p s.
  * @return SC_OK or SC_EINVAL for i out of range.
  */
-int sc_sweep_get_point(const sc_sweep *s, size_t i, sc_sweep_point *pt);
+SC_API int sc_sweep_get_point(const sc_sweep *s, size_t i, sc_sweep_point *pt);
 
 /** Number of points whose map was undefined. */
-size_t sc_sweep_nundefined(const sc_sweep *s);
+SC_API size_t sc_sweep_nundefined(const sc_sweep *s);
 /** The message of the first undefined point (in point order), or "". */
-const char *sc_sweep_undefined_reason(const sc_sweep *s);
+SC_API const char *sc_sweep_undefined_reason(const sc_sweep *s);
 /** Map evaluations made by the sweep (all threads). */
-unsigned long sc_sweep_nevals(const sc_sweep *s);
+SC_API unsigned long sc_sweep_nevals(const sc_sweep *s);
 
 /** @brief Release @p s; NULL is accepted. */
-void sc_sweep_free(sc_sweep *s);
+SC_API void sc_sweep_free(sc_sweep *s);
 
 #ifdef __cplusplus
 }

@@ -85,21 +85,21 @@ typedef struct {
  * @return SC_OK; SC_EINVAL for a bad spec (message names the field);
  *         SC_ENOMEM; an error of the model other than an undefined map.
  */
-int sc_fixed_points_find(sc_map *m, const sc_fixed_points_spec *spec,
+SC_API int sc_fixed_points_find(sc_map *m, const sc_fixed_points_spec *spec,
                          sc_orbit_set **out, sc_msg *msg);
 
 /** Number of orbits (families included), by increasing smallest point. */
-size_t sc_orbit_set_count(const sc_orbit_set *s);
+SC_API size_t sc_orbit_set_count(const sc_orbit_set *s);
 /** @brief Orbit @p i; SC_EINVAL for i out of range. */
-int sc_orbit_set_get(const sc_orbit_set *s, size_t i, sc_orbit_info *o);
+SC_API int sc_orbit_set_get(const sc_orbit_set *s, size_t i, sc_orbit_info *o);
 /** Pieces of constant itinerary the interval was split into. */
-size_t sc_orbit_set_npieces(const sc_orbit_set *s);
+SC_API size_t sc_orbit_set_npieces(const sc_orbit_set *s);
 /** Roots whose orbit has a smaller minimal period (not reported). */
-size_t sc_orbit_set_nlower(const sc_orbit_set *s);
+SC_API size_t sc_orbit_set_nlower(const sc_orbit_set *s);
 /** Grid or bisection points where the map was undefined. */
-size_t sc_orbit_set_nundefined(const sc_orbit_set *s);
+SC_API size_t sc_orbit_set_nundefined(const sc_orbit_set *s);
 /** @brief Release @p s; NULL is accepted. */
-void sc_orbit_set_free(sc_orbit_set *s);
+SC_API void sc_orbit_set_free(sc_orbit_set *s);
 
 /* ------------------------------------------------------------------ */
 /* Branches of periodic orbits in one parameter                          */
@@ -116,7 +116,7 @@ typedef enum {
 } sc_point_label;
 
 /** Label text: "LP", "PD", "GR", "CS", "SW", "DI", "EP". */
-const char *sc_point_label_text(sc_point_label l);
+SC_API const char *sc_point_label_text(sc_point_label l);
 
 /** What sc_orbit_branch_run() continues. */
 typedef struct {
@@ -169,7 +169,7 @@ typedef struct sc_orbit_branch sc_orbit_branch;
  * max_branches points, as many special points).
  * @return SC_OK; SC_EINVAL naming the bad field; SC_ENOMEM.
  */
-int sc_orbit_branch_alloc(sc_map *m, const sc_orbit_branch_spec *spec,
+SC_API int sc_orbit_branch_alloc(sc_map *m, const sc_orbit_branch_spec *spec,
                           sc_orbit_branch **out, sc_msg *msg);
 
 /**
@@ -182,7 +182,7 @@ int sc_orbit_branch_alloc(sc_map *m, const sc_orbit_branch_spec *spec,
  *         a period outside [1, max_period]; SC_ENOMEM when more than
  *         max_branches starts were added.
  */
-int sc_orbit_branch_add_start(sc_orbit_branch *b, double p, double d,
+SC_API int sc_orbit_branch_add_start(sc_orbit_branch *b, double p, double d,
                               int period, sc_msg *msg);
 
 /**
@@ -207,22 +207,22 @@ int sc_orbit_branch_add_start(sc_orbit_branch *b, double p, double d,
  *         SC_ENOCONV or SC_ENEUTRAL when the starting orbit cannot be
  *         found; SC_ECALLBACK if progress stopped it; SC_ENOMEM.
  */
-int sc_orbit_branch_run(sc_orbit_branch *b, sc_msg *msg);
+SC_API int sc_orbit_branch_run(sc_orbit_branch *b, sc_msg *msg);
 
 /** Accepted points, in the order they were computed. */
-size_t sc_orbit_branch_npoints(const sc_orbit_branch *b);
+SC_API size_t sc_orbit_branch_npoints(const sc_orbit_branch *b);
 /** @brief Point @p i; SC_EINVAL for i out of range. */
-int sc_orbit_branch_point(const sc_orbit_branch *b, size_t i,
+SC_API int sc_orbit_branch_point(const sc_orbit_branch *b, size_t i,
                           sc_orbit_point_info *pt);
 /** Special points, in the order they were found. */
-size_t sc_orbit_branch_nspecial(const sc_orbit_branch *b);
+SC_API size_t sc_orbit_branch_nspecial(const sc_orbit_branch *b);
 /** @brief Special point @p i; SC_EINVAL for i out of range. */
-int sc_orbit_branch_special(const sc_orbit_branch *b, size_t i,
+SC_API int sc_orbit_branch_special(const sc_orbit_branch *b, size_t i,
                             sc_orbit_special_info *sp);
 /** Branch segments computed. */
-int sc_orbit_branch_nbranches(const sc_orbit_branch *b);
+SC_API int sc_orbit_branch_nbranches(const sc_orbit_branch *b);
 /** @brief Release @p b; NULL is accepted. */
-void sc_orbit_branch_free(sc_orbit_branch *b);
+SC_API void sc_orbit_branch_free(sc_orbit_branch *b);
 
 /**
  * A margin below this counts as the degeneracy of a located
@@ -245,7 +245,7 @@ void sc_orbit_branch_free(sc_orbit_branch *b);
  * mode 12"), @p degeneracy the margin.
  * @return the label.
  */
-sc_point_label sc_dib_classify(const sc_map_value *a, const sc_map_value *b,
+SC_API sc_point_label sc_dib_classify(const sc_map_value *a, const sc_map_value *b,
                                double *degeneracy, char *note, size_t len);
 
 #ifdef __cplusplus

@@ -82,26 +82,26 @@ typedef struct sc_period sc_period;
  *         which), SC_ENOMEM.  All memory is taken here: reset and push
  *         never allocate.
  */
-int sc_period_alloc(int max_period, int confirm, double rtol,
-                    sc_period **out, sc_msg *msg);
+SC_API int sc_period_alloc(int max_period, int confirm, double rtol,
+                           sc_period **out, sc_msg *msg);
 
 /** @brief Release @p pd; NULL is accepted. */
-void sc_period_free(sc_period *pd);
+SC_API void sc_period_free(sc_period *pd);
 
 /** @brief Start a new orbit at @p x0 (the initial state, iterate 0). */
-void sc_period_reset(sc_period *pd, double x0);
+SC_API void sc_period_reset(sc_period *pd, double x0);
 
 /**
  * @brief Feed the next iterate.
  * @return the accepted period (1..max_period) once one is accepted, and
  *         the same value for every later push; 0 while none is.
  */
-int sc_period_push(sc_period *pd, double x);
+SC_API int sc_period_push(sc_period *pd, double x);
 
 /** Tolerance in use after the last push (see the rule above). */
-double sc_period_tol(const sc_period *pd);
+SC_API double sc_period_tol(const sc_period *pd);
 /** Extent max - min of the iterates seen since the last reset. */
-double sc_period_extent(const sc_period *pd);
+SC_API double sc_period_extent(const sc_period *pd);
 
 /** Outcome of sc_period_find(). */
 typedef struct {
@@ -123,8 +123,8 @@ typedef struct {
  *         map failure other than SC_EUNDEF / SC_ENONFINITE (e.g.
  *         SC_ENOCONV), with the map's message.
  */
-int sc_period_find(sc_period *pd, sc_map *m, double d0, long max_iter,
-                   sc_period_result *res, sc_msg *msg);
+SC_API int sc_period_find(sc_period *pd, sc_map *m, double d0, long max_iter,
+                          sc_period_result *res, sc_msg *msg);
 
 /** How each point of a chart row starts. */
 enum {
@@ -170,7 +170,7 @@ typedef struct {
 
 /** @brief Defaults: no axes, transient 1000, max_period 16, confirm 4,
  * seed fixed, d0 = 0. */
-void sc_chart_spec_default(sc_chart_spec *s);
+SC_API void sc_chart_spec_default(sc_chart_spec *s);
 
 /**
  * @brief Check a chart against the model of @p m before any work: steps
@@ -181,12 +181,12 @@ void sc_chart_spec_default(sc_chart_spec *s);
  * @return SC_OK or SC_EINVAL with a message naming the key
  *         (`x-steps = 0 (valid: >= 2)`, `x and y are both 'alpha'`, ...).
  */
-int sc_chart_check(const sc_map *m, const sc_chart_spec *s, sc_msg *msg);
+SC_API int sc_chart_check(const sc_map *m, const sc_chart_spec *s, sc_msg *msg);
 
 /** x value of column @p i (0 <= i < x_steps). */
-double sc_chart_x(const sc_chart_spec *s, long i);
+SC_API double sc_chart_x(const sc_chart_spec *s, long i);
 /** y value of row @p j (0 <= j < y_steps). */
-double sc_chart_y(const sc_chart_spec *s, long j);
+SC_API double sc_chart_y(const sc_chart_spec *s, long j);
 
 /**
  * Progress callback of sc_chart_rows(): @p done points of this call are
@@ -224,10 +224,10 @@ typedef int (*sc_chart_progress_fn)(void *ctx, long done);
  *         SC_ECALLBACK if the callback cancelled (rows are then partly
  *         computed).
  */
-int sc_chart_rows(const sc_map *proto, const sc_chart_spec *s, long first,
-                  long count, long stride, int threads,
-                  sc_chart_progress_fn progress, void *ctx,
-                  sc_chart_point *out, sc_msg *msg);
+SC_API int sc_chart_rows(const sc_map *proto, const sc_chart_spec *s, long first,
+                         long count, long stride, int threads,
+                         sc_chart_progress_fn progress, void *ctx,
+                         sc_chart_point *out, sc_msg *msg);
 
 #ifdef __cplusplus
 }

@@ -10,6 +10,20 @@
 
 #include <stddef.h>
 
+/**
+ * Marks a declaration as part of the public interface.  The libraries are
+ * built with hidden visibility (-fvisibility=hidden), so only what carries
+ * SC_API is exported from libslipcont.so and libslipcont_io.so; everything
+ * else stays private to the library.
+ */
+#if !defined(SC_API)
+#if defined(__GNUC__) || defined(__clang__)
+#define SC_API __attribute__((visibility("default")))
+#else
+#define SC_API
+#endif
+#endif
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -46,7 +60,7 @@ typedef enum {
  * @brief Text for a status code ("unknown status" for others).
  * @return a static string; never NULL.
  */
-const char *sc_strerror(int status);
+SC_API const char *sc_strerror(int status);
 
 /** Length of a message buffer, terminating NUL included. */
 #define SC_MSG_LEN 512
@@ -64,7 +78,7 @@ typedef struct {
  * @brief Write a formatted message into @p msg (no-op if NULL).
  * @return @p status, so that `return sc_fail(msg, SC_EINVAL, ...)` reads.
  */
-int sc_fail(sc_msg *msg, int status, const char *fmt, ...)
+SC_API int sc_fail(sc_msg *msg, int status, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 3, 4)))
 #endif
@@ -97,13 +111,13 @@ typedef struct {
  * @brief Fill @p acc with a named preset: "fast", "default", "precise".
  * @return SC_OK, or SC_EINVAL for an unknown name (message says which).
  */
-int sc_accuracy_preset(sc_accuracy *acc, const char *name, sc_msg *msg);
+SC_API int sc_accuracy_preset(sc_accuracy *acc, const char *name, sc_msg *msg);
 
 /**
  * @brief Check every field: finite, positive tolerances, counts >= 1.
  * @return SC_OK or SC_EINVAL naming the first bad field.
  */
-int sc_accuracy_check(const sc_accuracy *acc, sc_msg *msg);
+SC_API int sc_accuracy_check(const sc_accuracy *acc, sc_msg *msg);
 
 /**
  * @brief Set one field by name (the names of the struct members with '_'
@@ -111,49 +125,49 @@ int sc_accuracy_check(const sc_accuracy *acc, sc_msg *msg);
  * @return SC_OK, or SC_EINVAL for an unknown name, a malformed number,
  *         NaN or an out-of-range value.
  */
-int sc_accuracy_set(sc_accuracy *acc, const char *name, const char *value,
-                    sc_msg *msg);
+SC_API int sc_accuracy_set(sc_accuracy *acc, const char *name, const char *value,
+                           sc_msg *msg);
 
 /** Number of settable fields; sc_accuracy_field_name(i) lists them. */
-size_t sc_accuracy_nfields(void);
+SC_API size_t sc_accuracy_nfields(void);
 /** Name of field @p i (0 <= i < sc_accuracy_nfields()), or NULL. */
-const char *sc_accuracy_field_name(size_t i);
+SC_API const char *sc_accuracy_field_name(size_t i);
 /** Current value of field @p i as a double (counts converted). */
-double sc_accuracy_field_value(const sc_accuracy *acc, size_t i);
+SC_API double sc_accuracy_field_value(const sc_accuracy *acc, size_t i);
 /** One line saying what field @p i controls, or NULL. */
-const char *sc_accuracy_field_doc(size_t i);
+SC_API const char *sc_accuracy_field_doc(size_t i);
 /**
  * @brief Valid range [lo, hi] of field @p i (closed; tolerances have
  * lo > 0).  @return 1 if the field is a count, 0 if a real, -1 if @p i is
  * out of range.
  */
-int sc_accuracy_field_range(size_t i, double *lo, double *hi);
+SC_API int sc_accuracy_field_range(size_t i, double *lo, double *hi);
 
 /**
  * @brief Convergence test |dx| <= epsabs + epsrel |x|.
  * @return SC_OK if converged, SC_CONTINUE if not, SC_EINVAL for NaN or
  *         negative tolerances, SC_ENONFINITE if dx or x is not finite.
  */
-int sc_test_delta(double dx, double x, double epsabs, double epsrel);
+SC_API int sc_test_delta(double dx, double x, double epsabs, double epsrel);
 
 /**
  * @brief Residual test |f| <= epsabs.
  * @return SC_OK, SC_CONTINUE, SC_EINVAL (bad tolerance) or SC_ENONFINITE.
  */
-int sc_test_residual(double f, double epsabs);
+SC_API int sc_test_residual(double f, double epsabs);
 
 /**
  * @brief Parse a finite double from the whole of @p text (surrounding
  * blanks allowed).
  * @return SC_OK, or SC_EINVAL for empty, trailing garbage, NaN or inf.
  */
-int sc_parse_double(const char *text, double *out);
+SC_API int sc_parse_double(const char *text, double *out);
 
 /**
  * @brief Parse a decimal integer in [lo, hi] from the whole of @p text.
  * @return SC_OK or SC_EINVAL.
  */
-int sc_parse_long(const char *text, long lo, long hi, long *out);
+SC_API int sc_parse_long(const char *text, long lo, long hi, long *out);
 
 #ifdef __cplusplus
 }

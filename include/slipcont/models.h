@@ -50,13 +50,13 @@ typedef struct {
  * @return SC_OK, or SC_EINVAL with `name = value out of range (valid:
  *         (lo, hi])` in @p msg (NaN and infinities are out of range).
  */
-int sc_param_check(const sc_param_info *pi, double value, sc_msg *msg);
+SC_API int sc_param_check(const sc_param_info *pi, double value, sc_msg *msg);
 
 /**
  * @brief Write the valid values of @p oi joined by '|' into @p buf.
  * @return @p buf.
  */
-char *sc_option_values_text(const sc_option_info *oi, char *buf, size_t len);
+SC_API char *sc_option_values_text(const sc_option_info *oi, char *buf, size_t len);
 
 /** What to compute in sc_map_eval(); combine with |. */
 enum {
@@ -130,18 +130,18 @@ typedef struct sc_model_type {
 } sc_model_type;
 
 /** The two-block Burridge-Knopoff model of MODEL.md. */
-extern const sc_model_type sc_model_bk2;
+SC_API extern const sc_model_type sc_model_bk2;
 /** The logistic map x -> r x (1 - x). */
-extern const sc_model_type sc_model_logistic;
+SC_API extern const sc_model_type sc_model_logistic;
 /** The cubic map x -> x + mu1 + mu2 x - x^3 (cusp normal form). */
-extern const sc_model_type sc_model_cubic;
+SC_API extern const sc_model_type sc_model_cubic;
 
 /** Number of built-in models; sc_model_get(i) lists them. */
-size_t sc_model_count(void);
+SC_API size_t sc_model_count(void);
 /** Built-in model @p i, or NULL. */
-const sc_model_type *sc_model_get(size_t i);
+SC_API const sc_model_type *sc_model_get(size_t i);
 /** Built-in model by name, or NULL. */
-const sc_model_type *sc_model_find(const char *name);
+SC_API const sc_model_type *sc_model_find(const char *name);
 
 /** bk2 modes (MODEL.md): the `mode` of trajectory samples. */
 enum {
@@ -153,7 +153,7 @@ enum {
 
 /** d* = (beta - 1)/(1 + 2 alpha): below it block 1 reaches its
  * threshold first (MODEL.md). */
-double sc_bk2_dstar(double alpha, double beta);
+SC_API double sc_bk2_dstar(double alpha, double beta);
 
 #ifdef __cplusplus
 }
