@@ -235,6 +235,10 @@ SC_API int sc_file_open(const char *dir, const char *name, sc_file **out,
 /** The stream to write to. */
 SC_API FILE *sc_file_stream(sc_file *f);
 
+/** The temporary path being written ("dir/.name.XXXXXX"), owned by @p f:
+ * a program that must end abruptly (a signal) may unlink() it. */
+SC_API const char *sc_file_temp_path(const sc_file *f);
+
 /**
  * @brief Flush, sync, close and rename into place; frees @p f in every
  * case (on failure the temporary file is removed).

@@ -17,6 +17,7 @@
 
 #include "cli/help.h"
 #include "cli/tasks.h"
+#include "slipcont/chart.h"
 #include "slipcont/io.h"
 
 enum { EXIT_OK = 0, EXIT_COMPUTE = 1, EXIT_INPUT = 2 };
@@ -31,6 +32,7 @@ typedef struct {
   const char *out;
   int quiet;
   long threads;
+  long stop_after_rows;
   int help;
   int markdown;
 } cli_args;
@@ -59,9 +61,14 @@ static void usage(FILE *f) {
       "  --quiet                  no notes or progress on stderr\n"
       "  --threads N              OpenMP threads for parallel tasks (N >= "
       "1)\n"
+      "  --stop-after-rows N      chart: stop after N rows with a checkpoint,"
+      " as a kill\n"
+      "                           would (to test resuming)\n"
       "\n"
-      "exit status: 0 success, 1 computation failed, 2 bad input (usage, "
-      "scene, output folder)\n"
+      "exit status: 0 success, 1 computation failed or interrupted, 2 bad "
+      "input (usage,\nscene, output folder); 130/143 when SIGINT/SIGTERM "
+      "had to end a task that did\nnot stop within a second (no "
+      "half-written file is left)\n"
       "see docs/guide.md; examples/*.ini show each task.\n",
       f);
 }
@@ -70,7 +77,8 @@ static void run_usage(FILE *f, const char *cmd) {
   fprintf(f,
           "usage: slipcont %s SCENE [--set SECTION.KEY=VALUE]... [--out DIR]"
           "%s\n\n",
-          cmd, strcmp(cmd, "run") == 0 ? " [--quiet] [--threads N]" : "");
+          cmd, strcmp(cmd, "run") == 0 ? " [--quiet] [--threads N]"
+                                         " [--stop-after-rows N]" : "");
   if (strcmp(cmd, "run") == 0)
     fputs("Validate the scene, create the output folder, compute the task, "
           "write CSV files,\nsummary.txt and gnuplot scripts, and render "
@@ -124,6 +132,13 @@ static int parse_run_args(int argc, char **argv, cli_args *a) {
       if (!val || sc_parse_long(val, 1, 4096, &a->threads))
         return bad_usage("--threads needs a count in [1, 4096], not '%s'",
                          val ? val : "");
+    } else if (strncmp(s, "--stop-after-rows", 17) == 0 &&
+               (s[17] == '\0' || s[17] == '=')) {
+      val = s[17] ? s + 18 : (i + 1 < argc ? argv[++i] : NULL);
+      if (!val || sc_parse_long(val, 1, SC_CHART_MAX_POINTS,
+                                &a->stop_after_rows))
+        return bad_usage("--stop-after-rows needs a row count >= 1, not "
+                         "'%s'", val ? val : "");
     } else if (s[0] == '-' && s[1]) {
       return bad_usage("unknown option '%s'", s);
     } else if (!a->scene) {
@@ -207,7 +222,9 @@ static int cmd_run(const cli_args *a) {
           "but no PNG (set [output] plot = no to silence this)\n",
           stderr);
   sc_cli_catch_signals();
+  r.stop_after_rows = a->stop_after_rows;
   int st = task->run(&r);
+  sc_cli_signals_done();
   if (st) {
     fprintf(stderr, "slipcont: %s: %s\n", sc_scene_name(s), msg.text);
     rc = EXIT_COMPUTE;

@@ -149,24 +149,84 @@ static uint64_t fnv1a(const char *s) {
 /* Checkpoint: `chart.checkpoint` in the output folder                   */
 
 #define CKPT_NAME "chart.checkpoint"
-#define CKPT_MAGIC "slipcont chart checkpoint 1\n"
+#define CKPT_MAGIC "slipcont chart checkpoint 2\n"
 #define SCENE_TEXT_LEN 8192
+/* Bytes per point on disk: d (IEEE 754 binary64), period, iterations
+ * (two's-complement int32), each little-endian whatever the host. */
+#define CKPT_POINT_BYTES 16
+
+/* The layout, version 2: the magic line, then the text lines
+ *   hash H       FNV-1a of the scene text (16 hex digits)
+ *   rows R       rows done, columns C, bytes B of the scene text
+ *   columns C
+ *   bytes B
+ *   checksum S   FNV-1a of the R*C points as stored
+ * then the scene text and R*C points of CKPT_POINT_BYTES.  Every value
+ * read back is checked (ckpt_read()); anything off starts the chart over. */
+
+static void put_le(unsigned char *p, uint64_t v, int n) {
+  for (int i = 0; i < n; i++) p[i] = (unsigned char)(v >> (8 * i));
+}
+
+static uint64_t get_le(const unsigned char *p, int n) {
+  uint64_t v = 0;
+  for (int i = n - 1; i >= 0; i--) v = v << 8 | p[i];
+  return v;
+}
+
+static void point_encode(const sc_chart_point *pt, unsigned char *b) {
+  uint64_t bits;
+  memcpy(&bits, &pt->d, sizeof bits);
+  put_le(b, bits, 8);
+  put_le(b + 8, (uint32_t)pt->period, 4);
+  put_le(b + 12, (uint32_t)pt->iterations, 4);
+}
+
+static void point_decode(const unsigned char *b, sc_chart_point *pt) {
+  uint64_t bits = get_le(b, 8);
+  memcpy(&pt->d, &bits, sizeof bits);
+  uint32_t p = (uint32_t)get_le(b + 8, 4), it = (uint32_t)get_le(b + 12, 4);
+  pt->period = p > INT32_MAX ? -(int32_t)(UINT32_MAX - p) - 1 : (int32_t)p;
+  pt->iterations = it > INT32_MAX ? -1 : (int32_t)it;
+}
+
+static uint64_t fnv1a_bytes(uint64_t h, const unsigned char *p, size_t n) {
+  for (size_t i = 0; i < n; i++) {
+    h ^= p[i];
+    h *= 1099511628211ULL;
+  }
+  return h;
+}
+#define FNV_OFFSET 1469598103934665603ULL
 
 /* Write the rows done so far, atomically (temporary name + rename). */
-static int ckpt_write(const char *dir, const char *text, uint64_t hash,
-                      long nx, long rows, const sc_chart_point *grid,
-                      sc_msg *msg) {
+static int ckpt_write(sc_cli_run *r, const char *text, uint64_t hash,
+                      long nx, long rows, const sc_chart_point *grid) {
+  const char *dir = r->dir;
+  sc_msg *msg = r->msg;
+  const size_t n = (size_t)(rows * nx);
+  unsigned char b[CKPT_POINT_BYTES];
+  uint64_t sum = FNV_OFFSET;
+  for (size_t k = 0; k < n; k++) {
+    point_encode(&grid[k], b);
+    sum = fnv1a_bytes(sum, b, sizeof b);
+  }
   sc_file *f = NULL;
-  int st = sc_file_open(dir, CKPT_NAME, &f, msg);
+  int st = sc_cli_open(r, CKPT_NAME, &f);
   if (st) return st;
   FILE *o = sc_file_stream(f);
   fputs(CKPT_MAGIC, o);
-  fprintf(o, "hash %016llx\nrows %ld\nbytes %zu\n", (unsigned long long)hash,
-          rows, strlen(text));
+  fprintf(o, "hash %016llx\nrows %ld\ncolumns %ld\nbytes %zu\n"
+             "checksum %016llx\n",
+          (unsigned long long)hash, rows, nx, strlen(text),
+          (unsigned long long)sum);
   fputs(text, o);
-  if (fwrite(grid, sizeof *grid, (size_t)(rows * nx), o) != (size_t)(rows * nx)) {
-    sc_file_abort(f);
-    return sc_fail(msg, SC_EIO, "%s/%s: write failed", dir, CKPT_NAME);
+  for (size_t k = 0; k < n; k++) {
+    point_encode(&grid[k], b);
+    if (fwrite(b, 1, sizeof b, o) != sizeof b) {
+      sc_file_abort(f);
+      return sc_fail(msg, SC_EIO, "%s/%s: write failed", dir, CKPT_NAME);
+    }
   }
   return sc_file_commit(f, msg);
 }
@@ -186,26 +246,47 @@ static void first_change(const char *old, const char *now, char *buf,
   snprintf(buf, len, "the scene");
 }
 
+/* A point as the chart can have computed it: a period class in range,
+ * iterations within the transient, d finite (or NaN where undefined). */
+static int point_valid(const sc_chart_point *p, const sc_chart_spec *c) {
+  if (p->period != SC_PERIOD_UNDEFINED && p->period != SC_PERIOD_HIGH &&
+      (p->period < 1 || p->period > c->max_period))
+    return 0;
+  if (p->iterations < 0 || p->iterations > c->transient) return 0;
+  if (p->period != SC_PERIOD_UNDEFINED && !isfinite(p->d)) return 0;
+  return 1;
+}
+
 /* Read a checkpoint into grid; returns the rows it holds (0 when there is
- * none, it is unreadable, or it belongs to another scene: then a note
- * says so and the chart starts over). */
-static long ckpt_read(const sc_cli_run *r, const char *text, uint64_t hash,
-                      long nx, long ny, sc_chart_point *grid) {
+ * none, it is unreadable, corrupt, or it belongs to another scene: then a
+ * note says so and the chart starts over). */
+static long ckpt_read(const sc_cli_run *r, const sc_chart_spec *c,
+                      const char *text, uint64_t hash, sc_chart_point *grid) {
+  const long nx = c->x_steps, ny = c->y_steps;
   char path[4096];
   snprintf(path, sizeof path, "%s/%s", r->dir, CKPT_NAME);
   FILE *in = fopen(path, "rb");
   if (!in) return 0;
   char magic[sizeof CKPT_MAGIC] = "";
-  unsigned long long h = 0;
-  long rows = -1;
+  unsigned long long h = 0, sum = 0;
+  long rows = -1, cols = -1;
   size_t bytes = 0;
   long got = 0;
   char *old = NULL;
   if (fread(magic, 1, sizeof magic - 1, in) != sizeof magic - 1 ||
       strcmp(magic, CKPT_MAGIC) != 0 ||
-      fscanf(in, "hash %llx\nrows %ld\nbytes %zu", &h, &rows, &bytes) != 3 ||
-      fgetc(in) != '\n' || rows < 0 || rows > ny || bytes >= SCENE_TEXT_LEN) {
-    sc_cli_note(r, "%s is not a chart checkpoint: starting over", path);
+      fscanf(in, "hash %16llx\nrows %9ld\ncolumns %9ld\nbytes %5zu\n"
+                 "checksum %16llx",
+             &h, &rows, &cols, &bytes, &sum) != 5 ||
+      fgetc(in) != '\n') {
+    sc_cli_note(r, "%s is not a chart checkpoint of this version: starting "
+                   "over", path);
+    goto done;
+  }
+  if (rows < 0 || rows > ny || cols != nx || bytes >= SCENE_TEXT_LEN) {
+    sc_cli_note(r, "%s is corrupt (rows %ld of %ld, columns %ld of %ld, "
+                   "%zu bytes of scene): starting over",
+                path, rows, ny, cols, nx, bytes);
     goto done;
   }
   old = calloc(1, bytes + 1);
@@ -222,9 +303,25 @@ static long ckpt_read(const sc_cli_run *r, const char *text, uint64_t hash,
                 path, change);
     goto done;
   }
-  if (fread(grid, sizeof *grid, (size_t)(rows * nx), in) !=
-      (size_t)(rows * nx)) {
-    sc_cli_note(r, "%s is truncated: starting over", path);
+  uint64_t s = FNV_OFFSET;
+  for (long k = 0; k < rows * nx; k++) {
+    unsigned char b[CKPT_POINT_BYTES];
+    if (fread(b, 1, sizeof b, in) != sizeof b) {
+      sc_cli_note(r, "%s is truncated: starting over", path);
+      goto done;
+    }
+    s = fnv1a_bytes(s, b, sizeof b);
+    point_decode(b, &grid[k]);
+    if (!point_valid(&grid[k], c)) {
+      sc_cli_note(r, "%s is corrupt (point %ld: period %d, %d iterations): "
+                     "starting over", path, k, (int)grid[k].period,
+                  (int)grid[k].iterations);
+      goto done;
+    }
+  }
+  if (s != sum || fgetc(in) != EOF) {
+    sc_cli_note(r, "%s is corrupt (checksum or length differs): starting "
+                   "over", path);
     goto done;
   }
   got = rows;
@@ -393,20 +490,6 @@ static int write_summary(sc_cli_run *r, const sc_chart_spec *c,
 /* ------------------------------------------------------------------ */
 /* The run                                                               */
 
-/* Set by SIGINT/SIGTERM during a serial run: the points under way finish
- * and the run stops with a checkpoint.  A second signal ends the process
- * at once (a point that never finishes cannot hold it hostage). */
-static volatile sig_atomic_t interrupted;
-
-static void on_signal(int sig) {
-  if (interrupted) {
-    signal(sig, SIG_DFL);
-    raise(sig);
-    return;
-  }
-  interrupted = 1;
-}
-
 typedef struct {
   sc_progress *bar;
   long base;  /* points done before this block (all ranks) */
@@ -416,7 +499,7 @@ typedef struct {
 static int on_progress(void *ctx, long done) {
   progress_ctx *p = ctx;
   sc_progress_update(p->bar, p->base + done * p->mult);
-  return interrupted != 0;
+  return sc_cli_interrupted();
 }
 
 /* Seconds between checkpoints: often enough that a kill loses little,
@@ -440,8 +523,6 @@ static int chart_run(sc_cli_run *r) {
   const double t0 = sc_progress_now();
   sc_chart_point *grid = NULL, *mine = NULL, *stage = NULL;
   char *text = malloc(SCENE_TEXT_LEN);
-  struct sigaction old_int, old_term;
-  int handlers = 0;
 
   /* Rows per block: enough points to keep the threads busy (whole rows
    * per thread with seed = neighbour), a multiple of the ranks. */
@@ -452,11 +533,9 @@ static int chart_run(sc_cli_run *r) {
   block = (block + size - 1) / size * size;
   if (block > ny) block = ny;
 
-  /* The test hook SLIPCONT_CHART_STOP_AFTER_ROWS=k stops after k rows
-   * with a checkpoint, as a kill would, but at a known place. */
-  long stop_after = 0;
-  const char *hook = getenv("SLIPCONT_CHART_STOP_AFTER_ROWS");
-  if (rank == 0 && hook) stop_after = atol(hook);
+  /* --stop-after-rows k stops after k rows with a checkpoint, as a kill
+   * would, but at a known place (tests). */
+  long stop_after = rank == 0 ? r->stop_after_rows : 0;
   uint64_t hash = 0;
   long start = 0;
   /* Failures before the first collective call fall through to it, so
@@ -476,7 +555,7 @@ static int chart_run(sc_cli_run *r) {
                    "chart: out of memory for %ld x %ld points (%.0f MiB)", nx,
                    ny, (double)(nx * ny) * sizeof *grid / 1048576);
     } else {
-      start = ckpt_read(r, text, hash, nx, ny, grid);
+      start = ckpt_read(r, &c, text, hash, grid);
       if (start)
         sc_cli_note(r, "resuming from %s/%s: %ld of %ld rows done", r->dir,
                     CKPT_NAME, start, ny);
@@ -498,16 +577,6 @@ static int chart_run(sc_cli_run *r) {
   sc_mpi_chart_bcast_long(&stop_after);
 #endif
   if (st) goto out;
-  if (size == 1) {
-    struct sigaction sa;
-    memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on_signal;
-    sigemptyset(&sa.sa_mask);
-    interrupted = 0;
-    sigaction(SIGINT, &sa, &old_int);
-    sigaction(SIGTERM, &sa, &old_term);
-    handlers = 1;
-  }
 
   sc_progress bar;
   sc_progress_start(&bar, "points", nx * ny, start * nx,
@@ -532,9 +601,9 @@ static int chart_run(sc_cli_run *r) {
       st = sc_mpi_chart_gather(mine, nx, r0, nb, rank, size, stage, grid,
                                r->msg);
 #endif
-    if (st == SC_ECALLBACK && interrupted) {
+    if (st == SC_ECALLBACK && sc_cli_interrupted()) {
       sc_progress_finish(&bar);
-      int e = ckpt_write(r->dir, text, hash, nx, done_rows, grid, r->msg);
+      int e = ckpt_write(r, text, hash, nx, done_rows, grid);
       st = e ? e
              : sc_fail(r->msg, SC_ECALLBACK,
                        "chart: interrupted after %ld of %ld rows; the "
@@ -549,7 +618,7 @@ static int chart_run(sc_cli_run *r) {
     int hooked = stop_after > 0 && done_rows == stop_after && done_rows < ny;
     if (rank == 0 && done_rows < ny &&
         (hooked || sc_progress_now() - last_ckpt >= CKPT_INTERVAL_S)) {
-      st = ckpt_write(r->dir, text, hash, nx, done_rows, grid, r->msg);
+      st = ckpt_write(r, text, hash, nx, done_rows, grid);
       last_ckpt = sc_progress_now();
     }
 #ifdef SLIPCONT_MPI
@@ -565,22 +634,17 @@ static int chart_run(sc_cli_run *r) {
       sc_progress_finish(&bar);
       st = sc_fail(r->msg, SC_ECALLBACK,
                    "chart: stopped after %ld of %ld rows by "
-                   "SLIPCONT_CHART_STOP_AFTER_ROWS; checkpoint saved",
+                   "--stop-after-rows; checkpoint saved",
                    done_rows, ny);
       goto out;
     }
   }
   sc_progress_finish(&bar);
-  /* From here a signal ends the process as usual: the files are written
-   * atomically, and a long chart leaves a complete checkpoint behind
+  /* From here a signal lets the files be finished (they are written
+   * atomically), and a long chart leaves a complete checkpoint behind
    * until they are, so a rerun only writes them. */
-  if (handlers) {
-    sigaction(SIGINT, &old_int, NULL);
-    sigaction(SIGTERM, &old_term, NULL);
-    handlers = 0;
-  }
   if (rank == 0 && start < ny && sc_progress_now() - t0 >= CKPT_INTERVAL_S &&
-      (st = ckpt_write(r->dir, text, hash, nx, ny, grid, r->msg)))
+      (st = ckpt_write(r, text, hash, nx, ny, grid)))
     goto out;
 
   if (rank == 0) {
@@ -610,10 +674,6 @@ static int chart_run(sc_cli_run *r) {
     free(count);
   }
 out:
-  if (handlers) {
-    sigaction(SIGINT, &old_int, NULL);
-    sigaction(SIGTERM, &old_term, NULL);
-  }
   free(grid);
   free(mine);
   free(stage);

@@ -161,6 +161,8 @@ nomem:
 
 FILE *sc_file_stream(sc_file *f) { return f->f; }
 
+const char *sc_file_temp_path(const sc_file *f) { return f->tmp; }
+
 int sc_file_commit(sc_file *w, sc_msg *msg) {
   int err = 0;
   if (fflush(w->f) != 0 || ferror(w->f)) err = errno ? errno : EIO;
