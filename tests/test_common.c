@@ -1,6 +1,7 @@
 /* Status texts, accuracy presets and fields, convergence tests, number
  * parsing. */
 #include <math.h>
+#include <limits.h>
 #include <string.h>
 
 #include "slipcont/common.h"
@@ -62,6 +63,29 @@ int main(void) {
   tu_int("parse empty refused", sc_parse_double("  ", &d), SC_EINVAL);
   long l;
   tu_int("parse long out of range", sc_parse_long("0", 1, 10, &l), SC_EINVAL);
+  /* The one number rule: decimal only; integers without point or
+   * exponent. */
+  static const struct {
+    const char *text;
+    int syntax;
+  } rule[] = {{"1000", SC_NUM_INT},   {" -3 ", SC_NUM_INT},
+              {"+7", SC_NUM_INT},     {"1e3", SC_NUM_REAL},
+              {"2.5E+4", SC_NUM_REAL}, {".5", SC_NUM_REAL},
+              {"3.", SC_NUM_REAL},    {"0x10", SC_NUM_NONE},
+              {"0x1p3", SC_NUM_NONE}, {"nan", SC_NUM_NONE},
+              {"inf", SC_NUM_NONE},   {"1e", SC_NUM_NONE},
+              {".", SC_NUM_NONE},     {"1,5", SC_NUM_NONE},
+              {"", SC_NUM_NONE},      {"1 2", SC_NUM_NONE}};
+  for (size_t i = 0; i < sizeof rule / sizeof rule[0]; i++)
+    tu_int(rule[i].text, sc_number_syntax(rule[i].text), rule[i].syntax);
+  tu_int("1e3 is not a long", sc_parse_long("1e3", 0, 10000, &l), SC_EINVAL);
+  tu_int("0x10 is not a long", sc_parse_long("0x10", 0, 100, &l), SC_EINVAL);
+  tu_int("2^63 overflows a long", sc_parse_long("9223372036854775808", 0,
+                                                 LONG_MAX, &l), SC_EINVAL);
+  tu_int("1e3 is a double", sc_parse_double("1e3", &d), SC_OK);
+  tu_close("1e3", d, 1000, 0);
+  tu_int("hex float refused", sc_parse_double("0x1p3", &d), SC_EINVAL);
+  tu_int("1e309 overflows", sc_parse_double("1e309", &d), SC_EINVAL);
   tu_true(strcmp(sc_strerror(SC_EUNDEF),
                  "map undefined (no return to a global stick phase)") == 0,
           "strerror(SC_EUNDEF) = %s", sc_strerror(SC_EUNDEF));

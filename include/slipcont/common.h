@@ -156,16 +156,35 @@ SC_API int sc_test_delta(double dx, double x, double epsabs, double epsrel);
  */
 SC_API int sc_test_residual(double f, double epsabs);
 
+/** What sc_number_syntax() found. */
+enum {
+  SC_NUM_NONE = 0, /**< not a decimal number */
+  SC_NUM_INT = 1,  /**< [sign] digits */
+  SC_NUM_REAL = 2, /**< with a decimal point or an exponent */
+};
+
 /**
- * @brief Parse a finite double from the whole of @p text (surrounding
- * blanks allowed).
- * @return SC_OK, or SC_EINVAL for empty, trailing garbage, NaN or inf.
+ * @brief The one rule for numbers read from text (scenes, options):
+ * decimal only.  An integer is an optional sign and decimal digits
+ * ("1000", "-3"); a real may also have a decimal point and an exponent
+ * ("0.025", "1e-3", "2.5E+4").  Hexadecimal ("0x10", "0x1p3"), "nan" and
+ * "inf" are not numbers.  Blanks around the number are allowed.
+ * @return SC_NUM_NONE, SC_NUM_INT or SC_NUM_REAL.
+ */
+SC_API int sc_number_syntax(const char *text);
+
+/**
+ * @brief Parse a real number from the whole of @p text (sc_number_syntax():
+ * an integer or a real).
+ * @return SC_OK, or SC_EINVAL for empty text, trailing garbage, another
+ *         syntax, or a value that overflows a double.
  */
 SC_API int sc_parse_double(const char *text, double *out);
 
 /**
- * @brief Parse a decimal integer in [lo, hi] from the whole of @p text.
- * @return SC_OK or SC_EINVAL.
+ * @brief Parse an integer (sc_number_syntax() SC_NUM_INT: "1e3" is not
+ * one) in [lo, hi] from the whole of @p text.
+ * @return SC_OK or SC_EINVAL (also when the value overflows a long).
  */
 SC_API int sc_parse_long(const char *text, long lo, long hi, long *out);
 

@@ -208,8 +208,45 @@ static int only_blanks(const char *s) {
   return *s == '\0';
 }
 
+/* The one rule for numbers in scenes and options (docs/guide.md,
+ * "Numbers"): decimal only.  A real is [sign] digits [. digits]
+ * [e|E [sign] digits] (at least one digit before the exponent); an
+ * integer is [sign] digits.  Hexadecimal, nan, inf and anything else are
+ * refused.  Surrounding blanks are allowed.  Returns the length of the
+ * number at @p p (0 if none), and whether it has a point or exponent. */
+static size_t scan_decimal(const char *p, int *real) {
+  size_t i = 0, digits = 0;
+  *real = 0;
+  if (p[i] == '+' || p[i] == '-') i++;
+  while (isdigit((unsigned char)p[i])) i++, digits++;
+  if (p[i] == '.') {
+    *real = 1;
+    i++;
+    while (isdigit((unsigned char)p[i])) i++, digits++;
+  }
+  if (!digits) return 0;
+  if (p[i] == 'e' || p[i] == 'E') {
+    size_t j = i + 1, ed = 0;
+    if (p[j] == '+' || p[j] == '-') j++;
+    while (isdigit((unsigned char)p[j])) j++, ed++;
+    if (!ed) return 0;
+    *real = 1;
+    i = j;
+  }
+  return i;
+}
+
+int sc_number_syntax(const char *text) {
+  if (!text) return SC_NUM_NONE;
+  while (isspace((unsigned char)*text)) text++;
+  int real;
+  size_t n = scan_decimal(text, &real);
+  if (!n || !only_blanks(text + n)) return SC_NUM_NONE;
+  return real ? SC_NUM_REAL : SC_NUM_INT;
+}
+
 int sc_parse_double(const char *text, double *out) {
-  if (!text || only_blanks(text)) return SC_EINVAL;
+  if (sc_number_syntax(text) == SC_NUM_NONE) return SC_EINVAL;
   char *end;
   errno = 0;
   double d = strtod(text, &end);
@@ -220,7 +257,7 @@ int sc_parse_double(const char *text, double *out) {
 }
 
 int sc_parse_long(const char *text, long lo, long hi, long *out) {
-  if (!text || only_blanks(text)) return SC_EINVAL;
+  if (sc_number_syntax(text) != SC_NUM_INT) return SC_EINVAL;
   char *end;
   errno = 0;
   long l = strtol(text, &end, 10);

@@ -7,9 +7,11 @@
 #define _POSIX_C_SOURCE 200809L
 
 #include <gsl/gsl_errno.h>
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -162,20 +164,75 @@ static int load(const cli_args *a, sc_scene **scene) {
   return EXIT_OK;
 }
 
+/* A long path shown in a message: its first and last characters. */
+static const char *shown(const char *dir, char *buf, size_t len) {
+  size_t n = strlen(dir);
+  if (n <= 80) return dir;
+  snprintf(buf, len, "%.40s...%s (%zu characters)", dir, dir + n - 30, n);
+  return buf;
+}
+
+/* The results a task writes, named in its `outputs` line: every word
+ * ending in .csv, .txt, .gp, .png or .checkpoint.  Calls fn on each. */
+static int each_output(const sc_cli_task *t, const char *dir,
+                       int (*fn)(const char *dir, const char *name)) {
+  const char *p = t->outputs;
+  while (*p) {
+    size_t k = strcspn(p, " ,;()");
+    if (k > 0 && k < 64) {
+      char name[64];
+      memcpy(name, p, k);
+      name[k] = '\0';
+      const char *dot = strrchr(name, '.');
+      if (dot && (!strcmp(dot, ".csv") || !strcmp(dot, ".txt") ||
+                  !strcmp(dot, ".gp") || !strcmp(dot, ".png") ||
+                  !strcmp(dot, ".checkpoint"))) {
+        int rc = fn(dir, name);
+        if (rc) return rc;
+      }
+    }
+    p += k;
+    if (*p) p++;
+  }
+  return 0;
+}
+
+/* A result name taken by something that is not a file (a folder, a
+ * FIFO): found now, not after computing. */
+static int output_blocked(const char *dir, const char *name) {
+  char path[PATH_MAX];
+  struct stat sb;
+  snprintf(path, sizeof path, "%s/%s", dir, name);
+  if (lstat(path, &sb) == 0 && !S_ISREG(sb.st_mode)) {
+    char buf[160];
+    fprintf(stderr,
+            "slipcont: %s/%s exists and is not a file: the result %s cannot "
+            "be written there (remove it or choose another --out)\n",
+            shown(dir, buf, sizeof buf), name, name);
+    return EXIT_INPUT;
+  }
+  return 0;
+}
+
 /* The output folder: checked (check) or created and proved writable
- * (run); the message names where dir was set. */
+ * (run); the message names where dir was set.  Result names blocked by
+ * folders are refused in both. */
 static int prepare_output(const sc_scene *s, int create) {
   sc_msg msg;
-  if (sc_output_prepare(sc_scene_output_dir(s), create, &msg) == SC_OK)
-    return EXIT_OK;
-  char where[SC_MSG_LEN];
-  const char *dir = sc_scene_output_dir(s), *reason = msg.text;
+  const char *dir = sc_scene_output_dir(s);
+  const sc_cli_task *task = sc_cli_task_find(sc_scene_task(s)->kind);
+  if (sc_output_prepare(dir, create, &msg) == SC_OK)
+    return each_output(task, dir, output_blocked);
+  char where[SC_MSG_LEN], buf[160];
+  const char *reason = msg.text;
   size_t n = strlen(dir);
   if (strncmp(reason, dir, n) == 0 && strncmp(reason + n, ": ", 2) == 0)
     reason += n + 2; /* the path is already in the message */
+  else if (strncmp(reason, "output folder: ", 15) == 0)
+    reason += 15;
   sc_scene_origin(s, "output", "dir", where, sizeof where);
-  fprintf(stderr, "slipcont: %s: [output] dir = %s: %s\n", where, dir,
-          reason);
+  fprintf(stderr, "slipcont: %s: [output] dir = %s: %s\n", where,
+          shown(dir, buf, sizeof buf), reason);
   return EXIT_INPUT;
 }
 
