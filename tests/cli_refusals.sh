@@ -97,4 +97,29 @@ for cmd in check run; do
 done
 check "blocked result: nothing written" test ! -e "$TMP/o-blocked/summary.txt"
 
+# Log-spaced grids (x-scale = log): equal ratios, the ends exact; ends of
+# different signs or 0 refused.
+cat >"$TMP/logsweep.ini" <<'INI'
+[model]
+name = logistic
+[task]
+kind = sweep
+parameter = r
+from = 0.01
+to = 1
+steps = 3
+x-scale = log
+iterations = 10
+keep = 1
+d0 = 0.3
+[output]
+plot = no
+INI
+run_sc run "$TMP/logsweep.ini" --out "$TMP/o-logsweep" --quiet
+expect_rc "log sweep" 0
+p=$(awk -F, 'NR > 1 {print $1}' "$TMP/o-logsweep/sweep.csv" | sort -g | uniq | tr '\n' ' ')
+check "log sweep: r = 0.01 0.1 1 (got $p)" test "$p" = "0.01 0.10000000000000001 1 "
+refuse log-from-zero "[task] x-scale = log needs from and to of one sign and not 0 (from 0, to 1)" \
+  "$TMP/logsweep.ini" --set task.from=0
+
 finish

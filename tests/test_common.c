@@ -1,6 +1,7 @@
 /* Status texts, accuracy presets and fields, convergence tests, number
  * parsing. */
 #include <math.h>
+#include <float.h>
 #include <limits.h>
 #include <string.h>
 
@@ -86,6 +87,42 @@ int main(void) {
   tu_close("1e3", d, 1000, 0);
   tu_int("hex float refused", sc_parse_double("0x1p3", &d), SC_EINVAL);
   tu_int("1e309 overflows", sc_parse_double("1e309", &d), SC_EINVAL);
+  /* The one grid formula. */
+  tu_close("grid: first", sc_grid(0.025, 0.015, 400, 0, SC_GRID_LINEAR), 0.025,
+           0);
+  tu_close("grid: last exactly to", sc_grid(0.025, 0.015, 400, 399,
+                                            SC_GRID_LINEAR), 0.015, 0);
+  tu_close("grid: from + (to - from) i/(n-1)",
+           sc_grid(0.1, 0.7, 7, 3, SC_GRID_LINEAR), 0.1 + 0.6 * 0.5, 0);
+  /* Ends near the largest double: to - from overflows, the points not. */
+  tu_close("grid: -1e308..1e308 middle", sc_grid(-1e308, 1e308, 3, 1,
+                                                 SC_GRID_LINEAR), 0, 0);
+  tu_rel("grid: -1e308..1e308 quarter", sc_grid(-1e308, 1e308, 5, 1,
+                                                SC_GRID_LINEAR), -5e307, 1e-15);
+  for (size_t i = 0; i < 101; i++)
+    if (!isfinite(sc_grid(-DBL_MAX, DBL_MAX, 101, i, SC_GRID_LINEAR)))
+      tu_true(0, "grid: -DBL_MAX..DBL_MAX point %zu not finite", i);
+  /* Log: equal ratios, ends exact, the sign of the ends kept. */
+  /* exp and log each round: a few ulps (rtol 1e-15 is about 5 ulps). */
+  tu_rel("log grid: 1..1000 point 1", sc_grid(1, 1000, 4, 1, SC_GRID_LOG), 10,
+         1e-15);
+  tu_rel("log grid: 1..1000 point 2", sc_grid(1, 1000, 4, 2, SC_GRID_LOG), 100,
+         1e-15);
+  tu_close("log grid: last exactly to", sc_grid(1e-3, 7, 9, 8, SC_GRID_LOG), 7,
+           0);
+  tu_rel("log grid: negative ends", sc_grid(-0.01, -1, 3, 1, SC_GRID_LOG), -0.1,
+         1e-15);
+  tu_true(isnan(sc_grid(-1, 1, 3, 1, SC_GRID_LOG)), "log grid across 0: NaN");
+  tu_true(isnan(sc_grid(0, 1, 3, 1, SC_GRID_LOG)), "log grid from 0: NaN");
+  tu_true(isnan(sc_grid(0, INFINITY, 3, 1, SC_GRID_LINEAR)),
+          "grid to inf: NaN");
+  tu_int("grid check: log across 0 refused",
+         sc_grid_check("x", -1, 1, SC_GRID_LOG, &msg), SC_EINVAL);
+  tu_true(strstr(msg.text, "x: a log scale needs both ends of one sign") !=
+              NULL,
+          "grid check message: %s", msg.text);
+  tu_int("grid check: log 1e-3..7 ok",
+         sc_grid_check("x", 1e-3, 7, SC_GRID_LOG, &msg), SC_OK);
   tu_true(strcmp(sc_strerror(SC_EUNDEF),
                  "map undefined (no return to a global stick phase)") == 0,
           "strerror(SC_EUNDEF) = %s", sc_strerror(SC_EUNDEF));

@@ -21,9 +21,9 @@ static void test_grid(void) {
   tu_close("grid: steps = 1 is from", sc_grid_point(2.385, 7, 1, 0), 2.385, 0);
   tu_true(isnan(sc_grid_point(0, 1, 0, 0)), "grid: steps = 0 is NaN");
   tu_true(isnan(sc_grid_point(0, 1, 3, 3)), "grid: i = steps is NaN");
-  /* from + i (to - from)/(steps - 1), evaluated exactly so. */
+  /* from + (to - from) (i/(steps - 1)) (sc_grid, common.h). */
   tu_close("grid: formula", sc_grid_point(0.1, 0.7, 7, 3),
-           0.1 + 3.0 * (0.7 - 0.1) / 6.0, 0);
+           0.1 + (0.7 - 0.1) * (3.0 / 6.0), 0);
 }
 
 static void test_period(void) {

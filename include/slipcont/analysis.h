@@ -22,9 +22,8 @@ extern "C" {
 #endif
 
 /**
- * @brief Point @p i of the grid of @p steps points from @p from to @p to,
- * both ends included: from + i (to - from)/(steps - 1), with the last
- * point exactly @p to; steps = 1 gives @p from only.
+ * @brief Point @p i of the linear grid of @p steps points from @p from to
+ * @p to: sc_grid(from, to, steps, i, SC_GRID_LINEAR) (common.h).
  * @return the point; NaN for i >= steps or steps = 0.
  */
 SC_API double sc_grid_point(double from, double to, size_t steps, size_t i);
@@ -59,13 +58,14 @@ typedef enum {
 } sc_sweep_seed;
 
 /**
- * What a sweep computes.  The grid is sc_grid_point(from, to, steps, .);
- * from > to is allowed and covers the same interval.
+ * What a sweep computes.  The grid is sc_grid(from, to, steps, ., x_scale)
+ * (common.h); from > to is allowed and covers the same interval.
  */
 typedef struct {
   size_t param;     /**< index of the swept parameter (models.h order) */
   double from, to;  /**< ends of the grid, inside the parameter's range */
   size_t steps;     /**< grid points, >= 1, ends included */
+  int x_scale;      /**< sc_grid_scale: SC_GRID_LINEAR (0) or SC_GRID_LOG */
   int iterations;   /**< iterates at each value, >= 1 */
   int keep;         /**< last iterates kept, 1 <= keep <= iterations */
   double d0;        /**< initial state */

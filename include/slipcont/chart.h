@@ -142,7 +142,8 @@ enum {
 
 /**
  * A chart over two parameters of a map.  Steps count grid points with
- * both ends included: x_i = x_from + i (x_to - x_from) / (x_steps - 1),
+ * both ends included: x_i = sc_grid(x_from, x_to, x_steps, i, x_scale)
+ * (common.h: equal differences, or equal ratios on a log scale),
  * i = 0..x_steps-1, the last one exactly x_to (likewise for y).  A row is
  * one value of y, all values of x.
  */
@@ -153,6 +154,8 @@ typedef struct {
   const char *y;      /**< parameter name for the y axis, not x */
   double y_from, y_to;
   long y_steps;       /**< >= 2 */
+  int x_scale;        /**< sc_grid_scale of x (default SC_GRID_LINEAR) */
+  int y_scale;        /**< sc_grid_scale of y (default SC_GRID_LINEAR) */
   double d0;          /**< initial state */
   long transient;     /**< most map iterates per point, 1..INT32_MAX */
   int max_period;     /**< 1..SC_PERIOD_MAX (default 16) */

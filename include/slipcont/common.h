@@ -156,6 +156,37 @@ SC_API int sc_test_delta(double dx, double x, double epsabs, double epsrel);
  */
 SC_API int sc_test_residual(double f, double epsabs);
 
+/** How the points of a grid are spaced (sc_grid()). */
+typedef enum {
+  SC_GRID_LINEAR = 0, /**< equal differences (the default) */
+  SC_GRID_LOG = 1,    /**< equal ratios: from and to of one sign, not 0 */
+} sc_grid_scale;
+
+/**
+ * @brief Point @p i of the grid of @p steps points from @p from to @p to,
+ * both ends included: the one grid formula of slipcont (sweeps, charts,
+ * the fixed-point scan, map graphs).  With t = i / (steps - 1):
+ * linear: from + (to - from) t, or from (1 - t) + to t when to - from
+ * overflows (a grid from -1e308 to 1e308); log: from (to/from)^t, or
+ * exp(ln|from| + t (ln|to| - ln|from|)) with from's sign when to/from
+ * overflows.
+ * Point 0 is exactly @p from and point steps - 1 exactly @p to; steps = 1
+ * gives @p from only.
+ * @return the point; NaN for i >= steps, steps = 0, non-finite ends, or a
+ *         log grid whose ends are 0 or of different signs.
+ */
+SC_API double sc_grid(double from, double to, size_t steps, size_t i,
+                      sc_grid_scale scale);
+
+/**
+ * @brief Check the ends of a grid: finite, and for SC_GRID_LOG non-zero
+ * and of one sign.
+ * @return SC_OK, or SC_EINVAL with "NAME: ..." in @p msg (NAME is the
+ *         caller's name for the axis, e.g. "x").
+ */
+SC_API int sc_grid_check(const char *name, double from, double to,
+                         sc_grid_scale scale, sc_msg *msg);
+
 /** What sc_number_syntax() found. */
 enum {
   SC_NUM_NONE = 0, /**< not a decimal number */

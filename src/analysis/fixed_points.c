@@ -283,10 +283,7 @@ int sc_fixed_points_find(sc_map *m, const sc_fixed_points_spec *spec,
   if ((st = eval(&s, spec->from, &cur))) goto done;
   int all_neutral = cur.st == SC_OK && cur.v.neutral;
   for (size_t j = 1; j < spec->steps; j++) {
-    double x = j + 1 == spec->steps
-                   ? spec->to
-                   : spec->from + (spec->to - spec->from) * (double)j /
-                                      (double)(spec->steps - 1);
+    double x = sc_grid(spec->from, spec->to, spec->steps, j, SC_GRID_LINEAR);
     if ((st = eval(&s, x, &nxt))) goto done;
     for (int guard = 0;; guard++) {
       if (same_piece(&cur, &nxt)) {

@@ -14,10 +14,7 @@
 #include "slipcont/analysis.h"
 
 double sc_grid_point(double from, double to, size_t steps, size_t i) {
-  if (steps == 0 || i >= steps) return NAN;
-  if (steps == 1 || i == 0) return from;
-  if (i == steps - 1) return to;
-  return from + (double)i * (to - from) / (double)(steps - 1);
+  return sc_grid(from, to, steps, i, SC_GRID_LINEAR);
 }
 
 /* Differences of a few ulps of the values are rounding, not a failure
@@ -95,6 +92,9 @@ int sc_sweep_alloc(const sc_map *m, const sc_sweep_spec *sp, sc_sweep **out,
   sc_msg m2;
   if (sc_param_check(pi, sp->from, &m2) || sc_param_check(pi, sp->to, &m2))
     return sc_fail(msg, SC_EINVAL, "sc_sweep_alloc: %s", m2.text);
+  if (sc_grid_check("sc_sweep_alloc: x-scale", sp->from, sp->to,
+                    (sc_grid_scale)sp->x_scale, &m2))
+    return sc_fail(msg, SC_EINVAL, "%s", m2.text);
   if (sp->steps < 1)
     return sc_fail(msg, SC_EINVAL, "sc_sweep_alloc: steps = 0 (valid: >= 1)");
   if (sp->iterations < 1 || sp->keep < 1 || sp->keep > sp->iterations)
@@ -170,7 +170,7 @@ static double point_value(const sc_sweep *s, size_t i, int *dir) {
   int ascending_grid = sp->to >= sp->from;
   int want_up = *dir == SC_SWEEP_UP;
   size_t g = ascending_grid == want_up ? j : sp->steps - 1 - j;
-  return sc_grid_point(sp->from, sp->to, sp->steps, g);
+  return sc_grid(sp->from, sp->to, sp->steps, g, (sc_grid_scale)sp->x_scale);
 }
 
 int sc_sweep_get_point(const sc_sweep *s, size_t i, sc_sweep_point *pt) {

@@ -265,3 +265,44 @@ int sc_parse_long(const char *text, long lo, long hi, long *out) {
   *out = l;
   return SC_OK;
 }
+
+/* The one grid formula (common.h). */
+double sc_grid(double from, double to, size_t steps, size_t i,
+               sc_grid_scale scale) {
+  if (steps == 0 || i >= steps || !isfinite(from) || !isfinite(to))
+    return NAN;
+  if (scale == SC_GRID_LOG && (from == 0 || to == 0 || (from < 0) != (to < 0)))
+    return NAN;
+  if (i == 0 || steps == 1) return from;
+  if (i == steps - 1) return to;
+  const double t = (double)i / (double)(steps - 1);
+  if (scale == SC_GRID_LOG) {
+    const double q = to / from; /* > 0: the ends have one sign */
+    if (isfinite(q) && q > 0) {
+      const double x = from * pow(q, t);
+      if (isfinite(x) && x != 0) return x;
+    }
+    const double a = log(fabs(from)), b = log(fabs(to));
+    const double x = exp(a + t * (b - a));
+    return from < 0 ? -x : x;
+  }
+  const double span = to - from;
+  if (isfinite(span)) return from + span * t;
+  return from * (1 - t) + to * t;
+}
+
+int sc_grid_check(const char *name, double from, double to,
+                  sc_grid_scale scale, sc_msg *msg) {
+  if (!isfinite(from) || !isfinite(to))
+    return sc_fail(msg, SC_EINVAL, "%s: grid ends must be finite (%g, %g)",
+                   name, from, to);
+  if (scale == SC_GRID_LOG && (from == 0 || to == 0 || (from < 0) != (to < 0)))
+    return sc_fail(msg, SC_EINVAL,
+                   "%s: a log scale needs both ends of one sign and not 0 "
+                   "(from %.17g, to %.17g)",
+                   name, from, to);
+  if (scale != SC_GRID_LINEAR && scale != SC_GRID_LOG)
+    return sc_fail(msg, SC_EINVAL, "%s: unknown grid scale %d", name,
+                   (int)scale);
+  return SC_OK;
+}

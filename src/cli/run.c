@@ -210,7 +210,7 @@ int sc_cli_write_map_graph(sc_cli_run *r, const char *name, int n,
   int have = 0;
   sc_map_value v;
   for (size_t i = 0; i < steps; i++) {
-    double d = from + (to - from) * (double)i / (double)(steps - 1);
+    double d = sc_grid(from, to, steps, i, SC_GRID_LINEAR);
     int e = sc_map_iterate(r->map, d, n, SC_EVAL_ITINERARY, &v, NULL);
     if (e == SC_EUNDEF || e == SC_ENONFINITE || e == SC_ENOCONV) {
       if (have) fputc('\n', f);

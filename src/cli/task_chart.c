@@ -37,6 +37,12 @@ static const sc_key_info chart_keys[] = {
      "last y value, exactly a grid point"},
     {"y-steps", SC_KEY_INT, 0, "200", 2, SC_CHART_MAX_POINTS, 0, 0, NULL,
      "grid points along y (rows), both ends included"},
+    {"x-scale", SC_KEY_CHOICE, 0, "linear", 0, 0, 0, 0, "linear|log",
+     "x grid spacing: equal differences, or equal ratios (log; ends of one "
+     "sign)"},
+    {"y-scale", SC_KEY_CHOICE, 0, "linear", 0, 0, 0, 0, "linear|log",
+     "y grid spacing: equal differences, or equal ratios (log; ends of one "
+     "sign)"},
     {"d0", SC_KEY_REAL, 0, "0", -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
      "initial state of every point (bk2: d = Y2 - Y1 of the first GSP)"},
     {"transient", SC_KEY_INT, 0, "1000", 1, INT32_MAX, 0, 0, NULL,
@@ -64,6 +70,9 @@ static sc_chart_spec spec_of(const sc_scene *s) {
   c.y_from = sc_scene_real(s, "y-from");
   c.y_to = sc_scene_real(s, "y-to");
   c.y_steps = sc_scene_int(s, "y-steps");
+  const char *xs = sc_scene_text(s, "x-scale"), *ys = sc_scene_text(s, "y-scale");
+  c.x_scale = xs && strcmp(xs, "log") == 0 ? SC_GRID_LOG : SC_GRID_LINEAR;
+  c.y_scale = ys && strcmp(ys, "log") == 0 ? SC_GRID_LOG : SC_GRID_LINEAR;
   c.d0 = sc_scene_real(s, "d0");
   c.transient = sc_scene_int(s, "transient");
   c.max_period = (int)sc_scene_int(s, "max-period");
@@ -126,6 +135,9 @@ static int scene_text(const sc_cli_run *r, const sc_chart_spec *c, char *buf,
   ADD_("task.y = %s\ntask.y-from = %.17g\ntask.y-to = %.17g\n"
        "task.y-steps = %ld\n",
        c->y, c->y_from, c->y_to, c->y_steps);
+  if (c->x_scale || c->y_scale) /* absent when linear: old checkpoints hold */
+    ADD_("task.x-scale = %s\ntask.y-scale = %s\n",
+         c->x_scale ? "log" : "linear", c->y_scale ? "log" : "linear");
   ADD_("task.d0 = %.17g\ntask.transient = %ld\ntask.max-period = %d\n"
        "task.confirm = %d\ntask.seed = %s\n",
        c->d0, c->transient, c->max_period, c->confirm,
@@ -416,15 +428,23 @@ static int write_plot(sc_cli_run *r, const sc_chart_spec *c,
   FILE *o = sc_file_stream(f);
   char title[512], xl[128], yl[128];
   chart_title(r->map, c, title, sizeof title);
-  snprintf(xl, sizeof xl, "%s", sc_plot_label(r->map, c->x));
-  snprintf(yl, sizeof yl, "%s", sc_plot_label(r->map, c->y));
+  /* A log axis is drawn as log10 of the values: the cells are then
+   * equal, as rgbimage needs. */
+  snprintf(xl, sizeof xl, c->x_scale ? "log10 %s" : "%s",
+           sc_plot_label(r->map, c->x));
+  snprintf(yl, sizeof yl, c->y_scale ? "log10 %s" : "%s",
+           sc_plot_label(r->map, c->y));
   sc_plot_head(o, "chart.png", title, xl, yl);
-  double hx = (c->x_to - c->x_from) / (double)(c->x_steps - 1) / 2;
-  double hy = (c->y_to - c->y_from) / (double)(c->y_steps - 1) / 2;
-  fprintf(o, "set xrange [%.17g:%.17g]\n", fmin(c->x_from, c->x_to) - fabs(hx),
-          fmax(c->x_from, c->x_to) + fabs(hx));
-  fprintf(o, "set yrange [%.17g:%.17g]\n", fmin(c->y_from, c->y_to) - fabs(hy),
-          fmax(c->y_from, c->y_to) + fabs(hy));
+  double x0 = c->x_scale ? log10(fabs(c->x_from)) : c->x_from;
+  double x1 = c->x_scale ? log10(fabs(c->x_to)) : c->x_to;
+  double y0 = c->y_scale ? log10(fabs(c->y_from)) : c->y_from;
+  double y1 = c->y_scale ? log10(fabs(c->y_to)) : c->y_to;
+  double hx = (x1 - x0) / (double)(c->x_steps - 1) / 2;
+  double hy = (y1 - y0) / (double)(c->y_steps - 1) / 2;
+  fprintf(o, "set xrange [%.17g:%.17g]\n", fmin(x0, x1) - fabs(hx),
+          fmax(x0, x1) + fabs(hx));
+  fprintf(o, "set yrange [%.17g:%.17g]\n", fmin(y0, y1) - fabs(hy),
+          fmax(y0, y1) + fabs(hy));
   fputs("set size square\nunset grid\nset tics out\n"
         "set key outside right top title 'period' box\n",
         o);
@@ -437,8 +457,11 @@ static int write_plot(sc_cli_run *r, const sc_chart_spec *c,
           "rgb(p) = p < 0 ? 0x%06x : p == 0 ? 0x%06x : C[int(p - 1) %% 16 + "
           "1]\n",
           UNDEF_RGB, HIGH_RGB);
-  fputs("plot 'chart.csv' skip 1 using 1:2:(int(rgb($3)) >> 16 & 255):"
-        "(int(rgb($3)) >> 8 & 255):(int(rgb($3)) & 255) with rgbimage "
+  fprintf(o, "plot 'chart.csv' skip 1 using %s:%s:(int(rgb($3)) >> 16 & "
+             "255):",
+          c->x_scale ? "(log10(abs($1)))" : "1",
+          c->y_scale ? "(log10(abs($2)))" : "2");
+  fputs("(int(rgb($3)) >> 8 & 255):(int(rgb($3)) & 255) with rgbimage "
         "notitle",
         o);
   /* A key entry for each class present. */

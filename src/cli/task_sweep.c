@@ -17,6 +17,9 @@ static const sc_key_info sweep_keys[] = {
      "last grid value (inside the parameter's range; may be below from)"},
     {"steps", SC_KEY_INT, 0, "200", 1, 10000000, 0, 0, NULL,
      "grid points, both ends included (1: from only)"},
+    {"x-scale", SC_KEY_CHOICE, 0, "linear", 0, 0, 0, 0, "linear|log",
+     "grid spacing: equal differences, or equal ratios (log; from and to "
+     "of one sign), drawn on a log axis"},
     {"iterations", SC_KEY_INT, 0, "300", 1, 100000000, 0, 0, NULL,
      "map iterates at each parameter value"},
     {"keep", SC_KEY_INT, 0, "100", 1, 100000000, 0, 0, NULL,
@@ -50,6 +53,14 @@ static int sweep_check(const sc_scene *s, sc_msg *msg) {
                                "%s = %s out of range of %s (valid: %s)",
                                ends[k], sc_scene_text(s, ends[k]), name, text);
   }
+  const char *xs = sc_scene_text(s, "x-scale");
+  if (xs && strcmp(xs, "log") == 0 &&
+      sc_grid_check("x-scale", sc_scene_real(s, "from"), sc_scene_real(s, "to"),
+                    SC_GRID_LOG, NULL))
+    return sc_scene_fail_key(s, "task", "x-scale", msg,
+                             "x-scale = log needs from and to of one sign and "
+                             "not 0 (from %s, to %s)",
+                             sc_scene_text(s, "from"), sc_scene_text(s, "to"));
   long it = sc_scene_int(s, "iterations"), keep = sc_scene_int(s, "keep");
   if (keep > it)
     return sc_scene_fail_key(s, "task", "keep", msg,
@@ -118,6 +129,8 @@ static int sweep_run(sc_cli_run *r) {
   sp.from = sc_scene_real(s, "from");
   sp.to = sc_scene_real(s, "to");
   sp.steps = (size_t)sc_scene_int(s, "steps");
+  sp.x_scale = strcmp(sc_scene_text(s, "x-scale"), "log") == 0 ? SC_GRID_LOG
+                                                               : SC_GRID_LINEAR;
   sp.iterations = (int)sc_scene_int(s, "iterations");
   sp.keep = (int)sc_scene_int(s, "keep");
   sp.d0 = sc_scene_real(s, "d0");
@@ -194,6 +207,7 @@ static int sweep_run(sc_cli_run *r) {
                sc_plot_label(m, sc_map_type(m)->state_name));
   fprintf(f, "set xrange [%.17g:%.17g]\n", fmin(sp.from, sp.to),
           fmax(sp.from, sp.to));
+  if (sp.x_scale == SC_GRID_LOG) fputs("set logscale x\n", f);
   snprintf(key[0], sizeof key[0], "increasing %s", xl);
   snprintf(key[1], sizeof key[1], "decreasing %s", xl);
   fputs("set key inside right top box opaque\n", f);
