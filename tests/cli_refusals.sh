@@ -97,6 +97,31 @@ for cmd in check run; do
 done
 check "blocked result: nothing written" test ! -e "$TMP/o-blocked/summary.txt"
 
+# Numbers never silently wrong.  A map over -1e308..1e308: the grid does
+# not overflow (the middle point is exactly 0) and points the model
+# refuses are rows that say so, not the end of the run.
+run_sc run "$good" --out "$TMP/o-huge" --quiet --set task.from=-1e308 \
+  --set task.to=1e308 --set task.steps=5
+expect_rc "map over -1e308..1e308" 0
+check "map over -1e308..1e308: 5 rows" test "$(($(wc -l <"$TMP/o-huge/map.csv") - 1))" -eq 5
+check "map over -1e308..1e308: middle point 0 defined" grep -q '^0,0,' "$TMP/o-huge/map.csv"
+# d = 1e299..1e300 absorbs any shift of f: no "neutral family" there.
+cat >"$TMP/fp-huge.ini" <<'INI'
+[model]
+name = bk2
+alpha = 2.9
+[task]
+kind = fixed-point
+period = 1
+from = 1e299
+to = 1e300
+[output]
+plot = no
+INI
+run_sc run "$TMP/fp-huge.ini" --out "$TMP/o-fp-huge" --quiet
+expect_rc "fixed points at 1e300" 0
+check "fixed points at 1e300: none reported" test "$(wc -l <"$TMP/o-fp-huge/orbits.csv")" -eq 1
+
 # Log-spaced grids (x-scale = log): equal ratios, the ends exact; ends of
 # different signs or 0 refused.
 cat >"$TMP/logsweep.ini" <<'INI'

@@ -219,11 +219,22 @@ static int polish(search *s, const sample *a, const sample *b) {
   return record(s, c.x, &c.v, 0, 0, 0);
 }
 
+/* Where rounding d itself (DBL_EPSILON |d|) exceeds newton_ftol, a gap
+ * f^m(d) - d of zero says nothing (d = 1e300 absorbs any shift): no orbit
+ * is reported there, the point counts as undefined. */
+static int unresolved(const search *s, double x) {
+  return DBL_EPSILON * fabs(x) > s->acc->newton_ftol;
+}
+
 /* Roots between two samples of one piece. */
 static int bracket(search *s, const sample *a, const sample *b) {
   if (a->st != SC_OK || b->st != SC_OK || a->v.neutral) return SC_OK;
   double ga = a->v.f - a->x, gb = b->v.f - b->x;
-  if (ga == 0) return record(s, a->x, &a->v, 0, 0, 0);
+  if (ga == 0) {
+    if (!unresolved(s, a->x)) return record(s, a->x, &a->v, 0, 0, 0);
+    s->set->nundef++;
+    return SC_OK;
+  }
   if (gb == 0 || (ga < 0) == (gb < 0)) return SC_OK;
   return polish(s, a, b);
 }
@@ -235,6 +246,10 @@ static int end_piece(search *s, double lo, const sample *last,
   s->set->npieces++;
   if (last->st != SC_OK || !all_neutral) return SC_OK;
   if (fabs(last->v.f - last->x) > s->acc->newton_ftol) return SC_OK;
+  if (unresolved(s, lo) || unresolved(s, last->x)) {
+    s->set->nundef++;
+    return SC_OK;
+  }
   double mid = 0.5 * (lo + last->x);
   sample c;
   int st = eval(s, mid, &c);
