@@ -38,11 +38,16 @@ static void track(const sc_file *f) {
   ntracked = ntracked + 1;
 }
 
-/* Async-signal-safe: unlink() and _exit() only. */
+/* Async-signal-safe: unlink(), write() and _exit() only. */
 static void end_now(void) {
   int n = ntracked < TRACKED ? ntracked : TRACKED;
   for (int k = 0; k < n; k++)
     if (tracked[k][0]) unlink(tracked[k]);
+  static const char note[] = "slipcont: stopped by a signal (unfinished "
+                             "files removed; the files written are "
+                             "complete)\n";
+  ssize_t w = write(STDERR_FILENO, note, sizeof note - 1);
+  (void)w;
   _exit(exit_code);
 }
 
@@ -210,6 +215,10 @@ int sc_cli_write_map_graph(sc_cli_run *r, const char *name, int n,
   int have = 0;
   sc_map_value v;
   for (size_t i = 0; i < steps; i++) {
+    if (sc_cli_interrupted()) {
+      sc_file_abort(csv);
+      return sc_fail(r->msg, SC_ECALLBACK, "interrupted");
+    }
     double d = sc_grid(from, to, steps, i, SC_GRID_LINEAR);
     int e = sc_map_iterate(r->map, d, n, SC_EVAL_ITINERARY, &v, NULL);
     if (e == SC_EUNDEF || e == SC_ENONFINITE || e == SC_ENOCONV) {
