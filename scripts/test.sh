@@ -24,6 +24,14 @@ cmake --build build-asan -j"$jobs"
 (cd build-asan && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
   UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --output-on-failure -j"$jobs")
+echo "== API reference (doxygen) =="
+if command -v doxygen >/dev/null 2>&1; then
+  rm -rf build/doc && mkdir -p build/doc
+  doxygen docs/Doxyfile
+  echo "build/doc/html: $(grep -c 'warning:' build/doc/warnings.txt || true) warnings (build/doc/warnings.txt)"
+else
+  echo "doxygen not installed: skipped"
+fi
 echo "== fuzzing the scene parser (libFuzzer, 20 s) =="
 if command -v clang >/dev/null 2>&1; then
   CC=clang cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo \

@@ -1,6 +1,6 @@
 /* Period detection: exact sequences fed by hand, the logistic map at r
  * with known attractors, the near-flip rule, and bk2 points whose
- * periods MODEL.md states. */
+ * periods docs/model.md states. */
 #include <float.h>
 #include <math.h>
 #include <string.h>
@@ -178,7 +178,7 @@ static void divergent(void) {
   sc_map_free(m);
 }
 
-/* bk2 (MODEL.md reference behaviour): alpha = 3, beta = 1, phi = 1.25,
+/* bk2 (docs/model.md, reference behaviours): alpha = 3, beta = 1, phi = 1.25,
  * v = 0.025 has a period-2 orbit with the driver moving and frozen. */
 static void bk2(void) {
   sc_msg msg;

@@ -1,6 +1,6 @@
 /* Sweeps (analysis.h): the grid, period detection, the logistic map's
  * exact periods, thread-count independence, undefined points, seeding;
- * and the reference behaviours of the two-block model (MODEL.md, figs
+ * and the reference behaviours of the two-block model (docs/model.md, figs
  * 5.4 and 5.6). */
 #include <math.h>
 #include <stdio.h>

@@ -63,7 +63,8 @@ typedef enum {
  */
 typedef struct {
   size_t param;     /**< index of the swept parameter (models.h order) */
-  double from, to;  /**< ends of the grid, inside the parameter's range */
+  double from;      /**< first grid value, inside the parameter's range */
+  double to;        /**< last grid value, inside the parameter's range */
   size_t steps;     /**< grid points, >= 1, ends included */
   int x_scale;      /**< sc_grid_scale: SC_GRID_LINEAR (0) or SC_GRID_LOG */
   int iterations;   /**< iterates at each value, >= 1 */
@@ -93,6 +94,7 @@ typedef struct {
   int nd;           /**< number of kept iterates (0 when undefined) */
 } sc_sweep_point;
 
+/** A prepared sweep and its results (opaque; sc_sweep_alloc()). */
 typedef struct sc_sweep sc_sweep;
 
 /**

@@ -149,10 +149,12 @@ enum {
  */
 typedef struct {
   const char *x;      /**< parameter name for the x axis */
-  double x_from, x_to;
+  double x_from;      /**< first x value */
+  double x_to;        /**< last x value, exactly a grid point */
   long x_steps;       /**< >= 2 */
   const char *y;      /**< parameter name for the y axis, not x */
-  double y_from, y_to;
+  double y_from;      /**< first y value */
+  double y_to;        /**< last y value, exactly a grid point */
   long y_steps;       /**< >= 2 */
   int x_scale;        /**< sc_grid_scale of x (default SC_GRID_LINEAR) */
   int y_scale;        /**< sc_grid_scale of y (default SC_GRID_LINEAR) */

@@ -51,7 +51,9 @@ extern "C" {
 
 /** Status codes; see SC_STATUS_LIST. */
 typedef enum {
+/** @cond */
 #define SC_STATUS_ENUM_(name, value, text) name = value,
+/** @endcond */
   SC_STATUS_LIST(SC_STATUS_ENUM_)
 #undef SC_STATUS_ENUM_
 } sc_status;
@@ -71,7 +73,7 @@ SC_API const char *sc_strerror(int status);
  * form `function: what (value; valid range)` into it.
  */
 typedef struct {
-  char text[SC_MSG_LEN];
+  char text[SC_MSG_LEN]; /**< the message, NUL-terminated */
 } sc_msg;
 
 /**
@@ -86,7 +88,7 @@ SC_API int sc_fail(sc_msg *msg, int status, const char *fmt, ...)
 
 /**
  * The accuracy object threaded through every computation.  Every field
- * can be set from a scene's `[accuracy]` section; see docs/scenes.md.
+ * can be set from a scene's `[accuracy]` section; see docs/guide.md.
  * Tolerances are absolute/relative pairs tested as
  * |err| <= atol + rtol |x|.
  */

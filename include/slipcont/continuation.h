@@ -11,7 +11,7 @@
  * the settings applies to it, and the initial point is corrected with it
  * held fixed.
  *
- * Three levels of use (STYLE.md):
+ * Three levels of use:
  *  - the caller owns the loop: sc_branch_alloc(), sc_branch_set(), then
  *    sc_branch_step() until it returns SC_END or an error; each call
  *    returns after one accepted point (SC_CONTINUE) or at a located
@@ -302,7 +302,7 @@ typedef enum {
 typedef struct {
   sc_map1d_fn fn;                /**< the map iterate and its derivatives */
   void *user;                    /**< passed to fn */
-  sc_map1d_kind kind;
+  sc_map1d_kind kind;            /**< what is continued (sc_map1d_kind) */
   size_t np;                     /**< parameters of g, 1..SC_MAP1D_MAXPARAM */
   double p[SC_MAP1D_MAXPARAM];   /**< parameter values; the free ones are
                                       replaced by u's entries at each call */

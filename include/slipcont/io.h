@@ -56,7 +56,8 @@ typedef struct {
   sc_key_type type;    /**< how the value is parsed and checked */
   int required;        /**< 1: the scene must give it */
   const char *def;     /**< default as text, or NULL */
-  double lo, hi;       /**< range of REAL and INT keys (hi may be HUGE_VAL) */
+  double lo;           /**< lower end of REAL and INT keys */
+  double hi;           /**< upper end (may be HUGE_VAL) */
   int lo_open;         /**< REAL: lo itself excluded */
   int hi_open;         /**< REAL: hi itself excluded */
   const char *choices; /**< CHOICE: "up|down|both" */
@@ -81,6 +82,7 @@ SC_API char *sc_key_range_text(const sc_key_info *k, char *buf, size_t len);
 SC_API int sc_key_check(const sc_key_info *k, const char *value, const sc_map *m,
                         sc_msg *msg);
 
+/** A loaded, validated scene (opaque; sc_scene_load()). */
 typedef struct sc_scene sc_scene;
 
 /**

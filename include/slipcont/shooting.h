@@ -15,7 +15,7 @@
  * linalg.h: the dense backend for m <= SC_SHOOT_DENSE_MAX, KLU above,
  * unless the caller names a backend; both give the same answer.
  *
- * Neutral orbits (MODEL.md: every iterate a single-block slip, f' = 1
+ * Neutral orbits (docs/model.md: every iterate a single-block slip, f' = 1
  * exactly, f^m(d) - d constant on the piece) have no isolated fixed
  * point: they are reported as SC_ENEUTRAL with the constant in the
  * result, never as a singular Jacobian.
@@ -60,6 +60,7 @@ typedef struct {
   char itinerary[SC_ITIN_LEN]; /**< of f^m from d_1, iterates joined by '|' */
 } sc_shoot_result;
 
+/** A shooting problem and its workspace (opaque). */
 typedef struct sc_shoot sc_shoot;
 
 /**

@@ -192,7 +192,7 @@ static int map_run(sc_cli_run *r) {
   fputs("# points, not lines, so that jumps of the map stay open\n", f);
   if (strcmp(sc_map_type(m)->name, "bk2") == 0) {
     fputs("# column 4 is the itinerary: without '12' only one block slips at "
-          "a time\n# (single-block slips: f' = 1, MODEL.md)\n"
+          "a time\n# (single-block slips: f' = 1, docs/model.md)\n"
           "single(s) = strstrt(s, '12') == 0\n",
           f);
     fputs("plot 'map.csv' skip 1 using 1:(single(strcol(4)) ? $2 : NaN) "

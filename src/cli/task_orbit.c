@@ -68,7 +68,7 @@ static double param(const sc_map *m, const char *name, double dflt) {
   return i < 0 ? dflt : sc_map_get_param(m, (size_t)i);
 }
 
-/* The stuck block's velocity during slips (MODEL.md: V with the driver
+/* The stuck block's velocity during slips (docs/model.md: V with the driver
  * moving, 0 with it frozen). */
 static double stuck_velocity(const sc_map *m) {
   const char *drv = sc_map_get_option(m, "driver");
