@@ -97,6 +97,10 @@ for cmd in check run; do
 done
 check "blocked result: nothing written" test ! -e "$TMP/o-blocked/summary.txt"
 
+# A trajectory that would write gigabytes (or overflow a sample count).
+refuse tiny-dtau "[task] dtau = 1e-300: the trajectory would have at least 6.28e+300 rows (limit 5000000" \
+  "$SRC/examples/fig54-moving.ini" --set task.dtau=1e-300
+
 # Numbers never silently wrong.  A map over -1e308..1e308: the grid does
 # not overflow (the middle point is exactly 0) and points the model
 # refuses are rows that say so, not the end of the run.
