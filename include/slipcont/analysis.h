@@ -28,16 +28,17 @@ extern "C" {
  */
 SC_API double sc_grid_point(double from, double to, size_t steps, size_t i);
 
-/** Largest period sc_sweep_period() looks for. */
+/** Largest period a sweep tells apart (longer ones, chaos: 0). */
 #define SC_SWEEP_PERIOD_MAX 16
 
 /**
- * @brief The period of the tail @p x[0..n-1] of an orbit: the smallest
- * p <= pmax (and p <= n/2, so that every value is compared at least
- * once) such that |x[k+p] - x[k]| <= tol for every k, where
- * tol = rtol (max x - min x) + 4 DBL_EPSILON max|x|.  A tail whose whole
- * spread is within rtol max|x| (a fixed point still converging) has
- * period 1.
+ * @brief The period of a stored tail @p x[0..n-1] of an orbit, by the one
+ * period rule of slipcont (chart.h, sc_period) with one confirmation
+ * cycle: the detector is reset at x[0] and fed the rest; periods up to
+ * min(pmax, n/2).  A tail whose whole spread is within
+ * rtol max|x| (+ SC_PERIOD_FLOOR_ULPS ulps) is at rest: period 1.  Sweeps
+ * classify their points with the detector itself over every iterate (as
+ * charts do), not with this function.
  * @param rtol relative tolerance (sc_accuracy.period_rtol), > 0.
  * @return the period, or 0 if none was found ("chaos or a period above
  *         pmax"); -1 for n = 0 or a non-finite value.
@@ -87,7 +88,11 @@ typedef struct {
   double p;         /**< parameter value */
   int direction;    /**< SC_SWEEP_UP or SC_SWEEP_DOWN: the pass */
   int status;       /**< SC_OK, or why the map failed (SC_EUNDEF, ...) */
-  int period;       /**< sc_sweep_period() of the kept tail; 0 none;
+  int period;       /**< the period rule of chart.h (sc_period, max
+                         SC_SWEEP_PERIOD_MAX, SC_PERIOD_DEFAULT_CONFIRM
+                         cycles) over every iterate of this value: the
+                         class a chart with transient = iterations gives;
+                         0 none (SC_PERIOD_HIGH);
                          SC_SWEEP_UNDEFINED if status != SC_OK */
   const double *d;  /**< the kept iterates (keep of them), or NULL when
                          status != SC_OK */
