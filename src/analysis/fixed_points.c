@@ -337,7 +337,7 @@ int sc_fixed_points_find(sc_map *m, const sc_fixed_points_spec *spec,
     }
   }
   if ((st = end_piece(&s, piece_lo, &cur, all_neutral))) goto done;
-  qsort(set->o, set->n, sizeof *set->o, by_first_point);
+  if (set->n) qsort(set->o, set->n, sizeof *set->o, by_first_point);
 done:
   free(s.pts);
   free(s.itin);
