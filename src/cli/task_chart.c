@@ -533,174 +533,209 @@ static int on_progress(void *ctx, long done) {
  * (a second or so of bk2) that a kill loses little. */
 #define BLOCK_POINTS 2048
 
-static int chart_run(sc_cli_run *r) {
-  const sc_chart_spec c = spec_of(r->scene);
-  const long nx = c.x_steps, ny = c.y_steps;
-  int rank = 0, size = 1;
-  int st = sc_chart_check(r->map, &c, r->msg);
-  if (st) return st;
+/* One chart run: the spec, this process's place among the ranks, and
+ * the buffers (rank 0 holds the whole grid). */
+typedef struct {
+  sc_chart_spec c;
+  long nx, ny;
+  int rank, size, threads;
+  double t0;
+  long block;      /* rows per block */
+  long stop_after; /* --stop-after-rows (rank 0's, broadcast) */
+  long start;      /* rows read back from a checkpoint */
+  char *text;      /* the scene's effective values (checkpoint) */
+  uint64_t hash;   /* and their fingerprint */
+  sc_chart_point *grid, *mine, *stage;
+} chart_job;
+
+/* Rows per block: enough points to keep the threads busy (whole rows per
+ * thread with seed = neighbour), a multiple of the ranks. */
+static long block_rows(const chart_job *j) {
+  long block = (BLOCK_POINTS + j->nx - 1) / j->nx;
+  if (j->c.seed == SC_CHART_SEED_NEIGHBOUR && block < 2L * j->threads)
+    block = 2L * j->threads;
+  if (j->size > 1 && block < 4L * j->size) block = 4L * j->size;
+  block = (block + j->size - 1) / j->size * j->size;
+  return block > j->ny ? j->ny : block;
+}
+
+/* All ranks learn the worst status; a rank that was fine says which
+ * failed. */
+static int agree(sc_cli_run *r, int st, const char *who) {
 #ifdef SLIPCONT_MPI
-  if ((st = sc_mpi_chart_begin(&rank, &size, r->msg))) return st;
+  int all = sc_mpi_chart_min_status(st);
+  if (all && !st)
+    st = sc_fail(r->msg, all, "chart: %s failed (%s)", who, sc_strerror(all));
+#else
+  (void)r;
+  (void)who;
 #endif
-  const int threads = omp_get_max_threads();
-  const double t0 = sc_progress_now();
-  sc_chart_point *grid = NULL, *mine = NULL, *stage = NULL;
-  char *text = malloc(SCENE_TEXT_LEN);
+  return st;
+}
 
-  /* Rows per block: enough points to keep the threads busy (whole rows
-   * per thread with seed = neighbour), a multiple of the ranks. */
-  long block = (BLOCK_POINTS + nx - 1) / nx;
-  if (c.seed == SC_CHART_SEED_NEIGHBOUR && block < 2L * threads)
-    block = 2L * threads;
-  if (size > 1 && block < 4L * size) block = 4L * size; /* balance ranks */
-  block = (block + size - 1) / size * size;
-  if (block > ny) block = ny;
-
-  /* --stop-after-rows k stops after k rows with a checkpoint, as a kill
-   * would, but at a known place (tests). */
-  long stop_after = rank == 0 ? r->stop_after_rows : 0;
-  uint64_t hash = 0;
-  long start = 0;
-  /* Failures before the first collective call fall through to it, so
-   * that every rank learns of them. */
-  if (!text)
+/* Step 1: the scene text and its hash, the buffers, the checkpoint.
+ * Failures before the first collective call fall through to it, so that
+ * every rank learns of them. */
+static int chart_prepare(sc_cli_run *r, chart_job *j) {
+  int st = SC_OK;
+  j->text = malloc(SCENE_TEXT_LEN);
+  if (!j->text)
     st = sc_fail(r->msg, SC_ENOMEM, "chart: out of memory");
-  else if (scene_text(r, &c, text, SCENE_TEXT_LEN))
+  else if (scene_text(r, &j->c, j->text, SCENE_TEXT_LEN))
     st = sc_fail(r->msg, SC_EINTERNAL,
                  "chart: scene text longer than %d bytes", SCENE_TEXT_LEN);
   else
-    hash = fnv1a(text);
-  if (!st && rank == 0) {
-    grid = malloc((size_t)(nx * ny) * sizeof *grid);
-    if (size > 1) stage = malloc((size_t)(block * nx) * sizeof *stage);
-    if (!grid || (size > 1 && !stage)) {
+    j->hash = fnv1a(j->text);
+  const long nx = j->nx, ny = j->ny;
+  if (!st && j->rank == 0) {
+    j->grid = malloc((size_t)(nx * ny) * sizeof *j->grid);
+    if (j->size > 1)
+      j->stage = malloc((size_t)(j->block * nx) * sizeof *j->stage);
+    if (!j->grid || (j->size > 1 && !j->stage)) {
       st = sc_fail(r->msg, SC_ENOMEM,
                    "chart: out of memory for %ld x %ld points (%.0f MiB)", nx,
-                   ny, (double)(nx * ny) * sizeof *grid / 1048576);
+                   ny, (double)(nx * ny) * sizeof *j->grid / 1048576);
     } else {
-      start = ckpt_read(r, &c, text, hash, grid);
-      if (start)
+      j->start = ckpt_read(r, &j->c, j->text, j->hash, j->grid);
+      if (j->start)
         sc_cli_note(r, "resuming from %s/%s: %ld of %ld rows done", r->dir,
-                    CKPT_NAME, start, ny);
+                    CKPT_NAME, j->start, ny);
     }
   }
-  if (!st && size > 1) {
-    mine = malloc((size_t)((block + size - 1) / size * nx) * sizeof *mine);
-    if (!mine)
-      st = sc_fail(r->msg, SC_ENOMEM, "chart: out of memory (rank %d)", rank);
+  if (!st && j->size > 1) {
+    j->mine = malloc((size_t)((j->block + j->size - 1) / j->size * nx) *
+                     sizeof *j->mine);
+    if (!j->mine)
+      st = sc_fail(r->msg, SC_ENOMEM, "chart: out of memory (rank %d)",
+                   j->rank);
   }
+  st = agree(r, st, "another rank");
 #ifdef SLIPCONT_MPI
-  {
-    int all = sc_mpi_chart_min_status(st);
-    if (all && !st)
-      st = sc_fail(r->msg, all, "chart: another rank failed (%s)",
-                   sc_strerror(all));
-  }
-  sc_mpi_chart_bcast_long(&start);
-  sc_mpi_chart_bcast_long(&stop_after);
+  sc_mpi_chart_bcast_long(&j->start);
+  sc_mpi_chart_bcast_long(&j->stop_after);
 #endif
-  if (st) goto out;
+  return st;
+}
 
+/* Step 2: the rows from the checkpoint's end to the last, block by
+ * block, with a checkpoint every CKPT_INTERVAL_S, on a signal (then
+ * SC_ECALLBACK) and at --stop-after-rows. */
+static int chart_compute(sc_cli_run *r, chart_job *j) {
+  const long nx = j->nx, ny = j->ny;
+  int st = SC_OK;
   sc_progress bar;
-  sc_progress_start(&bar, "points", nx * ny, start * nx,
-                    rank == 0 && sc_progress_wanted(r->quiet));
+  sc_progress_start(&bar, "points", nx * ny, j->start * nx,
+                    j->rank == 0 && sc_progress_wanted(r->quiet));
   double last_ckpt = sc_progress_now();
-  long done_rows = start;
+  long done_rows = j->start;
   while (done_rows < ny) {
-    long r0 = done_rows, r1 = r0 + block < ny ? r0 + block : ny;
-    if (stop_after > r0 && stop_after < r1) r1 = stop_after;
+    long r0 = done_rows, r1 = r0 + j->block < ny ? r0 + j->block : ny;
+    if (j->stop_after > r0 && j->stop_after < r1) r1 = j->stop_after;
     long nb = r1 - r0;
-    progress_ctx pc = {&bar, r0 * nx, size};
-    sc_chart_point *dst = size > 1 ? mine : grid + r0 * nx;
-    long count = rank < nb ? (nb - rank + size - 1) / size : 0;
-    st = sc_chart_rows(r->map, &c, r0 + rank, count, size, 0, on_progress,
-                       &pc, dst, r->msg);
+    progress_ctx pc = {&bar, r0 * nx, j->size};
+    sc_chart_point *dst = j->size > 1 ? j->mine : j->grid + r0 * nx;
+    long count = j->rank < nb ? (nb - j->rank + j->size - 1) / j->size : 0;
+    st = sc_chart_rows(r->map, &j->c, r0 + j->rank, count, j->size, 0,
+                       on_progress, &pc, dst, r->msg);
+    st = agree(r, st, "another rank");
 #ifdef SLIPCONT_MPI
-    int all = sc_mpi_chart_min_status(st);
-    if (all && !st)
-      st = sc_fail(r->msg, all, "chart: another rank failed (%s)",
-                   sc_strerror(all));
-    if (!st && size > 1)
-      st = sc_mpi_chart_gather(mine, nx, r0, nb, rank, size, stage, grid,
-                               r->msg);
+    if (!st && j->size > 1)
+      st = sc_mpi_chart_gather(j->mine, nx, r0, nb, j->rank, j->size,
+                               j->stage, j->grid, r->msg);
 #endif
     if (st == SC_ECALLBACK && sc_cli_interrupted()) {
       sc_progress_finish(&bar);
-      int e = ckpt_write(r, text, hash, nx, done_rows, grid);
-      st = e ? e
-             : sc_fail(r->msg, SC_ECALLBACK,
-                       "chart: interrupted after %ld of %ld rows; the "
-                       "checkpoint %s/%s is saved: run the same command to "
-                       "resume",
-                       done_rows, ny, r->dir, CKPT_NAME);
-      goto out;
+      int e = j->rank == 0
+                  ? ckpt_write(r, j->text, j->hash, nx, done_rows, j->grid)
+                  : SC_OK;
+      return e ? e
+               : sc_fail(r->msg, SC_ECALLBACK,
+                         "chart: interrupted after %ld of %ld rows; the "
+                         "checkpoint %s/%s is saved: run the same command "
+                         "to resume",
+                         done_rows, ny, r->dir, CKPT_NAME);
     }
-    if (st) goto out;
+    if (st) break;
     done_rows = r1;
     sc_progress_update(&bar, done_rows * nx); /* all ranks' points */
-    int hooked = stop_after > 0 && done_rows == stop_after && done_rows < ny;
-    if (rank == 0 && done_rows < ny &&
+    int hooked = j->stop_after > 0 && done_rows == j->stop_after &&
+                 done_rows < ny;
+    if (j->rank == 0 && done_rows < ny &&
         (hooked || sc_progress_now() - last_ckpt >= CKPT_INTERVAL_S)) {
-      st = ckpt_write(r, text, hash, nx, done_rows, grid);
+      st = ckpt_write(r, j->text, j->hash, nx, done_rows, j->grid);
       last_ckpt = sc_progress_now();
     }
-#ifdef SLIPCONT_MPI
-    {
-      int ck_all = sc_mpi_chart_min_status(st); /* rank 0's checkpoint */
-      if (ck_all && !st)
-        st = sc_fail(r->msg, ck_all, "chart: rank 0 failed (%s)",
-                     sc_strerror(ck_all));
-    }
-#endif
-    if (st) goto out;
+    st = agree(r, st, "rank 0"); /* rank 0's checkpoint */
+    if (st) break;
     if (hooked) {
       sc_progress_finish(&bar);
-      st = sc_fail(r->msg, SC_ECALLBACK,
-                   "chart: stopped after %ld of %ld rows by "
-                   "--stop-after-rows; checkpoint saved",
-                   done_rows, ny);
-      goto out;
+      return sc_fail(r->msg, SC_ECALLBACK,
+                     "chart: stopped after %ld of %ld rows by "
+                     "--stop-after-rows; checkpoint saved",
+                     done_rows, ny);
     }
   }
   sc_progress_finish(&bar);
-  /* From here a signal lets the files be finished (they are written
-   * atomically), and a long chart leaves a complete checkpoint behind
-   * until they are, so a rerun only writes them. */
-  if (rank == 0 && start < ny && sc_progress_now() - t0 >= CKPT_INTERVAL_S &&
-      (st = ckpt_write(r, text, hash, nx, ny, grid)))
-    goto out;
+  return st;
+}
 
-  if (rank == 0) {
-    long *count = calloc((size_t)c.max_period + 2, sizeof *count);
-    double iterations = 0;
-    if (!count) {
-      st = sc_fail(r->msg, SC_ENOMEM, "chart: out of memory");
-      goto out;
-    }
-    count_classes(grid, nx * ny, c.max_period, count, &iterations);
-    st = write_csv(r, &c, grid);
-    if (!st)
-      st = write_summary(r, &c, count, iterations, sc_progress_now() - t0,
-                         start, size, threads);
-    if (!st) st = write_plot(r, &c, count);
-    if (!st) {
-      char path[4096];
-      snprintf(path, sizeof path, "%s/%s", r->dir, CKPT_NAME);
-      if (remove(path) != 0 && errno != ENOENT)
-        sc_cli_note(r, "could not remove %s: %s", path, strerror(errno));
-      sc_cli_note(r,
-                  "chart: %ld points in %.2f s (%d rank(s) x %d thread(s)); "
-                  "%ld high, %ld undefined",
-                  nx * ny, sc_progress_now() - t0, size, threads, count[1],
-                  count[0]);
-    }
-    free(count);
+/* Step 3 (rank 0): the files, then the checkpoint is removed.  A long
+ * chart first leaves a complete checkpoint, so that a rerun after a kill
+ * while writing only writes the files. */
+static int chart_write(sc_cli_run *r, chart_job *j) {
+  const long n = j->nx * j->ny;
+  int st = SC_OK;
+  if (j->start < j->ny && sc_progress_now() - j->t0 >= CKPT_INTERVAL_S &&
+      (st = ckpt_write(r, j->text, j->hash, j->nx, j->ny, j->grid)))
+    return st;
+  long *count = calloc((size_t)j->c.max_period + 2, sizeof *count);
+  double iterations = 0;
+  if (!count) return sc_fail(r->msg, SC_ENOMEM, "chart: out of memory");
+  count_classes(j->grid, n, j->c.max_period, count, &iterations);
+  st = write_csv(r, &j->c, j->grid);
+  if (!st)
+    st = write_summary(r, &j->c, count, iterations,
+                       sc_progress_now() - j->t0, j->start, j->size,
+                       j->threads);
+  if (!st) st = write_plot(r, &j->c, count);
+  if (!st) {
+    char path[4096];
+    snprintf(path, sizeof path, "%s/%s", r->dir, CKPT_NAME);
+    if (remove(path) != 0 && errno != ENOENT)
+      sc_cli_note(r, "could not remove %s: %s", path, strerror(errno));
+    sc_cli_note(r,
+                "chart: %ld points in %.2f s (%d rank(s) x %d thread(s)); "
+                "%ld high, %ld undefined",
+                n, sc_progress_now() - j->t0, j->size, j->threads, count[1],
+                count[0]);
   }
-out:
-  free(grid);
-  free(mine);
-  free(stage);
-  free(text);
+  free(count);
+  return st;
+}
+
+static int chart_run(sc_cli_run *r) {
+  chart_job j;
+  memset(&j, 0, sizeof j);
+  j.c = spec_of(r->scene);
+  j.nx = j.c.x_steps;
+  j.ny = j.c.y_steps;
+  j.size = 1;
+  int st = sc_chart_check(r->map, &j.c, r->msg);
+  if (st) return st;
+#ifdef SLIPCONT_MPI
+  if ((st = sc_mpi_chart_begin(&j.rank, &j.size, r->msg))) return st;
+#endif
+  j.threads = omp_get_max_threads();
+  j.t0 = sc_progress_now();
+  j.block = block_rows(&j);
+  j.stop_after = j.rank == 0 ? r->stop_after_rows : 0;
+  st = chart_prepare(r, &j);
+  if (!st) st = chart_compute(r, &j);
+  if (!st && j.rank == 0) st = chart_write(r, &j);
+  free(j.grid);
+  free(j.mine);
+  free(j.stage);
+  free(j.text);
 #ifdef SLIPCONT_MPI
   sc_mpi_chart_end();
 #endif
