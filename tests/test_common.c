@@ -123,6 +123,33 @@ int main(void) {
           "grid check message: %s", msg.text);
   tu_int("grid check: log 1e-3..7 ok",
          sc_grid_check("x", 1e-3, 7, SC_GRID_LOG, &msg), SC_OK);
+  /* Orbits: one equality rule, one minimal-period rule. */
+  sc_accuracy_preset(&acc, "default", &msg);
+  tu_close("orbit tol at 0.5", sc_orbit_tol(&acc, 0.5),
+           SC_ORBIT_SAME_TOLS * (acc.newton_atol + 0.5 * acc.newton_rtol), 0);
+  double p2x2[] = {0.1, 0.7, 0.1 + 1e-12, 0.7};  /* period 2 seen as 4 */
+  tu_int("minimal period of a doubled period-2 orbit",
+         sc_orbit_minimal_period(p2x2, 4, 1e-9), 2);
+  double p4[] = {0.1, 0.7, 0.2, 0.6};
+  tu_int("minimal period 4", sc_orbit_minimal_period(p4, 4, 1e-9), 4);
+  double p3[] = {0.1, 0.1 + 1e-6, 0.1};
+  tu_int("3 does not divide by 2: period 3 kept",
+         sc_orbit_minimal_period(p3, 3, 1e-9), 3);
+  double a[] = {0.1, 0.5, 0.9}, rot[] = {0.9, 0.1, 0.5 + 1e-11},
+         other[] = {0.1, 0.9, 0.5};
+  tu_int("a rotation is the same orbit", sc_orbit_same(a, rot, 3, 1e-9), 1);
+  tu_int("the reverse order is another orbit", sc_orbit_same(a, other, 3, 1e-9),
+         0);
+  tu_int("beyond tol: another orbit", sc_orbit_same(a, rot, 3, 1e-12), 0);
+  char ch[64];
+  tu_int("first change: field 2", sc_first_change("1-12|2|1", "1-12|12|1", '|',
+                                                  ch, sizeof ch), 2);
+  tu_true(strcmp(ch, "2 -> 12") == 0, "first change text: %s", ch);
+  tu_int("first change: equal", sc_first_change("a\nb", "a\nb", '\n', ch,
+                                                sizeof ch), 0);
+  tu_int("first change: a missing field", sc_first_change("a\nb", "a", '\n',
+                                                          ch, sizeof ch), 2);
+  tu_true(strcmp(ch, "b -> ") == 0, "missing field text: '%s'", ch);
   tu_true(strcmp(sc_strerror(SC_EUNDEF),
                  "map undefined (no return to a global stick phase)") == 0,
           "strerror(SC_EUNDEF) = %s", sc_strerror(SC_EUNDEF));

@@ -189,6 +189,45 @@ SC_API double sc_grid(double from, double to, size_t steps, size_t i,
 SC_API int sc_grid_check(const char *name, double from, double to,
                          sc_grid_scale scale, sc_msg *msg);
 
+/* ------------------------------------------------------------------ */
+/* Orbits: one equality rule, one minimal-period rule                   */
+
+/**
+ * Two points of orbits are the same point when they agree to this many
+ * Newton step tolerances (newton_atol + newton_rtol |x|): far above the
+ * accuracy of a polished point (a few tolerances), far below the spacing
+ * of the points of distinct orbits.
+ */
+#define SC_ORBIT_SAME_TOLS 1e4
+
+/** @brief The tolerance of sc_orbit_same() and sc_orbit_minimal_period()
+ * at @p x: SC_ORBIT_SAME_TOLS (newton_atol + newton_rtol |x|). */
+SC_API double sc_orbit_tol(const sc_accuracy *acc, double x);
+
+/**
+ * @brief The minimal period of the orbit @p pts[0..m-1] (the m iterates
+ * of a fixed point of f^m, from pts[0]): the smallest divisor q of m with
+ * |pts[q] - pts[0]| <= tol; m if none.
+ */
+SC_API int sc_orbit_minimal_period(const double *pts, int m, double tol);
+
+/**
+ * @brief Whether the orbits @p a and @p b of m points each are one orbit:
+ * some rotation of b agrees with a point by point within @p tol.
+ * @return 1 or 0.
+ */
+SC_API int sc_orbit_same(const double *a, const double *b, int m, double tol);
+
+/**
+ * @brief The first field where two texts of @p sep-separated fields
+ * differ (itineraries joined by '|', scene texts by '\n'): writes
+ * "A -> B" into @p out (both fields, "" for a missing one).
+ * @return the field's 1-based index, or 0 (and "" in @p out) if the texts
+ *         are equal.
+ */
+SC_API int sc_first_change(const char *a, const char *b, char sep, char *out,
+                           size_t len);
+
 /** What sc_number_syntax() found. */
 enum {
   SC_NUM_NONE = 0, /**< not a decimal number */

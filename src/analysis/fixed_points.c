@@ -10,11 +10,6 @@
 
 #include "slipcont/branch.h"
 
-/* Two roots are points of one orbit, and an orbit has a smaller period,
- * when points agree to this many step tolerances: far above the accuracy
- * of a polished root (a few tolerances), far below the spacing of
- * distinct orbits' points (which differ by O(1e-3) and more). */
-#define SAME_POINT_TOLS 1e4
 
 /* Bisections of a bracket, far more than the 53 halvings of a double
  * interval: a guard against a loop, never reached. */
@@ -105,12 +100,8 @@ static int orbit_of(search *s, double x, int *minper) {
     if (used > s->itin_len - 1) used = s->itin_len - 1;
     y = v.f;
   }
-  double tol = SAME_POINT_TOLS * tol_x(s->acc, x);
-  for (int q = 1; q < s->period; q++)
-    if (s->period % q == 0 && fabs(s->pts[q] - x) <= tol) {
-      *minper = q;
-      break;
-    }
+  /* The one minimal-period rule (common.h). */
+  *minper = sc_orbit_minimal_period(s->pts, s->period, sc_orbit_tol(s->acc, x));
   return SC_OK;
 }
 
@@ -137,7 +128,7 @@ static int record(search *s, double x, const sc_map_value *v, int neutral,
     return SC_OK;
   }
   int m = s->period, k0 = smallest(s);
-  double tol = SAME_POINT_TOLS * tol_x(s->acc, s->pts[k0]);
+  double tol = sc_orbit_tol(s->acc, s->pts[k0]); /* one equality rule */
   for (size_t j = 0; j < s->set->n; j++) {
     const orbit_rec *o = &s->set->o[j];
     if (o->neutral != neutral) continue;
@@ -148,10 +139,7 @@ static int record(search *s, double x, const sc_map_value *v, int neutral,
           return SC_OK;
       continue;
     }
-    int same = 1;
-    for (int i = 0; i < m && same; i++)
-      if (fabs(o->d[i] - s->pts[(k0 + i) % m]) > tol) same = 0;
-    if (same) return SC_OK;
+    if (sc_orbit_same(o->d, s->pts, m, tol)) return SC_OK;
   }
   if (grow(s->set)) return sc_fail(s->msg, SC_ENOMEM, "out of memory");
   orbit_rec *o = &s->set->o[s->set->n];

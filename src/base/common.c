@@ -306,3 +306,41 @@ int sc_grid_check(const char *name, double from, double to,
                    (int)scale);
   return SC_OK;
 }
+
+/* Orbits (common.h). */
+double sc_orbit_tol(const sc_accuracy *acc, double x) {
+  return SC_ORBIT_SAME_TOLS * (acc->newton_atol + acc->newton_rtol * fabs(x));
+}
+
+int sc_orbit_minimal_period(const double *pts, int m, double tol) {
+  for (int q = 1; q < m; q++)
+    if (m % q == 0 && fabs(pts[q] - pts[0]) <= tol) return q;
+  return m;
+}
+
+int sc_orbit_same(const double *a, const double *b, int m, double tol) {
+  for (int r = 0; r < m; r++) {
+    int same = 1;
+    for (int i = 0; i < m && same; i++)
+      same = fabs(a[i] - b[(r + i) % m]) <= tol;
+    if (same) return 1;
+  }
+  return 0;
+}
+
+int sc_first_change(const char *a, const char *b, char sep, char *out,
+                    size_t len) {
+  const char set[2] = {sep, '\0'};
+  if (len) out[0] = '\0';
+  for (int k = 1; *a || *b; k++) {
+    size_t na = strcspn(a, set), nb = strcspn(b, set);
+    if (na != nb || strncmp(a, b, na) != 0) {
+      if (len)
+        snprintf(out, len, "%.*s -> %.*s", (int)na, a, (int)nb, b);
+      return k;
+    }
+    a += na + (a[na] == sep);
+    b += nb + (b[nb] == sep);
+  }
+  return 0;
+}

@@ -243,20 +243,6 @@ static int ckpt_write(sc_cli_run *r, const char *text, uint64_t hash,
   return sc_file_commit(f, msg);
 }
 
-/* First line where two scene texts differ, as "old -> new". */
-static void first_change(const char *old, const char *now, char *buf,
-                         size_t len) {
-  while (*old && *now) {
-    size_t a = strcspn(old, "\n"), b = strcspn(now, "\n");
-    if (a != b || strncmp(old, now, a) != 0) {
-      snprintf(buf, len, "%.*s -> %.*s", (int)a, old, (int)b, now);
-      return;
-    }
-    old += a + (old[a] == '\n');
-    now += b + (now[b] == '\n');
-  }
-  snprintf(buf, len, "the scene");
-}
 
 /* A point as the chart can have computed it: a period class in range,
  * iterations within the transient, d finite (or NaN where undefined). */
@@ -308,7 +294,8 @@ static long ckpt_read(const sc_cli_run *r, const sc_chart_spec *c,
   }
   if (h != hash || strcmp(old, text) != 0) {
     char change[256];
-    first_change(old, text, change, sizeof change);
+    if (!sc_first_change(old, text, '\n', change, sizeof change))
+      snprintf(change, sizeof change, "the scene");
     sc_cli_note(r,
                 "the checkpoint %s was made for another scene (%s): "
                 "starting over",
