@@ -86,8 +86,8 @@ corrupt() { # corrupt NAME: stop after 5 rows, damage the checkpoint by NAME
   ck="ck-$1/chart.checkpoint"
   size=$(wc -c < "$ck")
   case $1 in
-  period) # the last point's period set out of range
-    printf '\377' | dd of="$ck" bs=1 seek=$((size - 8)) conv=notrunc 2> /dev/null ;;
+  period) # the last point's period set out of range (its top byte)
+    printf '\177' | dd of="$ck" bs=1 seek=$((size - 5)) conv=notrunc 2> /dev/null ;;
   byte) # one byte of the last point's d changed: only the checksum tells
     printf '\001' | dd of="$ck" bs=1 seek=$((size - 13)) conv=notrunc 2> /dev/null ;;
   trunc) # the last point cut short
@@ -110,7 +110,7 @@ corrupt() { # corrupt NAME: stop after 5 rows, damage the checkpoint by NAME
     fail "checkpoint damaged ($1): exit $rc: $(cat "ck-$1.err")"
   fi
 }
-corrupt period 'corrupt (point 79: period 255'
+corrupt period 'corrupt (point 79: period 21'
 corrupt byte 'corrupt (checksum or length differs): starting over'
 corrupt trunc 'is truncated: starting over'
 corrupt rows 'corrupt (rows 99999999 of 12'

@@ -92,7 +92,8 @@ typedef struct {
                          SC_SWEEP_PERIOD_MAX, SC_PERIOD_DEFAULT_CONFIRM
                          cycles) over every iterate of this value: the
                          class a chart with transient = iterations gives;
-                         0 none (SC_PERIOD_HIGH);
+                         0 none (SC_PERIOD_HIGH); SC_PERIOD_UNSETTLED (-2)
+                         still converging;
                          SC_SWEEP_UNDEFINED if status != SC_OK */
   const double *d;  /**< the kept iterates (keep of them), or NULL when
                          status != SC_OK */

@@ -30,8 +30,11 @@
  *   goes on;
  * - detection stops at the first accepted period (early stop);
  * - "high" (SC_PERIOD_HIGH): no period 1..max_period accepted within the
- *   iterate budget: longer periods, chaos, quasi-periodicity, and orbits
- *   still converging when the budget runs out;
+ *   iterate budget: longer periods, chaos, quasi-periodicity;
+ * - "not settled" (SC_PERIOD_UNSETTLED): as "high", but at the end of the
+ *   budget the lag-p differences of some p <= max_period were still
+ *   decaying geometrically towards 0 (sc_period_settling()): the orbit is
+ *   converging, not chaotic; a longer transient would classify it;
  * - "undefined" (SC_PERIOD_UNDEFINED): an iterate failed with SC_EUNDEF
  *   (no return to a global stick phase) or SC_ENONFINITE (the orbit left
  *   the range of doubles).  Any other failure of the map is an error.
@@ -53,6 +56,12 @@ extern "C" {
 #define SC_PERIOD_HIGH 0
 /** Period class: the map is undefined somewhere on the orbit. */
 #define SC_PERIOD_UNDEFINED (-1)
+/** Period class: no period accepted within the iterate budget, but the
+ * orbit is still converging to an orbit of period <= max_period (the
+ * lag-p differences decay geometrically towards 0: sc_period_settling()):
+ * a longer transient would classify it.  Distinct from "high" (chaos,
+ * long periods, quasi-periodicity). */
+#define SC_PERIOD_UNSETTLED (-2)
 /** Largest max_period accepted. */
 #define SC_PERIOD_MAX 256
 /** Default max_period of a chart (fig 5.7: periods above 16 in one
@@ -98,6 +107,15 @@ SC_API void sc_period_reset(sc_period *pd, double x0);
  */
 SC_API int sc_period_push(sc_period *pd, double x);
 
+/**
+ * @brief Whether the orbit pushed so far is still converging to a
+ * periodic orbit: the smallest p <= max_period whose largest lag-p
+ * differences over the last three cycles of p iterates decrease
+ * geometrically with an extrapolated (Aitken) limit within the tolerance;
+ * 0 if none (or too few iterates).  Used when no period was accepted.
+ */
+SC_API int sc_period_settling(const sc_period *pd);
+
 /** Tolerance in use after the last push (see the rule above). */
 SC_API double sc_period_tol(const sc_period *pd);
 /** Extent max - min of the iterates seen since the last reset. */
@@ -105,7 +123,7 @@ SC_API double sc_period_extent(const sc_period *pd);
 
 /** Outcome of sc_period_find(). */
 typedef struct {
-  int period;       /**< 1..max_period, SC_PERIOD_HIGH or
+  int period;       /**< 1..max_period, SC_PERIOD_HIGH, SC_PERIOD_UNSETTLED or
                          SC_PERIOD_UNDEFINED */
   long iterations;  /**< map iterates made (the one that failed included) */
   double d;         /**< last state reached (before a failing iterate) */
@@ -168,8 +186,8 @@ typedef struct {
 /** One grid point's result (16 bytes). */
 typedef struct {
   double d;            /**< final state (last defined iterate) */
-  int32_t period;      /**< 1..max_period, SC_PERIOD_HIGH, or
-                            SC_PERIOD_UNDEFINED */
+  int32_t period;      /**< 1..max_period, SC_PERIOD_HIGH,
+                            SC_PERIOD_UNSETTLED or SC_PERIOD_UNDEFINED */
   int32_t iterations;  /**< map iterates made at this point */
 } sc_chart_point;
 

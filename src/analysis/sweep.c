@@ -237,6 +237,7 @@ static int compute_point(sc_sweep *s, int t, size_t i, double x0,
     return SC_OK;
   }
   s->status[i] = SC_OK;
+  if (!period && sc_period_settling(s->pds[t])) period = SC_PERIOD_UNSETTLED;
   s->period[i] = period; /* 0: SC_PERIOD_HIGH */
   *xend = x;
   return SC_OK;

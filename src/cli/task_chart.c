@@ -248,7 +248,7 @@ static int ckpt_write(sc_cli_run *r, const char *text, uint64_t hash,
  * iterations within the transient, d finite (or NaN where undefined). */
 static int point_valid(const sc_chart_point *p, const sc_chart_spec *c) {
   if (p->period != SC_PERIOD_UNDEFINED && p->period != SC_PERIOD_HIGH &&
-      (p->period < 1 || p->period > c->max_period))
+      p->period != SC_PERIOD_UNSETTLED && (p->period < 1 || p->period > c->max_period))
     return 0;
   if (p->iterations < 0 || p->iterations > c->transient) return 0;
   if (p->period != SC_PERIOD_UNDEFINED && !isfinite(p->d)) return 0;
@@ -333,13 +333,18 @@ done:
 /* ------------------------------------------------------------------ */
 /* Output files                                                          */
 
-/* Classes present, counted: index period + 1 (0: undefined, 1: high). */
+/* Index of a period class in the counts: 0 unsettled, 1 undefined,
+ * 2 high, 2 + p period p. */
+#define CLASS(p) ((p) + 2)
+#define NCLASSES(maxp) ((size_t)(maxp) + 3)
+
+/* Classes present, counted at CLASS(period). */
 static void count_classes(const sc_chart_point *g, long n, int maxp,
                           long *count, double *iterations) {
-  memset(count, 0, (size_t)(maxp + 2) * sizeof *count);
+  memset(count, 0, NCLASSES(maxp) * sizeof *count);
   *iterations = 0;
   for (long k = 0; k < n; k++) {
-    count[g[k].period + 1]++;
+    count[CLASS(g[k].period)]++;
     *iterations += g[k].iterations;
   }
 }
@@ -375,10 +380,12 @@ static const unsigned period_rgb[16] = {
     0x98df8a, 0xff9896, 0xc5b0d5, 0x00ffff};
 #define HIGH_RGB 0x000000u
 #define UNDEF_RGB 0xd9d9d9u
+#define UNSETTLED_RGB 0x8c8c8cu
 
 static unsigned class_rgb(int period) {
   if (period == SC_PERIOD_UNDEFINED) return UNDEF_RGB;
   if (period == SC_PERIOD_HIGH) return HIGH_RGB;
+  if (period == SC_PERIOD_UNSETTLED) return UNSETTLED_RGB;
   return period_rgb[(period - 1) % 16];
 }
 
@@ -435,15 +442,16 @@ static int write_plot(sc_cli_run *r, const sc_chart_spec *c,
   fputs("set size square\nunset grid\nset tics out\n"
         "set key outside right top title 'period' box\n",
         o);
-  fputs("# colour of a period class (column 3): -1 undefined, 0 high\n", o);
+  fputs("# colour of a period class (column 3): -2 not settled, -1 "
+        "undefined, 0 high\n", o);
   fputs("array C[16] = [", o);
   for (int k = 0; k < 16; k++)
     fprintf(o, "%s0x%06x", k ? ", " : "", period_rgb[k]);
   fputs("]\n", o);
   fprintf(o,
-          "rgb(p) = p < 0 ? 0x%06x : p == 0 ? 0x%06x : C[int(p - 1) %% 16 + "
-          "1]\n",
-          UNDEF_RGB, HIGH_RGB);
+          "rgb(p) = p == -2 ? 0x%06x : p < 0 ? 0x%06x : p == 0 ? 0x%06x : "
+          "C[int(p - 1) %% 16 + 1]\n",
+          UNSETTLED_RGB, UNDEF_RGB, HIGH_RGB);
   fprintf(o, "plot 'chart.csv' skip 1 using %s:%s:(int(rgb($3)) >> 16 & "
              "255):",
           c->x_scale ? "(log10(abs($1)))" : "1",
@@ -453,15 +461,19 @@ static int write_plot(sc_cli_run *r, const sc_chart_spec *c,
         o);
   /* A key entry for each class present. */
   for (int p = 1; p <= c->max_period; p++)
-    if (count[p + 1])
+    if (count[CLASS(p)])
       fprintf(o, ", \\\n  keyentry with boxes fs solid fc rgb '#%06x' "
               "title '%d'",
               class_rgb(p), p);
-  if (count[SC_PERIOD_HIGH + 1])
+  if (count[CLASS(SC_PERIOD_HIGH)])
     fprintf(o, ", \\\n  keyentry with boxes fs solid fc rgb '#%06x' "
             "title '> %d or chaos'",
             HIGH_RGB, c->max_period);
-  if (count[SC_PERIOD_UNDEFINED + 1])
+  if (count[CLASS(SC_PERIOD_UNSETTLED)])
+    fprintf(o, ", \\\n  keyentry with boxes fs solid fc rgb '#%06x' "
+            "title 'not settled'",
+            UNSETTLED_RGB);
+  if (count[CLASS(SC_PERIOD_UNDEFINED)])
     fprintf(o, ", \\\n  keyentry with boxes fs solid border lc rgb "
             "'#000000' fc rgb '#%06x' title 'undefined'",
             UNDEF_RGB);
@@ -485,15 +497,19 @@ static int write_summary(sc_cli_run *r, const sc_chart_spec *c,
   if (resumed) fprintf(o, ", resumed after %ld rows", resumed);
   fputc('\n', o);
   for (int p = 1; p <= c->max_period; p++)
-    if (count[p + 1])
-      fprintf(o, "  period %-3d %10ld points (%.2f%%)\n", p, count[p + 1],
-              100.0 * (double)count[p + 1] / (double)n);
-  fprintf(o, "  high       %10ld points (%.2f%%): period > %d, chaos, or not "
-          "settled in %ld iterates\n",
-          count[1], 100.0 * (double)count[1] / (double)n, c->max_period,
-          c->transient);
-  fprintf(o, "  undefined  %10ld points (%.2f%%)\n", count[0],
-          100.0 * (double)count[0] / (double)n);
+    if (count[CLASS(p)])
+      fprintf(o, "  period %-3d %10ld points (%.2f%%)\n", p, count[CLASS(p)],
+              100.0 * (double)count[CLASS(p)] / (double)n);
+  long high = count[CLASS(SC_PERIOD_HIGH)];
+  long unset = count[CLASS(SC_PERIOD_UNSETTLED)];
+  long undef = count[CLASS(SC_PERIOD_UNDEFINED)];
+  fprintf(o, "  high       %10ld points (%.2f%%): period > %d or chaos\n",
+          high, 100.0 * (double)high / (double)n, c->max_period);
+  fprintf(o, "  not settled %9ld points (%.2f%%): still converging after %ld "
+          "iterates (raise transient)\n",
+          unset, 100.0 * (double)unset / (double)n, c->transient);
+  fprintf(o, "  undefined  %10ld points (%.2f%%)\n", undef,
+          100.0 * (double)undef / (double)n);
   return sc_cli_commit(r, "summary.txt", f);
 }
 
@@ -675,7 +691,7 @@ static int chart_write(sc_cli_run *r, chart_job *j) {
   if (j->start < j->ny && sc_progress_now() - j->t0 >= CKPT_INTERVAL_S &&
       (st = ckpt_write(r, j->text, j->hash, j->nx, j->ny, j->grid)))
     return st;
-  long *count = calloc((size_t)j->c.max_period + 2, sizeof *count);
+  long *count = calloc(NCLASSES(j->c.max_period), sizeof *count);
   double iterations = 0;
   if (!count) return sc_fail(r->msg, SC_ENOMEM, "chart: out of memory");
   count_classes(j->grid, n, j->c.max_period, count, &iterations);
@@ -692,9 +708,11 @@ static int chart_write(sc_cli_run *r, chart_job *j) {
       sc_cli_note(r, "could not remove %s: %s", path, strerror(errno));
     sc_cli_note(r,
                 "chart: %ld points in %.2f s (%d rank(s) x %d thread(s)); "
-                "%ld high, %ld undefined",
-                n, sc_progress_now() - j->t0, j->size, j->threads, count[1],
-                count[0]);
+                "%ld high, %ld not settled, %ld undefined",
+                n, sc_progress_now() - j->t0, j->size, j->threads,
+                count[CLASS(SC_PERIOD_HIGH)],
+                count[CLASS(SC_PERIOD_UNSETTLED)],
+                count[CLASS(SC_PERIOD_UNDEFINED)]);
   }
   free(count);
   return st;
