@@ -138,7 +138,9 @@ typedef struct {
  * message does not depend on the thread count. */
 static void record_error(shared_state *sh, long index, int status,
                          const sc_msg *msg) {
-#pragma omp critical(sc_chart_error)
+/* Unnamed: a named critical section is a global lock symbol
+ * (.gomp_critical_user_NAME) exported from the shared library. */
+#pragma omp critical
   {
     if (index < sh->err_index) {
       sh->err_index = index;
