@@ -7,6 +7,7 @@
 #include "cli/progress.h"
 #include "cli/tasks.h"
 #include "slipcont/analysis.h"
+#include "slipcont/chart.h"
 
 static const sc_key_info sweep_keys[] = {
     {"parameter", SC_KEY_PARAM, 1, NULL, 0, 0, 0, 0, NULL,
@@ -90,14 +91,16 @@ static const char *dir_name(int d) { return d == SC_SWEEP_DOWN ? "down" : "up"; 
 /* Runs of equal period along each pass, for the summary. */
 static void write_findings(FILE *f, const sc_sweep *sw, const char *pname) {
   size_t n = sc_sweep_npoints(sw);
-  int seen[SC_SWEEP_PERIOD_MAX + 2] = {0};
+  /* seen[period + 2]: -2 not settled, -1 undefined, 0 none, 1..max */
+  int seen[SC_SWEEP_PERIOD_MAX + 3] = {0};
   sc_sweep_point a, b;
   fprintf(f, "  parameter values: %zu points; map undefined at %zu\n", n,
           sc_sweep_nundefined(sw));
   if (sc_sweep_nundefined(sw))
     fprintf(f, "  first undefined: %s\n", sc_sweep_undefined_reason(sw));
   fputs("  period by parameter range (0: none found up to 16, i.e. chaos "
-        "or a longer period; -1: map undefined):\n",
+        "or a longer period; -1: map undefined; -2: not settled, still "
+        "converging after the iterations):\n",
         f);
   size_t i = 0;
   while (i < n) {
@@ -111,12 +114,13 @@ static void write_findings(FILE *f, const sc_sweep *sw, const char *pname) {
     sc_sweep_get_point(sw, j, &b);
     fprintf(f, "    %-4s %s from %.10g to %.10g (%zu values): period %d\n",
             dir_name(a.direction), pname, a.p, b.p, j - i + 1, a.period);
-    seen[a.period + 1] = 1;
+    if (a.period >= SC_PERIOD_UNSETTLED && a.period <= SC_SWEEP_PERIOD_MAX)
+      seen[a.period + 2] = 1;
     i = j + 1;
   }
   fputs("  periods seen:", f);
-  for (int p = -1; p <= SC_SWEEP_PERIOD_MAX; p++)
-    if (seen[p + 1]) fprintf(f, " %d", p);
+  for (int p = SC_PERIOD_UNSETTLED; p <= SC_SWEEP_PERIOD_MAX; p++)
+    if (seen[p + 2]) fprintf(f, " %d", p);
   fputc('\n', f);
 }
 
