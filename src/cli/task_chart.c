@@ -380,7 +380,7 @@ static const unsigned period_rgb[16] = {
     0x98df8a, 0xff9896, 0xc5b0d5, 0x00ffff};
 #define HIGH_RGB 0x000000u
 #define UNDEF_RGB 0xd9d9d9u
-#define UNSETTLED_RGB 0x8c8c8cu
+#define UNSETTLED_RGB 0xffffffu /* white: unlike every period colour */
 
 static unsigned class_rgb(int period) {
   if (period == SC_PERIOD_UNDEFINED) return UNDEF_RGB;
@@ -470,8 +470,8 @@ static int write_plot(sc_cli_run *r, const sc_chart_spec *c,
             "title '> %d or chaos'",
             HIGH_RGB, c->max_period);
   if (count[CLASS(SC_PERIOD_UNSETTLED)])
-    fprintf(o, ", \\\n  keyentry with boxes fs solid fc rgb '#%06x' "
-            "title 'not settled'",
+    fprintf(o, ", \\\n  keyentry with boxes fs solid border lc rgb "
+            "'#000000' fc rgb '#%06x' title 'not settled'",
             UNSETTLED_RGB);
   if (count[CLASS(SC_PERIOD_UNDEFINED)])
     fprintf(o, ", \\\n  keyentry with boxes fs solid border lc rgb "
