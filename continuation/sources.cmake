@@ -1,5 +1,4 @@
 list(APPEND SC_SOURCES
-  continuation/common.c
   continuation/linsolve.c
   continuation/linsolve_dense.c
   continuation/linsolve_klu.c

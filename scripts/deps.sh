@@ -15,3 +15,17 @@ if ((${#missing[@]})); then
   $sudo apt-get update -q
   $sudo apt-get install -y -q "${missing[@]}"
 fi
+# Optional: clang with libFuzzer (the fuzz stage of scripts/test.sh) and
+# doxygen (the API reference).  Their absence skips those stages only.
+optional=(clang libclang-rt-dev doxygen)
+omissing=()
+for p in "${optional[@]}"; do
+  dpkg -s "$p" >/dev/null 2>&1 || omissing+=("$p")
+done
+if ((${#omissing[@]})); then
+  sudo=""
+  [ "$(id -u)" -ne 0 ] && sudo="sudo"
+  export DEBIAN_FRONTEND=noninteractive
+  { $sudo apt-get update -q && $sudo apt-get install -y -q "${omissing[@]}"; } ||
+    echo "deps.sh: could not install ${omissing[*]}: their stages are skipped"
+fi

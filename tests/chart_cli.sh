@@ -1,7 +1,7 @@
 #!/bin/sh
 # End-to-end tests of the chart task through the slipcont program:
 # identical results for 1 and 2 threads (both seeds), resume after a
-# stop (test hook) and after SIGINT, a changed scene invalidating the
+# stop (--stop-after-rows) and after SIGINT, damaged checkpoints, a changed scene invalidating the
 # checkpoint, bad charts refused before any work, the examples.
 # usage: chart_cli.sh SLIPCONT SOURCE_DIR WORK_DIR
 set -u
@@ -63,7 +63,7 @@ grep -q '^7.5,6,' t1-fixed/chart.csv && pass "last grid point is exactly (7.5, 6
 
 # 2. Stop after 5 rows (the hook writes a checkpoint as a kill would
 #    between blocks), then resume.
-SLIPCONT_CHART_STOP_AFTER_ROWS=5 run stop --threads 2 2> stop.err
+run stop --threads 2 --stop-after-rows 5 2> stop.err
 rc=$?
 [ $rc -eq 1 ] && pass "stopped run exits 1" || fail "stopped run exit $rc"
 [ -f stop/chart.checkpoint ] && [ ! -f stop/chart.csv ] &&
@@ -78,8 +78,48 @@ cmp -s stop/chart.csv t1-fixed/chart.csv &&
 [ ! -f stop/chart.checkpoint ] && pass "checkpoint removed when done" ||
   fail "checkpoint left behind"
 
+# 2b. A damaged checkpoint is never trusted: each of these starts over
+#     with a note saying why, and the chart comes out as an uninterrupted
+#     one (before version 2, a period out of range overran the heap).
+corrupt() { # corrupt NAME: stop after 5 rows, damage the checkpoint by NAME
+  run "ck-$1" --stop-after-rows 5 2> /dev/null
+  ck="ck-$1/chart.checkpoint"
+  size=$(wc -c < "$ck")
+  case $1 in
+  period) # the last point's period set out of range (its top byte)
+    printf '\177' | dd of="$ck" bs=1 seek=$((size - 5)) conv=notrunc 2> /dev/null ;;
+  byte) # one byte of the last point's d changed: only the checksum tells
+    printf '\001' | dd of="$ck" bs=1 seek=$((size - 13)) conv=notrunc 2> /dev/null ;;
+  trunc) # the last point cut short
+    head -c $((size - 3)) "$ck" > "$ck.t" && mv "$ck.t" "$ck" ;;
+  rows) # a row count beyond the chart's
+    sed '3s/^rows .*/rows 99999999/' "$ck" > "$ck.t" && mv "$ck.t" "$ck" ;;
+  negrows)
+    sed '3s/^rows .*/rows -3/' "$ck" > "$ck.t" && mv "$ck.t" "$ck" ;;
+  cols) # a checkpoint of another width
+    sed '4s/^columns .*/columns 17/' "$ck" > "$ck.t" && mv "$ck.t" "$ck" ;;
+  version) # an old or foreign file
+    sed '1s/checkpoint 2/checkpoint 1/' "$ck" > "$ck.t" && mv "$ck.t" "$ck" ;;
+  esac
+  "$BIN" run small.ini --out "ck-$1" 2> "ck-$1.err"
+  rc=$?
+  if [ $rc -eq 0 ] && grep -q "$2" "ck-$1.err" &&
+     ! grep -q resuming "ck-$1.err" && cmp -s "ck-$1/chart.csv" t1-fixed/chart.csv; then
+    pass "checkpoint damaged ($1): '$2', started over, same chart"
+  else
+    fail "checkpoint damaged ($1): exit $rc: $(cat "ck-$1.err")"
+  fi
+}
+corrupt period 'corrupt (point 79: period 21'
+corrupt byte 'corrupt (checksum or length differs): starting over'
+corrupt trunc 'is truncated: starting over'
+corrupt rows 'corrupt (rows 99999999 of 12'
+corrupt negrows 'corrupt (rows -3 of 12'
+corrupt cols 'columns 17 of 16'
+corrupt version 'not a chart checkpoint of this version'
+
 # 3. A changed scene invalidates the checkpoint, with a message.
-SLIPCONT_CHART_STOP_AFTER_ROWS=4 run change 2> /dev/null
+run change --stop-after-rows 4 2> /dev/null
 "$BIN" run small.ini --out change --set task.transient=500 2> change.err
 grep -q 'another scene (task.transient = 600 -> task.transient = 500)' \
   change.err && pass "scene change noted" || fail "no note: $(cat change.err)"

@@ -47,8 +47,8 @@ for seed in fixed neighbour; do
     fail "seed $seed: 2-rank chart.csv differs from the serial one"
 done
 
-SLIPCONT_CHART_STOP_AFTER_ROWS=8 OMP_NUM_THREADS=1 $MPI "$BIN" run small.ini \
-  --quiet --out resume > /dev/null 2>&1
+OMP_NUM_THREADS=1 $MPI "$BIN" run small.ini \
+  --quiet --out resume --stop-after-rows 8 > /dev/null 2>&1
 [ -f resume/chart.checkpoint ] && pass "2-rank stop leaves a checkpoint" ||
   fail "no checkpoint after a 2-rank stop"
 OMP_NUM_THREADS=1 $MPI "$BIN" run small.ini --out resume 2> resume.err

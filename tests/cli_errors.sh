@@ -56,7 +56,7 @@ bad unknown-task-key 's/^keep = 10/kept = 10/' \
 bad duplicate-key 's/^beta = 1$/beta = 1\nbeta = 2/' \
   "$TMP/duplicate-key.ini:7: [model] duplicate key 'beta' (first at line 6)"
 bad bad-number 's/^alpha = 2.9/alpha = 2,9/' \
-  "$TMP/bad-number.ini:5: [model] alpha = '2,9' is not a number (valid: (0, 1000000])"
+  "$TMP/bad-number.ini:5: [model] alpha = '2,9' is not a number: numbers are decimal, like 0.025, -3 or 1e-3 (valid: (0, 1000000])"
 bad nan 's/^d0 = 0.02/d0 = NaN/' \
   "$TMP/nan.ini:17: [task] d0 = NaN is not a finite number"
 bad out-of-range 's/^alpha = 2.9/alpha = -1/' \

@@ -60,7 +60,10 @@ example symmetric-chaos
 expect_header symmetric-chaos "$TMP/symmetric-chaos/sweep.csv" "v,d,period,direction"
 sweep_rows symmetric-chaos 400 100
 summary_has symmetric-chaos "down v from 0.025 to"
-summary_has symmetric-chaos "periods seen: 0 2 4"
+summary_has symmetric-chaos "periods seen: -2 0 2 4"
+# Not settled (-2) exactly where the orbit doubles: the first flip a
+# little below V = 0.021, the second near 0.0195.
+summary_has symmetric-chaos "down v from 0.02078947368 to 0.02068922306 (5 values): period -2"
 expect_periods symmetric-chaos down 0.0236 0.025 2
 expect_periods symmetric-chaos down 0.0197 0.0205 4
 expect_periods symmetric-chaos down 0.015 0.0165 2
@@ -92,7 +95,13 @@ png fig512-sweep sweep.png
 example logistic-sweep
 expect_header logistic-sweep "$TMP/logistic-sweep/sweep.csv" "r,d,period,direction"
 sweep_rows logistic-sweep 601 200
-summary_has logistic-sweep "periods seen: 0 1 2 3 4"
+summary_has logistic-sweep "periods seen: -2 0 1 2 3 4"
+# Not settled (-2) only at the flips r = 3, 1 + sqrt(6) = 3.4495, 3.5441,
+# 3.5644 (200 iterates from 0.3 are too few there), never in chaos.
+summary_has logistic-sweep "up   r from 2.99 to 3.002 (7 values): period -2"
+summary_has logistic-sweep "up   r from 3.446 to 3.45 (3 values): period -2"
+check "logistic-sweep: 4 runs not settled, at the 4 flips" \
+  test "$(grep -c 'period -2$' "$TMP/logistic-sweep/summary.txt")" -eq 4
 # exact answers: flips at r = 3 and 1 + sqrt(6) = 3.4495, the period-3
 # window from 1 + sqrt(8) = 3.8284
 expect_periods logistic-sweep up 2.8 2.95 1

@@ -38,9 +38,13 @@ case $last in 2.5,*,down) pass "sweep: down pass ends at r = 2.5" ;;
 *) fail "sweep: last row '$last'" ;; esac
 mid=$(grep -c '^4,' "$TMP/s1/sweep.csv")
 check "sweep: r = 4 exactly, once per pass ($mid rows)" test "$mid" -eq 80
-grep -q 'periods seen: 0 1 2' "$TMP/s1/summary.txt" &&
+grep -q 'periods seen: -2 0 1 2' "$TMP/s1/summary.txt" &&
   pass "sweep: summary lists the periods seen" ||
-  fail "sweep: summary lacks 'periods seen: 0 1 2 ...'"
+  fail "sweep: summary lacks 'periods seen: -2 0 1 2 ...'"
+# r = 3 is the flip itself (multiplier -1: the orbit converges too slowly
+# to settle): not settled on both passes, like r = 3.45 next to 1 + sqrt 6.
+check "sweep: r = 3 not settled on both passes" \
+  test "$(grep -c 'r from 3 to 3 (1 values): period -2' "$TMP/s1/summary.txt")" -eq 2
 
 run_sc run "$TMP/sweep.ini" --out "$TMP/s2" --set task.steps=1 \
   --set task.direction=up --set task.keep=5 --quiet

@@ -76,8 +76,21 @@ static void grid_and_checks(void) {
   tu_int("good chart passes", sc_chart_check(m, &s, &msg), SC_OK);
   tu_close("x_0 = from", sc_chart_x(&s, 0), 2.8, 0);
   tu_close("x_last = to exactly", sc_chart_x(&s, 28), 4.2, 0);
-  tu_close("x_2 = from + 2 h", sc_chart_x(&s, 2), 2.8 + 2 * (1.4 / 28), 0);
+  tu_close("x_2 = from + (to - from) 2/28", sc_chart_x(&s, 2),
+           2.8 + (4.2 - 2.8) * (2.0 / 28), 0);
   tu_close("y_last = to exactly", sc_chart_y(&s, 4), 0.01, 0);
+  /* A log x axis: equal ratios, the ends exact. */
+  sc_chart_spec g = s;
+  g.x_scale = SC_GRID_LOG;
+  tu_int("log x chart passes", sc_chart_check(m, &g, &msg), SC_OK);
+  tu_close("log x_0 = from", sc_chart_x(&g, 0), 2.8, 0);
+  tu_close("log x_last = to", sc_chart_x(&g, 28), 4.2, 0);
+  tu_rel("log x_14 = sqrt(from to)", sc_chart_x(&g, 14), sqrt(2.8 * 4.2),
+         1e-15);
+  tu_rel("log: equal ratios", sc_chart_x(&g, 2) / sc_chart_x(&g, 1),
+         sc_chart_x(&g, 1) / sc_chart_x(&g, 0), 1e-15);
+  g.x_scale = 7;
+  tu_int("unknown scale refused", sc_chart_check(m, &g, &msg), SC_EINVAL);
 
   sc_chart_spec t;
 #define REFUSE(stmt, needle)                                              \

@@ -1,6 +1,6 @@
 /* Period detection: exact sequences fed by hand, the logistic map at r
  * with known attractors, the near-flip rule, and bk2 points whose
- * periods MODEL.md states. */
+ * periods docs/model.md states. */
 #include <float.h>
 #include <math.h>
 #include <string.h>
@@ -146,6 +146,23 @@ static void logistic(void) {
   double a = (3.2 + 1 - s) / (2 * 3.2), b = (3.2 + 1 + s) / (2 * 3.2);
   tu_close("r = 3.2: d on the 2-cycle", fmin(fabs(res.d - a), fabs(res.d - b)),
            0, 4 * res.tol);
+  /* Near the flip at r = 3 the fixed point's multiplier is 2 - r = -0.99:
+   * 600 iterates leave the transient still converging ("not settled",
+   * not chaos); 20000 settle it to period 1.  Chaos at r = 3.7 stays high
+   * whatever the budget. */
+  sc_map_set_param(m, 0, 2.99, &msg);
+  sc_period_find(pd, m, 0.2385, 600, &res, &msg);
+  tu_int("r = 2.99 with 600 iterates: not settled", res.period,
+         SC_PERIOD_UNSETTLED);
+  tu_int("settling towards period 1", sc_period_settling(pd), 1);
+  sc_period_find(pd, m, 0.2385, 20000, &res, &msg);
+  tu_int("r = 2.99 with 20000 iterates: period 1", res.period, 1);
+  sc_map_set_param(m, 0, 3.7, &msg);
+  for (long budget = 100; budget <= 100000; budget *= 10) {
+    sc_period_find(pd, m, 0.2385, budget, &res, &msg);
+    tu_int("r = 3.7 (chaos): high, not 'not settled'", res.period,
+           SC_PERIOD_HIGH);
+  }
   /* A budget too short to settle is high. */
   sc_map_set_param(m, 0, 3.56, &msg);
   sc_period_find(pd, m, 0.2385, 30, &res, &msg);
@@ -178,7 +195,7 @@ static void divergent(void) {
   sc_map_free(m);
 }
 
-/* bk2 (MODEL.md reference behaviour): alpha = 3, beta = 1, phi = 1.25,
+/* bk2 (docs/model.md, reference behaviours): alpha = 3, beta = 1, phi = 1.25,
  * v = 0.025 has a period-2 orbit with the driver moving and frozen. */
 static void bk2(void) {
   sc_msg msg;

@@ -224,7 +224,7 @@ static void test_bad(void) {
           "x.ini:12: [task] steps = 0 out of range (valid: [1, 1000000])",
           NULL);
   refused("steps not an integer", edit("from = 0.025", "from = 0.025\nsteps = 2.5"),
-          "x.ini:12: [task] steps = '2.5' is not an integer", NULL);
+          "x.ini:12: [task] steps = 2.5 is not an integer", NULL);
   refused("bad choice", edit("from = 0.025", "from = 0.025\nseed = random"),
           "x.ini:12: [task] seed = 'random' is not valid",
           "(valid: fixed|previous)");
@@ -361,7 +361,22 @@ static void test_keys(void) {
   sc_msg msg;
   tu_int("1e300 accepted", sc_key_check(&k, "1e300", NULL, &msg), SC_OK);
   tu_int("1e999 refused", sc_key_check(&k, "1e999", NULL, &msg), SC_EINVAL);
-  tu_int("0x10 accepted as hex", sc_key_check(&k, "0x10", NULL, &msg), SC_OK);
+  tu_int("0x10 refused (decimal only)", sc_key_check(&k, "0x10", NULL, &msg),
+         SC_EINVAL);
+  tu_true(strstr(msg.text, "x = '0x10' is not a number: numbers are decimal") !=
+              NULL,
+          "hex message: %s", msg.text);
+  sc_key_info ki = {"n", SC_KEY_INT, 0, NULL, 1, 1000000, 0, 0, NULL, ""};
+  tu_int("1e3 is not an integer", sc_key_check(&ki, "1e3", NULL, &msg),
+         SC_EINVAL);
+  tu_true(strstr(msg.text, "n = 1e3 is not an integer: write integers in "
+                           "decimal digits only") != NULL,
+          "1e3 message: %s", msg.text);
+  tu_int("99999999999 out of range", sc_key_check(&ki, "99999999999", NULL,
+                                                  &msg), SC_EINVAL);
+  tu_true(strstr(msg.text, "n = 99999999999 out of range (valid: [1, "
+                           "1000000])") != NULL,
+          "overflow message: %s", msg.text);
   tu_int("blank refused", sc_key_check(&k, " ", NULL, &msg), SC_EINVAL);
 }
 

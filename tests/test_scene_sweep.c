@@ -1,6 +1,6 @@
 /* Sweeps (analysis.h): the grid, period detection, the logistic map's
  * exact periods, thread-count independence, undefined points, seeding;
- * and the reference behaviours of the two-block model (MODEL.md, figs
+ * and the reference behaviours of the two-block model (docs/model.md, figs
  * 5.4 and 5.6). */
 #include <math.h>
 #include <stdio.h>
@@ -11,6 +11,7 @@
 #endif
 
 #include "slipcont/analysis.h"
+#include "slipcont/chart.h"
 #include "test_util.h"
 
 static void test_grid(void) {
@@ -21,9 +22,57 @@ static void test_grid(void) {
   tu_close("grid: steps = 1 is from", sc_grid_point(2.385, 7, 1, 0), 2.385, 0);
   tu_true(isnan(sc_grid_point(0, 1, 0, 0)), "grid: steps = 0 is NaN");
   tu_true(isnan(sc_grid_point(0, 1, 3, 3)), "grid: i = steps is NaN");
-  /* from + i (to - from)/(steps - 1), evaluated exactly so. */
+  /* from + (to - from) (i/(steps - 1)) (sc_grid, common.h). */
   tu_close("grid: formula", sc_grid_point(0.1, 0.7, 7, 3),
-           0.1 + 3.0 * (0.7 - 0.1) / 6.0, 0);
+           0.1 + (0.7 - 0.1) * (3.0 / 6.0), 0);
+}
+
+/* One period rule: a sweep's period at each value is the class the
+ * chart's detector gives the same orbit (sc_period_find with
+ * max_iter = iterations), here across the logistic map's flip at r = 3,
+ * where slow convergence made the two disagree before. */
+static void test_one_period_rule(void) {
+  sc_msg msg;
+  sc_map *m = NULL;
+  tu_int("logistic map", sc_map_alloc("logistic", NULL, &m, &msg), SC_OK);
+  sc_sweep_spec sp = {0};
+  sp.param = (size_t)sc_map_param_index(m, "r");
+  sp.from = 2.95;
+  sp.to = 3.05;
+  sp.steps = 41;
+  sp.iterations = 600;
+  sp.keep = 10;
+  sp.d0 = 0.3;
+  sp.direction = SC_SWEEP_UP;
+  sp.seed = SC_SEED_FIXED;
+  sc_sweep *sw = NULL;
+  tu_int("sweep alloc", sc_sweep_alloc(m, &sp, &sw, &msg), SC_OK);
+  tu_int("sweep run", sc_sweep_run(sw, &msg), SC_OK);
+  sc_period *pd = NULL;
+  tu_int("detector", sc_period_alloc(SC_SWEEP_PERIOD_MAX,
+                                     SC_PERIOD_DEFAULT_CONFIRM,
+                                     sc_map_accuracy(m)->period_rtol, &pd,
+                                     &msg), SC_OK);
+  int agree = 1, p1 = 0, p2 = 0;
+  for (size_t i = 0; i < sc_sweep_npoints(sw); i++) {
+    sc_sweep_point pt;
+    sc_sweep_get_point(sw, i, &pt);
+    sc_map_set_param(m, sp.param, pt.p, &msg);
+    sc_period_result res;
+    sc_period_find(pd, m, sp.d0, sp.iterations, &res, &msg);
+    if (res.period != pt.period) {
+      agree = 0;
+      printf("  r = %.17g: sweep %d, chart %d\n", pt.p, pt.period, res.period);
+    }
+    p1 += pt.period == 1;
+    p2 += pt.period == 2;
+  }
+  tu_true(agree, "sweep and chart classify every r in [2.95, 3.05] alike");
+  tu_true(p1 > 0 && p2 > 0, "both sides of the flip seen (%d period 1, %d "
+                            "period 2)", p1, p2);
+  sc_period_free(pd);
+  sc_sweep_free(sw);
+  sc_map_free(m);
 }
 
 static void test_period(void) {
@@ -355,6 +404,7 @@ static void test_fig56(void) {
 int main(void) {
   test_grid();
   test_period();
+  test_one_period_rule();
   test_logistic();
   test_sweep_logistic();
   test_fig54();

@@ -22,28 +22,28 @@ extern "C" {
 #endif
 
 /**
- * @brief Point @p i of the grid of @p steps points from @p from to @p to,
- * both ends included: from + i (to - from)/(steps - 1), with the last
- * point exactly @p to; steps = 1 gives @p from only.
+ * @brief Point @p i of the linear grid of @p steps points from @p from to
+ * @p to: sc_grid(from, to, steps, i, SC_GRID_LINEAR) (common.h).
  * @return the point; NaN for i >= steps or steps = 0.
  */
-double sc_grid_point(double from, double to, size_t steps, size_t i);
+SC_API double sc_grid_point(double from, double to, size_t steps, size_t i);
 
-/** Largest period sc_sweep_period() looks for. */
+/** Largest period a sweep tells apart (longer ones, chaos: 0). */
 #define SC_SWEEP_PERIOD_MAX 16
 
 /**
- * @brief The period of the tail @p x[0..n-1] of an orbit: the smallest
- * p <= pmax (and p <= n/2, so that every value is compared at least
- * once) such that |x[k+p] - x[k]| <= tol for every k, where
- * tol = rtol (max x - min x) + 4 DBL_EPSILON max|x|.  A tail whose whole
- * spread is within rtol max|x| (a fixed point still converging) has
- * period 1.
+ * @brief The period of a stored tail @p x[0..n-1] of an orbit, by the one
+ * period rule of slipcont (chart.h, sc_period) with one confirmation
+ * cycle: the detector is reset at x[0] and fed the rest; periods up to
+ * min(pmax, n/2).  A tail whose whole spread is within
+ * rtol max|x| (+ SC_PERIOD_FLOOR_ULPS ulps) is at rest: period 1.  Sweeps
+ * classify their points with the detector itself over every iterate (as
+ * charts do), not with this function.
  * @param rtol relative tolerance (sc_accuracy.period_rtol), > 0.
  * @return the period, or 0 if none was found ("chaos or a period above
  *         pmax"); -1 for n = 0 or a non-finite value.
  */
-int sc_sweep_period(const double *x, size_t n, double rtol, int pmax);
+SC_API int sc_sweep_period(const double *x, size_t n, double rtol, int pmax);
 
 /** Order of a sweep over the parameter grid. */
 typedef enum {
@@ -59,13 +59,15 @@ typedef enum {
 } sc_sweep_seed;
 
 /**
- * What a sweep computes.  The grid is sc_grid_point(from, to, steps, .);
- * from > to is allowed and covers the same interval.
+ * What a sweep computes.  The grid is sc_grid(from, to, steps, ., x_scale)
+ * (common.h); from > to is allowed and covers the same interval.
  */
 typedef struct {
   size_t param;     /**< index of the swept parameter (models.h order) */
-  double from, to;  /**< ends of the grid, inside the parameter's range */
+  double from;      /**< first grid value, inside the parameter's range */
+  double to;        /**< last grid value, inside the parameter's range */
   size_t steps;     /**< grid points, >= 1, ends included */
+  int x_scale;      /**< sc_grid_scale: SC_GRID_LINEAR (0) or SC_GRID_LOG */
   int iterations;   /**< iterates at each value, >= 1 */
   int keep;         /**< last iterates kept, 1 <= keep <= iterations */
   double d0;        /**< initial state */
@@ -86,13 +88,19 @@ typedef struct {
   double p;         /**< parameter value */
   int direction;    /**< SC_SWEEP_UP or SC_SWEEP_DOWN: the pass */
   int status;       /**< SC_OK, or why the map failed (SC_EUNDEF, ...) */
-  int period;       /**< sc_sweep_period() of the kept tail; 0 none;
+  int period;       /**< the period rule of chart.h (sc_period, max
+                         SC_SWEEP_PERIOD_MAX, SC_PERIOD_DEFAULT_CONFIRM
+                         cycles) over every iterate of this value: the
+                         class a chart with transient = iterations gives;
+                         0 none (SC_PERIOD_HIGH); SC_PERIOD_UNSETTLED (-2)
+                         still converging;
                          SC_SWEEP_UNDEFINED if status != SC_OK */
   const double *d;  /**< the kept iterates (keep of them), or NULL when
                          status != SC_OK */
   int nd;           /**< number of kept iterates (0 when undefined) */
 } sc_sweep_point;
 
+/** A prepared sweep and its results (opaque; sc_sweep_alloc()). */
 typedef struct sc_sweep sc_sweep;
 
 /**
@@ -101,8 +109,8 @@ typedef struct sc_sweep sc_sweep;
  * @return SC_OK; SC_EINVAL for a bad spec (the message names the field
  *         and its valid range); SC_ENOMEM.
  */
-int sc_sweep_alloc(const sc_map *m, const sc_sweep_spec *spec,
-                   sc_sweep **out, sc_msg *msg);
+SC_API int sc_sweep_alloc(const sc_map *m, const sc_sweep_spec *spec,
+                          sc_sweep **out, sc_msg *msg);
 
 /**
  * @brief Run the sweep.  With SC_SEED_FIXED the parameter values are
@@ -119,10 +127,10 @@ int sc_sweep_alloc(const sc_map *m, const sc_sweep_spec *spec,
  *         the model (SC_EINTERNAL, SC_ENOMEM, SC_EINVAL from a refused
  *         parameter value), with the message.
  */
-int sc_sweep_run(sc_sweep *s, sc_msg *msg);
+SC_API int sc_sweep_run(sc_sweep *s, sc_msg *msg);
 
 /** Number of points: steps, times 2 for SC_SWEEP_BOTH. */
-size_t sc_sweep_npoints(const sc_sweep *s);
+SC_API size_t sc_sweep_npoints(const sc_sweep *s);
 
 /**
  * @brief Point @p i (0 <= i < sc_sweep_npoints()), in the order of the
@@ -130,17 +138,17 @@ size_t sc_sweep_npoints(const sc_sweep *s);
  * decreasing parameter.  The kept iterates stay owned by @p s.
  * @return SC_OK or SC_EINVAL for i out of range.
  */
-int sc_sweep_get_point(const sc_sweep *s, size_t i, sc_sweep_point *pt);
+SC_API int sc_sweep_get_point(const sc_sweep *s, size_t i, sc_sweep_point *pt);
 
 /** Number of points whose map was undefined. */
-size_t sc_sweep_nundefined(const sc_sweep *s);
+SC_API size_t sc_sweep_nundefined(const sc_sweep *s);
 /** The message of the first undefined point (in point order), or "". */
-const char *sc_sweep_undefined_reason(const sc_sweep *s);
+SC_API const char *sc_sweep_undefined_reason(const sc_sweep *s);
 /** Map evaluations made by the sweep (all threads). */
-unsigned long sc_sweep_nevals(const sc_sweep *s);
+SC_API unsigned long sc_sweep_nevals(const sc_sweep *s);
 
 /** @brief Release @p s; NULL is accepted. */
-void sc_sweep_free(sc_sweep *s);
+SC_API void sc_sweep_free(sc_sweep *s);
 
 #ifdef __cplusplus
 }

@@ -85,21 +85,21 @@ typedef struct {
  * @return SC_OK; SC_EINVAL for a bad spec (message names the field);
  *         SC_ENOMEM; an error of the model other than an undefined map.
  */
-int sc_fixed_points_find(sc_map *m, const sc_fixed_points_spec *spec,
+SC_API int sc_fixed_points_find(sc_map *m, const sc_fixed_points_spec *spec,
                          sc_orbit_set **out, sc_msg *msg);
 
 /** Number of orbits (families included), by increasing smallest point. */
-size_t sc_orbit_set_count(const sc_orbit_set *s);
+SC_API size_t sc_orbit_set_count(const sc_orbit_set *s);
 /** @brief Orbit @p i; SC_EINVAL for i out of range. */
-int sc_orbit_set_get(const sc_orbit_set *s, size_t i, sc_orbit_info *o);
+SC_API int sc_orbit_set_get(const sc_orbit_set *s, size_t i, sc_orbit_info *o);
 /** Pieces of constant itinerary the interval was split into. */
-size_t sc_orbit_set_npieces(const sc_orbit_set *s);
+SC_API size_t sc_orbit_set_npieces(const sc_orbit_set *s);
 /** Roots whose orbit has a smaller minimal period (not reported). */
-size_t sc_orbit_set_nlower(const sc_orbit_set *s);
+SC_API size_t sc_orbit_set_nlower(const sc_orbit_set *s);
 /** Grid or bisection points where the map was undefined. */
-size_t sc_orbit_set_nundefined(const sc_orbit_set *s);
+SC_API size_t sc_orbit_set_nundefined(const sc_orbit_set *s);
 /** @brief Release @p s; NULL is accepted. */
-void sc_orbit_set_free(sc_orbit_set *s);
+SC_API void sc_orbit_set_free(sc_orbit_set *s);
 
 /* ------------------------------------------------------------------ */
 /* Branches of periodic orbits in one parameter                          */
@@ -118,10 +118,10 @@ typedef enum {
 } sc_point_label;
 
 /** Label text: "LP", "PD", "GR", "CS", "SW", "BR", "TT", "EP". */
-const char *sc_point_label_text(sc_point_label l);
+SC_API const char *sc_point_label_text(sc_point_label l);
 
 /** The special-point label of a border kind. */
-sc_point_label sc_point_label_of_border(sc_border_kind k);
+SC_API sc_point_label sc_point_label_of_border(sc_border_kind k);
 
 /** What sc_orbit_branch_run() continues. */
 typedef struct {
@@ -171,7 +171,7 @@ typedef enum {
 } sc_location_method;
 
 /** Text of a location method: "newton", "bisection", "not-located", "". */
-const char *sc_location_method_text(sc_location_method l);
+SC_API const char *sc_location_method_text(sc_location_method l);
 
 /** One special point. */
 typedef struct {
@@ -203,7 +203,7 @@ typedef struct sc_orbit_branch sc_orbit_branch;
  * grow (points and special points grow as they come).
  * @return SC_OK; SC_EINVAL naming the bad field; SC_ENOMEM.
  */
-int sc_orbit_branch_alloc(sc_map *m, const sc_orbit_branch_spec *spec,
+SC_API int sc_orbit_branch_alloc(sc_map *m, const sc_orbit_branch_spec *spec,
                           sc_orbit_branch **out, sc_msg *msg);
 
 /**
@@ -216,7 +216,7 @@ int sc_orbit_branch_alloc(sc_map *m, const sc_orbit_branch_spec *spec,
  *         a period outside [1, max_period]; SC_ENOMEM when more than
  *         max_branches starts were added.
  */
-int sc_orbit_branch_add_start(sc_orbit_branch *b, double p, double d,
+SC_API int sc_orbit_branch_add_start(sc_orbit_branch *b, double p, double d,
                               int period, sc_msg *msg);
 
 /**
@@ -250,26 +250,26 @@ int sc_orbit_branch_add_start(sc_orbit_branch *b, double p, double d,
  *         SC_ENOCONV or SC_ENEUTRAL when the starting orbit cannot be
  *         found; SC_ECALLBACK if progress stopped it; SC_ENOMEM.
  */
-int sc_orbit_branch_run(sc_orbit_branch *b, sc_msg *msg);
+SC_API int sc_orbit_branch_run(sc_orbit_branch *b, sc_msg *msg);
 
 /** Accepted points, in the order they were computed. */
-size_t sc_orbit_branch_npoints(const sc_orbit_branch *b);
+SC_API size_t sc_orbit_branch_npoints(const sc_orbit_branch *b);
 /** @brief Point @p i; SC_EINVAL for i out of range. */
-int sc_orbit_branch_point(const sc_orbit_branch *b, size_t i,
+SC_API int sc_orbit_branch_point(const sc_orbit_branch *b, size_t i,
                           sc_orbit_point_info *pt);
 /** Special points, in the order they were found. */
-size_t sc_orbit_branch_nspecial(const sc_orbit_branch *b);
+SC_API size_t sc_orbit_branch_nspecial(const sc_orbit_branch *b);
 /** @brief Special point @p i; SC_EINVAL for i out of range. */
-int sc_orbit_branch_special(const sc_orbit_branch *b, size_t i,
+SC_API int sc_orbit_branch_special(const sc_orbit_branch *b, size_t i,
                             sc_orbit_special_info *sp);
 /** Special points met again by another segment (a flip reached from the
  * doubled branch, a closed curve from two starts): reported once, and
  * counted here. */
-size_t sc_orbit_branch_nduplicate(const sc_orbit_branch *b);
+SC_API size_t sc_orbit_branch_nduplicate(const sc_orbit_branch *b);
 /** Branch segments computed. */
-int sc_orbit_branch_nbranches(const sc_orbit_branch *b);
+SC_API int sc_orbit_branch_nbranches(const sc_orbit_branch *b);
 /** @brief Release @p b; NULL is accepted. */
-void sc_orbit_branch_free(sc_orbit_branch *b);
+SC_API void sc_orbit_branch_free(sc_orbit_branch *b);
 
 #ifdef __cplusplus
 }

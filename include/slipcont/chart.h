@@ -30,8 +30,11 @@
  *   goes on;
  * - detection stops at the first accepted period (early stop);
  * - "high" (SC_PERIOD_HIGH): no period 1..max_period accepted within the
- *   iterate budget: longer periods, chaos, quasi-periodicity, and orbits
- *   still converging when the budget runs out;
+ *   iterate budget: longer periods, chaos, quasi-periodicity;
+ * - "not settled" (SC_PERIOD_UNSETTLED): as "high", but at the end of the
+ *   budget the lag-p differences of some p <= max_period were still
+ *   decaying geometrically towards 0 (sc_period_settling()): the orbit is
+ *   converging, not chaotic; a longer transient would classify it;
  * - "undefined" (SC_PERIOD_UNDEFINED): an iterate failed with SC_EUNDEF
  *   (no return to a global stick phase) or SC_ENONFINITE (the orbit left
  *   the range of doubles).  Any other failure of the map is an error.
@@ -53,6 +56,12 @@ extern "C" {
 #define SC_PERIOD_HIGH 0
 /** Period class: the map is undefined somewhere on the orbit. */
 #define SC_PERIOD_UNDEFINED (-1)
+/** Period class: no period accepted within the iterate budget, but the
+ * orbit is still converging to an orbit of period <= max_period (the
+ * lag-p differences decay geometrically towards 0: sc_period_settling()):
+ * a longer transient would classify it.  Distinct from "high" (chaos,
+ * long periods, quasi-periodicity). */
+#define SC_PERIOD_UNSETTLED (-2)
 /** Largest max_period accepted. */
 #define SC_PERIOD_MAX 256
 /** Default max_period of a chart (fig 5.7: periods above 16 in one
@@ -82,30 +91,39 @@ typedef struct sc_period sc_period;
  *         which), SC_ENOMEM.  All memory is taken here: reset and push
  *         never allocate.
  */
-int sc_period_alloc(int max_period, int confirm, double rtol,
-                    sc_period **out, sc_msg *msg);
+SC_API int sc_period_alloc(int max_period, int confirm, double rtol,
+                           sc_period **out, sc_msg *msg);
 
 /** @brief Release @p pd; NULL is accepted. */
-void sc_period_free(sc_period *pd);
+SC_API void sc_period_free(sc_period *pd);
 
 /** @brief Start a new orbit at @p x0 (the initial state, iterate 0). */
-void sc_period_reset(sc_period *pd, double x0);
+SC_API void sc_period_reset(sc_period *pd, double x0);
 
 /**
  * @brief Feed the next iterate.
  * @return the accepted period (1..max_period) once one is accepted, and
  *         the same value for every later push; 0 while none is.
  */
-int sc_period_push(sc_period *pd, double x);
+SC_API int sc_period_push(sc_period *pd, double x);
+
+/**
+ * @brief Whether the orbit pushed so far is still converging to a
+ * periodic orbit: the smallest p <= max_period whose largest lag-p
+ * differences over the last three cycles of p iterates decrease
+ * geometrically with an extrapolated (Aitken) limit within the tolerance;
+ * 0 if none (or too few iterates).  Used when no period was accepted.
+ */
+SC_API int sc_period_settling(const sc_period *pd);
 
 /** Tolerance in use after the last push (see the rule above). */
-double sc_period_tol(const sc_period *pd);
+SC_API double sc_period_tol(const sc_period *pd);
 /** Extent max - min of the iterates seen since the last reset. */
-double sc_period_extent(const sc_period *pd);
+SC_API double sc_period_extent(const sc_period *pd);
 
 /** Outcome of sc_period_find(). */
 typedef struct {
-  int period;       /**< 1..max_period, SC_PERIOD_HIGH or
+  int period;       /**< 1..max_period, SC_PERIOD_HIGH, SC_PERIOD_UNSETTLED or
                          SC_PERIOD_UNDEFINED */
   long iterations;  /**< map iterates made (the one that failed included) */
   double d;         /**< last state reached (before a failing iterate) */
@@ -123,8 +141,8 @@ typedef struct {
  *         map failure other than SC_EUNDEF / SC_ENONFINITE (e.g.
  *         SC_ENOCONV), with the map's message.
  */
-int sc_period_find(sc_period *pd, sc_map *m, double d0, long max_iter,
-                   sc_period_result *res, sc_msg *msg);
+SC_API int sc_period_find(sc_period *pd, sc_map *m, double d0, long max_iter,
+                          sc_period_result *res, sc_msg *msg);
 
 /** How each point of a chart row starts. */
 enum {
@@ -142,17 +160,22 @@ enum {
 
 /**
  * A chart over two parameters of a map.  Steps count grid points with
- * both ends included: x_i = x_from + i (x_to - x_from) / (x_steps - 1),
+ * both ends included: x_i = sc_grid(x_from, x_to, x_steps, i, x_scale)
+ * (common.h: equal differences, or equal ratios on a log scale),
  * i = 0..x_steps-1, the last one exactly x_to (likewise for y).  A row is
  * one value of y, all values of x.
  */
 typedef struct {
   const char *x;      /**< parameter name for the x axis */
-  double x_from, x_to;
+  double x_from;      /**< first x value */
+  double x_to;        /**< last x value, exactly a grid point */
   long x_steps;       /**< >= 2 */
   const char *y;      /**< parameter name for the y axis, not x */
-  double y_from, y_to;
+  double y_from;      /**< first y value */
+  double y_to;        /**< last y value, exactly a grid point */
   long y_steps;       /**< >= 2 */
+  int x_scale;        /**< sc_grid_scale of x (default SC_GRID_LINEAR) */
+  int y_scale;        /**< sc_grid_scale of y (default SC_GRID_LINEAR) */
   double d0;          /**< initial state */
   long transient;     /**< most map iterates per point, 1..INT32_MAX */
   int max_period;     /**< 1..SC_PERIOD_MAX (default 16) */
@@ -163,14 +186,14 @@ typedef struct {
 /** One grid point's result (16 bytes). */
 typedef struct {
   double d;            /**< final state (last defined iterate) */
-  int32_t period;      /**< 1..max_period, SC_PERIOD_HIGH, or
-                            SC_PERIOD_UNDEFINED */
+  int32_t period;      /**< 1..max_period, SC_PERIOD_HIGH,
+                            SC_PERIOD_UNSETTLED or SC_PERIOD_UNDEFINED */
   int32_t iterations;  /**< map iterates made at this point */
 } sc_chart_point;
 
 /** @brief Defaults: no axes, transient 1000, max_period 16, confirm 4,
  * seed fixed, d0 = 0. */
-void sc_chart_spec_default(sc_chart_spec *s);
+SC_API void sc_chart_spec_default(sc_chart_spec *s);
 
 /**
  * @brief Check a chart against the model of @p m before any work: steps
@@ -181,12 +204,12 @@ void sc_chart_spec_default(sc_chart_spec *s);
  * @return SC_OK or SC_EINVAL with a message naming the key
  *         (`x-steps = 0 (valid: >= 2)`, `x and y are both 'alpha'`, ...).
  */
-int sc_chart_check(const sc_map *m, const sc_chart_spec *s, sc_msg *msg);
+SC_API int sc_chart_check(const sc_map *m, const sc_chart_spec *s, sc_msg *msg);
 
 /** x value of column @p i (0 <= i < x_steps). */
-double sc_chart_x(const sc_chart_spec *s, long i);
+SC_API double sc_chart_x(const sc_chart_spec *s, long i);
 /** y value of row @p j (0 <= j < y_steps). */
-double sc_chart_y(const sc_chart_spec *s, long j);
+SC_API double sc_chart_y(const sc_chart_spec *s, long j);
 
 /**
  * Progress callback of sc_chart_rows(): @p done points of this call are
@@ -224,10 +247,10 @@ typedef int (*sc_chart_progress_fn)(void *ctx, long done);
  *         SC_ECALLBACK if the callback cancelled (rows are then partly
  *         computed).
  */
-int sc_chart_rows(const sc_map *proto, const sc_chart_spec *s, long first,
-                  long count, long stride, int threads,
-                  sc_chart_progress_fn progress, void *ctx,
-                  sc_chart_point *out, sc_msg *msg);
+SC_API int sc_chart_rows(const sc_map *proto, const sc_chart_spec *s, long first,
+                         long count, long stride, int threads,
+                         sc_chart_progress_fn progress, void *ctx,
+                         sc_chart_point *out, sc_msg *msg);
 
 #ifdef __cplusplus
 }

@@ -11,7 +11,7 @@
  * the settings applies to it, and the initial point is corrected with it
  * held fixed.
  *
- * Three levels of use (STYLE.md):
+ * Three levels of use:
  *  - the caller owns the loop: sc_branch_alloc(), sc_branch_set(), then
  *    sc_branch_step() until it returns SC_END or an error; each call
  *    returns after one accepted point (SC_CONTINUE) or at a located
@@ -101,7 +101,7 @@ typedef struct {
 } sc_cont_settings;
 
 /** @brief Fill @p s with the defaults listed in sc_cont_settings. */
-void sc_cont_settings_default(sc_cont_settings *s);
+SC_API void sc_cont_settings_default(sc_cont_settings *s);
 
 /**
  * @brief Check every field of @p s (finite, in range, hmin <= h0 <= hmax,
@@ -109,7 +109,7 @@ void sc_cont_settings_default(sc_cont_settings *s);
  * @return SC_OK, or SC_EINVAL naming the first bad field, its value and
  *         the valid range.
  */
-int sc_cont_settings_check(const sc_cont_settings *s, sc_msg *msg);
+SC_API int sc_cont_settings_check(const sc_cont_settings *s, sc_msg *msg);
 
 /** Why the last Newton corrector stopped: a reason, not an error. */
 typedef enum {
@@ -123,7 +123,7 @@ typedef enum {
 } sc_corr_reason;
 
 /** @brief Text for a corrector reason ("converged", ...). */
-const char *sc_corr_reason_text(sc_corr_reason r);
+SC_API const char *sc_corr_reason_text(sc_corr_reason r);
 
 /** What the last location of a special point found. */
 typedef struct {
@@ -150,11 +150,11 @@ typedef struct sc_branch sc_branch;
  * @return SC_OK; SC_EINVAL for a malformed problem (n = 0, missing
  *         callback, bad pattern) or bad settings or accuracy; SC_ENOMEM.
  */
-int sc_branch_alloc(const sc_cont_problem *pb, const sc_cont_settings *set,
-                    const sc_accuracy *acc, sc_branch **out, sc_msg *msg);
+SC_API int sc_branch_alloc(const sc_cont_problem *pb, const sc_cont_settings *set,
+                           const sc_accuracy *acc, sc_branch **out, sc_msg *msg);
 
 /** @brief Release @p b; NULL is accepted. */
-void sc_branch_free(sc_branch *b);
+SC_API void sc_branch_free(sc_branch *b);
 
 /**
  * @brief Start the branch at @p u0 (n + 1 values, copied): correct it by
@@ -166,7 +166,7 @@ void sc_branch_free(sc_branch *b);
  *         in sc_branch_reason() and the message); SC_ECALLBACK for a
  *         fatal callback failure.
  */
-int sc_branch_set(sc_branch *b, const double *u0, sc_msg *msg);
+SC_API int sc_branch_set(sc_branch *b, const double *u0, sc_msg *msg);
 
 /**
  * @brief Make one step along the branch.
@@ -188,7 +188,7 @@ int sc_branch_set(sc_branch *b, const double *u0, sc_msg *msg);
  *         last corrector reason); SC_ECALLBACK for a fatal callback
  *         failure.
  */
-int sc_branch_step(sc_branch *b, sc_msg *msg);
+SC_API int sc_branch_step(sc_branch *b, sc_msg *msg);
 
 /** Kind of point passed to a sc_branch_fn. */
 typedef enum {
@@ -211,23 +211,23 @@ typedef int (*sc_branch_fn)(void *ctx, const sc_branch *b,
  *         sc_branch_set()/sc_branch_step(), or SC_ECALLBACK if @p fn
  *         stopped.
  */
-int sc_branch_solve(sc_branch *b, const double *u0, sc_branch_fn fn,
-                    void *ctx, sc_msg *msg);
+SC_API int sc_branch_solve(sc_branch *b, const double *u0, sc_branch_fn fn,
+                           void *ctx, sc_msg *msg);
 
 /** Number of unknowns n + 1. */
-size_t sc_branch_dim(const sc_branch *b);
+SC_API size_t sc_branch_dim(const sc_branch *b);
 /** Current point (n + 1 values), valid until the next step. */
-const double *sc_branch_point(const sc_branch *b);
+SC_API const double *sc_branch_point(const sc_branch *b);
 /** Unit tangent at the current point (n + 1 values). */
-const double *sc_branch_tangent(const sc_branch *b);
+SC_API const double *sc_branch_tangent(const sc_branch *b);
 /** Test function values at the current point (ntest values). */
-const double *sc_branch_test_values(const sc_branch *b);
+SC_API const double *sc_branch_test_values(const sc_branch *b);
 /** Arclength step to be tried next. */
-double sc_branch_step_size(const sc_branch *b);
+SC_API double sc_branch_step_size(const sc_branch *b);
 /** Why the last corrector stopped. */
-sc_corr_reason sc_branch_reason(const sc_branch *b);
+SC_API sc_corr_reason sc_branch_reason(const sc_branch *b);
 /** The last location of a special point (accepted or rejected). */
-const sc_cont_location *sc_branch_location(const sc_branch *b);
+SC_API const sc_cont_location *sc_branch_location(const sc_branch *b);
 /**
  * @brief Determinant of the bordered Jacobian [F_u; t^T] at the current
  * point, as sign and log|det| (sc_linsolve_det()), where t is the
@@ -236,26 +236,26 @@ const sc_cont_location *sc_branch_location(const sc_branch *b);
  * points, not at folds.  @return SC_OK, or SC_EINVAL before
  * sc_branch_set().
  */
-int sc_branch_bordered_det(const sc_branch *b, int *sign, double *logabs);
+SC_API int sc_branch_bordered_det(const sc_branch *b, int *sign, double *logabs);
 
 /** Accepted points (the initial point included). */
-unsigned long sc_branch_npoints(const sc_branch *b);
+SC_API unsigned long sc_branch_npoints(const sc_branch *b);
 /** Special points reported. */
-unsigned long sc_branch_nspecial(const sc_branch *b);
+SC_API unsigned long sc_branch_nspecial(const sc_branch *b);
 /** Sign changes of test functions rejected after location. */
-unsigned long sc_branch_nrejected_special(const sc_branch *b);
+SC_API unsigned long sc_branch_nrejected_special(const sc_branch *b);
 /** Steps rejected because the corrector failed. */
-unsigned long sc_branch_nrejected(const sc_branch *b);
+SC_API unsigned long sc_branch_nrejected(const sc_branch *b);
 /** Newton iterations, all correctors included. */
-unsigned long sc_branch_nnewton(const sc_branch *b);
+SC_API unsigned long sc_branch_nnewton(const sc_branch *b);
 /** Evaluations of F. */
-unsigned long sc_branch_nfeval(const sc_branch *b);
+SC_API unsigned long sc_branch_nfeval(const sc_branch *b);
 /** Evaluations of the Jacobian. */
-unsigned long sc_branch_njac(const sc_branch *b);
+SC_API unsigned long sc_branch_njac(const sc_branch *b);
 /** Secant/bisection iterations spent locating special points. */
-unsigned long sc_branch_nlocate(const sc_branch *b);
+SC_API unsigned long sc_branch_nlocate(const sc_branch *b);
 /** The linear solver of the bordered systems (for its counters). */
-const sc_linsolve *sc_branch_linsolve(const sc_branch *b);
+SC_API const sc_linsolve *sc_branch_linsolve(const sc_branch *b);
 
 /* ---------------------------------------------------------------------
  * Augmented systems for a fixed point of a 1-D map iterate g = f^m(x, p)
@@ -302,7 +302,7 @@ typedef enum {
 typedef struct {
   sc_map1d_fn fn;                /**< the map iterate and its derivatives */
   void *user;                    /**< passed to fn */
-  sc_map1d_kind kind;
+  sc_map1d_kind kind;            /**< what is continued (sc_map1d_kind) */
   size_t np;                     /**< parameters of g, 1..SC_MAP1D_MAXPARAM */
   double p[SC_MAP1D_MAXPARAM];   /**< parameter values; the free ones are
                                       replaced by u's entries at each call */
@@ -316,8 +316,8 @@ typedef struct {
  *         index outside [0, np) or equal free indices.
  * Thread safe: the callbacks write nothing into @p sys.
  */
-int sc_map1d_problem(const sc_map1d_system *sys, sc_cont_problem *pb,
-                     sc_msg *msg);
+SC_API int sc_map1d_problem(const sc_map1d_system *sys, sc_cont_problem *pb,
+                            sc_msg *msg);
 
 #ifdef __cplusplus
 }

@@ -66,7 +66,7 @@ typedef struct {
  *         extended Jacobian; SC_EINVAL for k >= ntest; SC_ENOMEM;
  *         SC_ECALLBACK if a callback failed.
  */
-int sc_curve_locate(const sc_curve_system *cs, size_t k, double *u,
+SC_API int sc_curve_locate(const sc_curve_system *cs, size_t k, double *u,
                     const sc_accuracy *acc, sc_curve_cert *cert, sc_msg *msg);
 
 /** Derivatives of g = f^m at (x, p) up to those a fold or flip curve and
@@ -110,7 +110,7 @@ typedef struct {
  * @return SC_OK, or SC_EINVAL (NULL fn, np or free indices out of range,
  *         equal free indices, unknown type).
  */
-int sc_curve_map1d_system(const sc_curve_map1d *sys, sc_curve_system *cs,
+SC_API int sc_curve_map1d_system(const sc_curve_map1d *sys, sc_curve_system *cs,
                           sc_msg *msg);
 
 /** Workspace of a multiple-shooting curve system (opaque). */
@@ -118,9 +118,9 @@ typedef struct sc_curve_ms_work sc_curve_ms_work;
 
 /** @brief Workspace for a period-@p period multiple-shooting system.
  * @return SC_OK, SC_EINVAL (period 0) or SC_ENOMEM. */
-int sc_curve_ms_work_alloc(size_t period, sc_curve_ms_work **out, sc_msg *msg);
+SC_API int sc_curve_ms_work_alloc(size_t period, sc_curve_ms_work **out, sc_msg *msg);
 /** @brief Release @p w; NULL is accepted. */
-void sc_curve_ms_work_free(sc_curve_ms_work *w);
+SC_API void sc_curve_ms_work_free(sc_curve_ms_work *w);
 
 /**
  * A fold or flip curve of a period-m orbit by multiple shooting, in
@@ -148,7 +148,7 @@ typedef struct {
  * @return SC_OK, or SC_EINVAL (NULL callbacks or workspace, a workspace
  *         of another period, bad indices or type).
  */
-int sc_curve_map1d_ms_system(const sc_curve_map1d_ms *sys, sc_curve_system *cs,
+SC_API int sc_curve_map1d_ms_system(const sc_curve_map1d_ms *sys, sc_curve_system *cs,
                              sc_msg *msg);
 
 /**
@@ -157,11 +157,11 @@ int sc_curve_map1d_ms_system(const sc_curve_map1d_ms *sys, sc_curve_system *cs,
  * Jacobian callback writes the nonzeros in pattern order.
  * @return as sc_curve_map1d_ms_system().
  */
-int sc_curve_map1d_ms_sparse(const sc_curve_map1d_ms *sys, sc_cont_problem *pb,
+SC_API int sc_curve_map1d_ms_sparse(const sc_curve_map1d_ms *sys, sc_cont_problem *pb,
                              sc_msg *msg);
 
 /** The normal-form coefficient of @p jet for @p type (psi_0 above). */
-double sc_curve_coefficient(sc_curve_type type, const sc_curve_jet *jet);
+SC_API double sc_curve_coefficient(sc_curve_type type, const sc_curve_jet *jet);
 
 /* ------------------------------------------------------------------ */
 
@@ -179,7 +179,7 @@ typedef struct {
 } sc_curve_settings;
 
 /** @brief Defaults: fold, period 1, steps 1e-3 and 2e-2, 2000 points. */
-void sc_curve_settings_default(sc_curve_settings *s);
+SC_API void sc_curve_settings_default(sc_curve_settings *s);
 
 /** One point of a traced curve. */
 typedef struct {
@@ -234,7 +234,7 @@ typedef struct {
  *         could not be corrected; SC_ECALLBACK if an output callback
  *         stopped; the map's errors at the start.
  */
-int sc_curve_trace(sc_map *m, const sc_curve_settings *set, double d0,
+SC_API int sc_curve_trace(sc_map *m, const sc_curve_settings *set, double d0,
                    const sc_curve_output *out, sc_curve_stats *stats,
                    sc_msg *msg);
 

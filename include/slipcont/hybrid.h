@@ -50,11 +50,11 @@ typedef struct {
 } sc_root;
 
 /** @brief g(t), g'(t), g''(t); any output pointer may be NULL. */
-void sc_guard_eval(const sc_guard *g, double t, double *g0, double *g1,
+SC_API void sc_guard_eval(const sc_guard *g, double t, double *g0, double *g1,
                    double *g2);
 
 /** @brief An upper bound on |g'''| over all t. */
-double sc_guard_m3(const sc_guard *g);
+SC_API double sc_guard_m3(const sc_guard *g);
 
 /**
  * @brief The first root of @p g in (0, tmax].
@@ -72,7 +72,7 @@ double sc_guard_m3(const sc_guard *g);
  *         w <= 0) or tmax not finite and > 0.
  * Thread safe; no allocation.
  */
-int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
+SC_API int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
                         double atol, double rtol, sc_root *out);
 
 #ifdef __cplusplus

@@ -56,7 +56,8 @@ typedef struct {
   sc_key_type type;    /**< how the value is parsed and checked */
   int required;        /**< 1: the scene must give it */
   const char *def;     /**< default as text, or NULL */
-  double lo, hi;       /**< range of REAL and INT keys (hi may be HUGE_VAL) */
+  double lo;           /**< lower end of REAL and INT keys */
+  double hi;           /**< upper end (may be HUGE_VAL) */
   int lo_open;         /**< REAL: lo itself excluded */
   int hi_open;         /**< REAL: hi itself excluded */
   const char *choices; /**< CHOICE: "up|down|both" */
@@ -69,7 +70,7 @@ typedef struct {
  * "a parameter of the model" or "text".
  * @return @p buf.
  */
-char *sc_key_range_text(const sc_key_info *k, char *buf, size_t len);
+SC_API char *sc_key_range_text(const sc_key_info *k, char *buf, size_t len);
 
 /**
  * @brief Check the text @p value against @p k (parse, finiteness, range,
@@ -78,9 +79,10 @@ char *sc_key_range_text(const sc_key_info *k, char *buf, size_t len);
  * @return SC_OK, or SC_EINVAL with `key = value ...(valid: ...)` in
  *         @p msg.
  */
-int sc_key_check(const sc_key_info *k, const char *value, const sc_map *m,
-                 sc_msg *msg);
+SC_API int sc_key_check(const sc_key_info *k, const char *value, const sc_map *m,
+                        sc_msg *msg);
 
+/** A loaded, validated scene (opaque; sc_scene_load()). */
 typedef struct sc_scene sc_scene;
 
 /**
@@ -132,69 +134,69 @@ typedef struct {
  * @return SC_OK; SC_EINVAL with one line `FILE:LINE: [section] ...` in
  *         @p msg; SC_EIO if the file cannot be read; SC_ENOMEM.
  */
-int sc_scene_load(const char *path, const sc_scene_options *opts,
-                  sc_scene **out, sc_msg *msg);
+SC_API int sc_scene_load(const char *path, const sc_scene_options *opts,
+                         sc_scene **out, sc_msg *msg);
 
 /**
  * @brief As sc_scene_load() for a scene held in memory; @p name is used
  * in messages in place of a file name.
  */
-int sc_scene_parse(const char *name, const char *text,
-                   const sc_scene_options *opts, sc_scene **out,
-                   sc_msg *msg);
+SC_API int sc_scene_parse(const char *name, const char *text,
+                          const sc_scene_options *opts, sc_scene **out,
+                          sc_msg *msg);
 
 /** @brief Release @p s and its model instance; NULL is accepted. */
-void sc_scene_free(sc_scene *s);
+SC_API void sc_scene_free(sc_scene *s);
 
 /** The scene's file name (or the name given to sc_scene_parse()). */
-const char *sc_scene_name(const sc_scene *s);
+SC_API const char *sc_scene_name(const sc_scene *s);
 /** The scene's text as read (NUL-terminated). */
-const char *sc_scene_source(const sc_scene *s);
+SC_API const char *sc_scene_source(const sc_scene *s);
 /** The model instance, with every parameter, option and the accuracy of
  * the scene applied; owned by the scene. */
-sc_map *sc_scene_map(const sc_scene *s);
+SC_API sc_map *sc_scene_map(const sc_scene *s);
 /** The accuracy of the scene (preset, then fields). */
-const sc_accuracy *sc_scene_accuracy(const sc_scene *s);
+SC_API const sc_accuracy *sc_scene_accuracy(const sc_scene *s);
 /** The task kind of the scene (one of the options' tasks). */
-const sc_task_type *sc_scene_task(const sc_scene *s);
+SC_API const sc_task_type *sc_scene_task(const sc_scene *s);
 /** The output folder: [output] dir, --out, or "out/STEM" where STEM is
  * the scene file's name without folder and extension. */
-const char *sc_scene_output_dir(const sc_scene *s);
+SC_API const char *sc_scene_output_dir(const sc_scene *s);
 /** [output] plot: 1 for yes (the default), 0 for no. */
-int sc_scene_plot(const sc_scene *s);
+SC_API int sc_scene_plot(const sc_scene *s);
 
 /**
  * @brief The effective text of a key: the scene's value if given, else
  * the table default; NULL for a key that has neither or does not exist.
  * @param section "model", "task", "accuracy" or "output".
  */
-const char *sc_scene_value(const sc_scene *s, const char *section,
-                           const char *key);
+SC_API const char *sc_scene_value(const sc_scene *s, const char *section,
+                                  const char *key);
 
 /** `[task]` key as a number (REAL or INT keys); NaN if absent. */
-double sc_scene_real(const sc_scene *s, const char *key);
+SC_API double sc_scene_real(const sc_scene *s, const char *key);
 /** `[task]` key as an integer (INT keys); 0 if absent. */
-long sc_scene_int(const sc_scene *s, const char *key);
+SC_API long sc_scene_int(const sc_scene *s, const char *key);
 /** `[task]` key as text (CHOICE, PARAM, TEXT); NULL if absent. */
-const char *sc_scene_text(const sc_scene *s, const char *key);
+SC_API const char *sc_scene_text(const sc_scene *s, const char *key);
 /** `[task]` BOOL key: 1 for yes, 0 for no or absent. */
-int sc_scene_flag(const sc_scene *s, const char *key);
+SC_API int sc_scene_flag(const sc_scene *s, const char *key);
 
 /**
  * @brief Where a key was set: "FILE:LINE", "--set section.key=value",
  * "--out" or, for a key left at its default, the file name.
  * @return @p buf.
  */
-char *sc_scene_origin(const sc_scene *s, const char *section,
-                      const char *key, char *buf, size_t len);
+SC_API char *sc_scene_origin(const sc_scene *s, const char *section,
+                             const char *key, char *buf, size_t len);
 
 /**
  * @brief Report a problem with a key, for sc_task_type.check: writes
  * `ORIGIN: [section] ` followed by the formatted text into @p msg.
  * @return SC_EINVAL.
  */
-int sc_scene_fail_key(const sc_scene *s, const char *section,
-                      const char *key, sc_msg *msg, const char *fmt, ...)
+SC_API int sc_scene_fail_key(const sc_scene *s, const char *section,
+                             const char *key, sc_msg *msg, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 5, 6)))
 #endif
@@ -205,7 +207,7 @@ int sc_scene_fail_key(const sc_scene *s, const char *section,
  * latter holds `preset` only; its fields are those of common.h).
  * @return the table, @p n set to its length; NULL for other sections.
  */
-const sc_key_info *sc_scene_section_keys(const char *section, size_t *n);
+SC_API const sc_key_info *sc_scene_section_keys(const char *section, size_t *n);
 
 /* ------------------------------------------------------------------ */
 /* Output folders and atomic files                                      */
@@ -217,7 +219,7 @@ const sc_key_info *sc_scene_section_keys(const char *section, size_t *n);
  * that the nearest existing ancestor is a writable folder.
  * @return SC_OK, or SC_EIO with `DIR: reason` in @p msg.
  */
-int sc_output_prepare(const char *dir, int create, sc_msg *msg);
+SC_API int sc_output_prepare(const char *dir, int create, sc_msg *msg);
 
 /** A file being written under a temporary name (see sc_file_open()). */
 typedef struct sc_file sc_file;
@@ -229,27 +231,31 @@ typedef struct sc_file sc_file;
  * @return SC_OK, SC_EIO (message names the file and the reason) or
  *         SC_ENOMEM.
  */
-int sc_file_open(const char *dir, const char *name, sc_file **out,
-                 sc_msg *msg);
+SC_API int sc_file_open(const char *dir, const char *name, sc_file **out,
+                        sc_msg *msg);
 
 /** The stream to write to. */
-FILE *sc_file_stream(sc_file *f);
+SC_API FILE *sc_file_stream(sc_file *f);
+
+/** The temporary path being written ("dir/.name.XXXXXX"), owned by @p f:
+ * a program that must end abruptly (a signal) may unlink() it. */
+SC_API const char *sc_file_temp_path(const sc_file *f);
 
 /**
  * @brief Flush, sync, close and rename into place; frees @p f in every
  * case (on failure the temporary file is removed).
  * @return SC_OK or SC_EIO naming the file and the reason.
  */
-int sc_file_commit(sc_file *f, sc_msg *msg);
+SC_API int sc_file_commit(sc_file *f, sc_msg *msg);
 
 /** @brief Close and remove the temporary file, free @p f; NULL is
  * accepted. */
-void sc_file_abort(sc_file *f);
+SC_API void sc_file_abort(sc_file *f);
 
 /**
  * @brief Write @p x as CSV text: `%.17g`, or `nan`, `inf`, `-inf`.
  */
-void sc_csv_double(FILE *f, double x);
+SC_API void sc_csv_double(FILE *f, double x);
 
 /* ------------------------------------------------------------------ */
 /* Plots                                                               */
@@ -261,11 +267,11 @@ void sc_csv_double(FILE *f, double x);
  * data, a title and axis labels (gnuplot enhanced text: `Y_2` is a
  * subscript).  Texts are quoted for gnuplot.
  */
-void sc_plot_head(FILE *f, const char *png, const char *title,
-                  const char *xlabel, const char *ylabel);
+SC_API void sc_plot_head(FILE *f, const char *png, const char *title,
+                         const char *xlabel, const char *ylabel);
 
 /** @brief Write @p text as a gnuplot single-quoted string. */
-void sc_plot_quote(FILE *f, const char *text);
+SC_API void sc_plot_quote(FILE *f, const char *text);
 
 /**
  * @brief A plot title listing the model's parameter values and options,
@@ -275,17 +281,17 @@ void sc_plot_quote(FILE *f, const char *text);
  * @param skip a parameter to leave out (the one on an axis), or NULL.
  * @return @p buf.
  */
-char *sc_plot_title(const sc_map *m, const char *skip, char *buf,
-                    size_t len);
+SC_API char *sc_plot_title(const sc_map *m, const char *skip, char *buf,
+                           size_t len);
 
 /**
  * @brief The axis label of a model parameter or state variable: "V" for
  * bk2's v, "Y_2 - Y_1" for bk2's d, the name itself otherwise.
  */
-const char *sc_plot_label(const sc_map *m, const char *name);
+SC_API const char *sc_plot_label(const sc_map *m, const char *name);
 
 /** @brief 1 if an executable `gnuplot` is on PATH, else 0. */
-int sc_plot_available(void);
+SC_API int sc_plot_available(void);
 
 /**
  * @brief Run `gnuplot -e "outfile='.PNG.tmp'" SCRIPT` with @p dir as the
@@ -295,8 +301,8 @@ int sc_plot_available(void);
  * @return SC_OK; SC_EIO if gnuplot is missing, failed (the message
  *         quotes the last line of its log) or wrote no picture.
  */
-int sc_plot_render(const char *dir, const char *script, const char *png,
-                   sc_msg *msg);
+SC_API int sc_plot_render(const char *dir, const char *script, const char *png,
+                          sc_msg *msg);
 
 #ifdef __cplusplus
 }

@@ -32,14 +32,14 @@ extern "C" {
 typedef struct sc_linsolve_type sc_linsolve_type;
 
 /** Dense LU with partial pivoting (LAPACK dgetrf/dgetrs/dgecon). */
-extern const sc_linsolve_type *const sc_linsolve_dense;
+SC_API extern const sc_linsolve_type *const sc_linsolve_dense;
 /** Sparse LU (SuiteSparse KLU): analyse once, refactor many times. */
-extern const sc_linsolve_type *const sc_linsolve_klu;
+SC_API extern const sc_linsolve_type *const sc_linsolve_klu;
 
 /** @brief Backend by name ("dense", "klu"), or NULL. */
-const sc_linsolve_type *sc_linsolve_type_find(const char *name);
+SC_API const sc_linsolve_type *sc_linsolve_type_find(const char *name);
 /** @brief Name of a backend ("dense", "klu"). */
-const char *sc_linsolve_type_name(const sc_linsolve_type *type);
+SC_API const char *sc_linsolve_type_name(const sc_linsolve_type *type);
 
 /** A solver object for one pattern (opaque). */
 typedef struct sc_linsolve sc_linsolve;
@@ -58,8 +58,8 @@ typedef struct sc_linsolve sc_linsolve;
  *         first bad column); SC_ESING if the pattern is structurally
  *         singular (KLU); SC_ENOMEM.
  */
-int sc_linsolve_alloc(const sc_linsolve_type *type, int n, const int *colptr,
-                      const int *rowind, sc_linsolve **out, sc_msg *msg);
+SC_API int sc_linsolve_alloc(const sc_linsolve_type *type, int n, const int *colptr,
+                             const int *rowind, sc_linsolve **out, sc_msg *msg);
 
 /**
  * @brief Create a solver for full n x n matrices: the pattern holds every
@@ -67,11 +67,11 @@ int sc_linsolve_alloc(const sc_linsolve_type *type, int n, const int *colptr,
  * column-major order, a[i + n j] = A(i, j).
  * @return as sc_linsolve_alloc().
  */
-int sc_linsolve_alloc_full(const sc_linsolve_type *type, int n,
-                           sc_linsolve **out, sc_msg *msg);
+SC_API int sc_linsolve_alloc_full(const sc_linsolve_type *type, int n,
+                                  sc_linsolve **out, sc_msg *msg);
 
 /** @brief Release @p s; NULL is accepted. */
-void sc_linsolve_free(sc_linsolve *s);
+SC_API void sc_linsolve_free(sc_linsolve *s);
 
 /**
  * @brief Factor the matrix whose nonzero values, in pattern order, are
@@ -87,7 +87,7 @@ void sc_linsolve_free(sc_linsolve *s);
  *         pivot and the ratio in the message; SC_ENOMEM.  After a failure
  *         the object holds no factorization.
  */
-int sc_linsolve_factor(sc_linsolve *s, const double *val, sc_msg *msg);
+SC_API int sc_linsolve_factor(sc_linsolve *s, const double *val, sc_msg *msg);
 
 /**
  * @brief Solve A x = b with the current factorization; @p b (n entries)
@@ -95,7 +95,7 @@ int sc_linsolve_factor(sc_linsolve *s, const double *val, sc_msg *msg);
  * @return SC_OK; SC_EINVAL if there is no valid factorization;
  *         SC_ENONFINITE if the solution is not finite.
  */
-int sc_linsolve_solve(sc_linsolve *s, double *b, sc_msg *msg);
+SC_API int sc_linsolve_solve(sc_linsolve *s, double *b, sc_msg *msg);
 
 /**
  * @brief Determinant of the factored matrix as a sign and a logarithm,
@@ -106,7 +106,7 @@ int sc_linsolve_solve(sc_linsolve *s, double *b, sc_msg *msg);
  * @param logabs log |det A|.
  * @return SC_OK, or SC_EINVAL without a valid factorization.
  */
-int sc_linsolve_det(const sc_linsolve *s, int *sign, double *logabs);
+SC_API int sc_linsolve_det(const sc_linsolve *s, int *sign, double *logabs);
 
 /**
  * @brief Estimate of the reciprocal condition number in the 1-norm,
@@ -114,27 +114,27 @@ int sc_linsolve_det(const sc_linsolve *s, int *sign, double *logabs);
  * klu_condest.  Costs a few solves.
  * @return SC_OK, or SC_EINVAL without a valid factorization.
  */
-int sc_linsolve_rcond(sc_linsolve *s, double *rcond, sc_msg *msg);
+SC_API int sc_linsolve_rcond(sc_linsolve *s, double *rcond, sc_msg *msg);
 
 /**
  * @brief Crude reciprocal condition number min |U_kk| / max |U_kk| of the
  * current factors (free: read from the factors).
  * @return SC_OK, or SC_EINVAL without a valid factorization.
  */
-int sc_linsolve_pivot_ratio(const sc_linsolve *s, double *ratio);
+SC_API int sc_linsolve_pivot_ratio(const sc_linsolve *s, double *ratio);
 
 /** The backend of @p s. */
-const sc_linsolve_type *sc_linsolve_get_type(const sc_linsolve *s);
+SC_API const sc_linsolve_type *sc_linsolve_get_type(const sc_linsolve *s);
 /** Order n. */
-int sc_linsolve_n(const sc_linsolve *s);
+SC_API int sc_linsolve_n(const sc_linsolve *s);
 /** Number of entries of the pattern. */
-int sc_linsolve_nnz(const sc_linsolve *s);
+SC_API int sc_linsolve_nnz(const sc_linsolve *s);
 /** Full factorizations (with pivoting) made so far. */
-unsigned long sc_linsolve_nfactor(const sc_linsolve *s);
+SC_API unsigned long sc_linsolve_nfactor(const sc_linsolve *s);
 /** Refactorizations reusing a pivot sequence (KLU) made so far. */
-unsigned long sc_linsolve_nrefactor(const sc_linsolve *s);
+SC_API unsigned long sc_linsolve_nrefactor(const sc_linsolve *s);
 /** Solves made so far. */
-unsigned long sc_linsolve_nsolve(const sc_linsolve *s);
+SC_API unsigned long sc_linsolve_nsolve(const sc_linsolve *s);
 
 /**
  * @brief Convert a triplet pattern (ti[k], tj[k]), k < nt, of an n x n
@@ -148,16 +148,16 @@ unsigned long sc_linsolve_nsolve(const sc_linsolve *s);
  * @return SC_OK; SC_EINVAL for n < 1, nt < 0 or an index outside [0, n);
  *         SC_ENOMEM.
  */
-int sc_csc_from_triplets(int n, int nt, const int *ti, const int *tj,
-                         int *colptr, int *rowind, int *map, int *nnz,
-                         sc_msg *msg);
+SC_API int sc_csc_from_triplets(int n, int nt, const int *ti, const int *tj,
+                                int *colptr, int *rowind, int *map, int *nnz,
+                                sc_msg *msg);
 
 /**
  * @brief CSC values from triplet values: val[map[k]] += tval[k] after
  * zeroing the @p nnz entries of @p val.
  */
-void sc_csc_scatter(int nt, const int *map, const double *tval, int nnz,
-                    double *val);
+SC_API void sc_csc_scatter(int nt, const int *map, const double *tval, int nnz,
+                           double *val);
 
 #ifdef __cplusplus
 }

@@ -29,39 +29,39 @@ typedef struct sc_map sc_map;
  * @return SC_OK; SC_EINVAL for an unknown model or a bad accuracy;
  *         SC_ENOMEM.
  */
-int sc_map_alloc(const char *model, const sc_accuracy *acc, sc_map **out,
+SC_API int sc_map_alloc(const char *model, const sc_accuracy *acc, sc_map **out,
                  sc_msg *msg);
 
 /** @brief As sc_map_alloc() for a model table of the caller's own. */
-int sc_map_alloc_type(const sc_model_type *type, const sc_accuracy *acc,
+SC_API int sc_map_alloc_type(const sc_model_type *type, const sc_accuracy *acc,
                       sc_map **out, sc_msg *msg);
 
 /** @brief A new instance with the same model, parameters, options and
  * accuracy, and a workspace of its own (for another thread). */
-int sc_map_clone(const sc_map *m, sc_map **out, sc_msg *msg);
+SC_API int sc_map_clone(const sc_map *m, sc_map **out, sc_msg *msg);
 
 /** @brief Release @p m; NULL is accepted. */
-void sc_map_free(sc_map *m);
+SC_API void sc_map_free(sc_map *m);
 
 /** The model table of @p m. */
-const sc_model_type *sc_map_type(const sc_map *m);
+SC_API const sc_model_type *sc_map_type(const sc_map *m);
 
 /** Number of parameters; their order is the model table's. */
-size_t sc_map_nparam(const sc_map *m);
+SC_API size_t sc_map_nparam(const sc_map *m);
 /** Index of parameter @p name, or -1. */
-int sc_map_param_index(const sc_map *m, const char *name);
+SC_API int sc_map_param_index(const sc_map *m, const char *name);
 /** Current value of parameter @p i. */
-double sc_map_get_param(const sc_map *m, size_t i);
+SC_API double sc_map_get_param(const sc_map *m, size_t i);
 
 /**
  * @brief Set parameter @p i, checking its valid range (models.h).
  * @return SC_OK, or SC_EINVAL with `name = value out of range (valid: ...)`
  *         for NaN, infinity or a value outside the range.
  */
-int sc_map_set_param(sc_map *m, size_t i, double value, sc_msg *msg);
+SC_API int sc_map_set_param(sc_map *m, size_t i, double value, sc_msg *msg);
 
 /** @brief As sc_map_set_param() by name; unknown names are SC_EINVAL. */
-int sc_map_set_param_by_name(sc_map *m, const char *name, double value,
+SC_API int sc_map_set_param_by_name(sc_map *m, const char *name, double value,
                              sc_msg *msg);
 
 /**
@@ -70,15 +70,15 @@ int sc_map_set_param_by_name(sc_map *m, const char *name, double value,
  *         combination the model refuses (velocity weakening with the
  *         driver frozen).
  */
-int sc_map_set_option(sc_map *m, const char *name, const char *value,
+SC_API int sc_map_set_option(sc_map *m, const char *name, const char *value,
                       sc_msg *msg);
 /** Current value of option @p name, or NULL for an unknown option. */
-const char *sc_map_get_option(const sc_map *m, const char *name);
+SC_API const char *sc_map_get_option(const sc_map *m, const char *name);
 
 /** @brief Replace the accuracy (checked with sc_accuracy_check()). */
-int sc_map_set_accuracy(sc_map *m, const sc_accuracy *acc, sc_msg *msg);
+SC_API int sc_map_set_accuracy(sc_map *m, const sc_accuracy *acc, sc_msg *msg);
 /** The accuracy in use. */
-const sc_accuracy *sc_map_accuracy(const sc_map *m);
+SC_API const sc_accuracy *sc_map_accuracy(const sc_map *m);
 
 
 /**
@@ -89,7 +89,7 @@ const sc_accuracy *sc_map_accuracy(const sc_map *m);
  *         max-events slip phases); SC_EINVAL for non-finite @p d;
  *         SC_ENOCONV if a numerical flow failed.
  */
-int sc_map_eval(sc_map *m, double d, unsigned flags, sc_map_value *out,
+SC_API int sc_map_eval(sc_map *m, double d, unsigned flags, sc_map_value *out,
                 sc_msg *msg);
 
 /**
@@ -97,18 +97,18 @@ int sc_map_eval(sc_map *m, double d, unsigned flags, sc_map_value *out,
  * (df^n/dd is the product of f' along the orbit).
  * @return as sc_map_eval(); the message names the iterate that failed.
  */
-int sc_map_iterate(sc_map *m, double d, int n, unsigned flags,
+SC_API int sc_map_iterate(sc_map *m, double d, int n, unsigned flags,
                    sc_map_value *out, sc_msg *msg);
 
 /** The absolute accuracy of f as computed by @p m's model (0: rounding;
  * numerical flows: about their integration tolerance).  Newton's methods
  * on the map (branches, borders) use it as a floor under their
  * tolerances: asking for more would chase noise. */
-double sc_map_precision(const sc_map *m);
+SC_API double sc_map_precision(const sc_map *m);
 
 /** 1 if the model of @p m declares borders and forced evaluation
  * (sc_map_eval_ex() does more than sc_map_eval()); 0 for a smooth map. */
-int sc_map_has_borders(const sc_map *m);
+SC_API int sc_map_has_borders(const sc_map *m);
 
 /**
  * @brief One iterate with its itinerary code and borders, optionally
@@ -128,7 +128,7 @@ int sc_map_has_borders(const sc_map *m);
  *         (its message says why); SC_EUNDEF where a forced event does not
  *         occur at all (a grazing passed from the side where it fires).
  */
-int sc_map_eval_ex(sc_map *m, double d, unsigned flags,
+SC_API int sc_map_eval_ex(sc_map *m, double d, unsigned flags,
                    const sc_itin_code *force, sc_itin_code *code,
                    sc_border_list *borders, sc_map_value *out, sc_msg *msg);
 
@@ -139,7 +139,7 @@ int sc_map_eval_ex(sc_map *m, double d, unsigned flags,
  * their derivatives taken with respect to the d and parameters of f^n by
  * the chain rule.
  */
-int sc_map_iterate_ex(sc_map *m, double d, int n, unsigned flags,
+SC_API int sc_map_iterate_ex(sc_map *m, double d, int n, unsigned flags,
                       const sc_itin_code *force, sc_itin_code *codes,
                       sc_border_list *borders, sc_map_value *out,
                       sc_msg *msg);
@@ -161,11 +161,11 @@ typedef int (*sc_traj_fn)(void *ctx, double tau, const double *state,
  *         (logistic, cubic) or dtau <= 0; SC_EUNDEF as sc_map_eval();
  *         SC_ECALLBACK if @p fn stopped.
  */
-int sc_map_trajectory(sc_map *m, double d, int iterations, double dtau,
+SC_API int sc_map_trajectory(sc_map *m, double d, int iterations, double dtau,
                       sc_traj_fn fn, void *ctx, sc_msg *msg);
 
 /** Map evaluations made by @p m since its creation (a counter). */
-unsigned long sc_map_nevals(const sc_map *m);
+SC_API unsigned long sc_map_nevals(const sc_map *m);
 
 #ifdef __cplusplus
 }

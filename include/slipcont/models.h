@@ -50,13 +50,13 @@ typedef struct {
  * @return SC_OK, or SC_EINVAL with `name = value out of range (valid:
  *         (lo, hi])` in @p msg (NaN and infinities are out of range).
  */
-int sc_param_check(const sc_param_info *pi, double value, sc_msg *msg);
+SC_API int sc_param_check(const sc_param_info *pi, double value, sc_msg *msg);
 
 /**
  * @brief Write the valid values of @p oi joined by '|' into @p buf.
  * @return @p buf.
  */
-char *sc_option_values_text(const sc_option_info *oi, char *buf, size_t len);
+SC_API char *sc_option_values_text(const sc_option_info *oi, char *buf, size_t len);
 
 /** What to compute in sc_map_eval(); combine with |. */
 enum {
@@ -126,7 +126,7 @@ typedef enum {
 #define SC_BORDER_NKINDS 5
 
 /** Label of a border kind: "GR", "CS", "SW", "BR", "TT"; "??" otherwise. */
-const char *sc_border_label(sc_border_kind k);
+SC_API const char *sc_border_label(sc_border_kind k);
 
 /** Longest itinerary code of one iterate. */
 #define SC_CODE_LEN 64
@@ -234,20 +234,20 @@ typedef struct sc_model_type {
 } sc_model_type;
 
 /** The two-block Burridge-Knopoff model (docs/model.md). */
-extern const sc_model_type sc_model_bk2;
+SC_API extern const sc_model_type sc_model_bk2;
 /** The logistic map x -> r x (1 - x). */
-extern const sc_model_type sc_model_logistic;
+SC_API extern const sc_model_type sc_model_logistic;
 /** The cubic map x -> x + mu1 + mu2 x - x^3 (cusp normal form). */
-extern const sc_model_type sc_model_cubic;
+SC_API extern const sc_model_type sc_model_cubic;
 /** The map x -> -(1 + mu1) x + mu2 x^3 - x^5 (generalized flip). */
-extern const sc_model_type sc_model_gpd;
+SC_API extern const sc_model_type sc_model_gpd;
 
 /** Number of built-in models; sc_model_get(i) lists them. */
-size_t sc_model_count(void);
+SC_API size_t sc_model_count(void);
 /** Built-in model @p i, or NULL. */
-const sc_model_type *sc_model_get(size_t i);
+SC_API const sc_model_type *sc_model_get(size_t i);
 /** Built-in model by name, or NULL. */
-const sc_model_type *sc_model_find(const char *name);
+SC_API const sc_model_type *sc_model_find(const char *name);
 
 /** bk2 modes (docs/model.md): the `mode` of trajectory samples. */
 enum {
@@ -259,7 +259,7 @@ enum {
 
 /** d* = (beta - 1)/(1 + 2 alpha): below it block 1 reaches its
  * threshold first (docs/model.md). */
-double sc_bk2_dstar(double alpha, double beta);
+SC_API double sc_bk2_dstar(double alpha, double beta);
 
 #ifdef __cplusplus
 }

@@ -15,7 +15,7 @@
  * linalg.h: the dense backend for m <= SC_SHOOT_DENSE_MAX, KLU above,
  * unless the caller names a backend; both give the same answer.
  *
- * Neutral orbits (MODEL.md: every iterate a single-block slip, f' = 1
+ * Neutral orbits (docs/model.md: every iterate a single-block slip, f' = 1
  * exactly, f^m(d) - d constant on the piece) have no isolated fixed
  * point: they are reported as SC_ENEUTRAL with the constant in the
  * result, never as a singular Jacobian.
@@ -60,6 +60,7 @@ typedef struct {
   char itinerary[SC_ITIN_LEN]; /**< of f^m from d_1, iterates joined by '|' */
 } sc_shoot_result;
 
+/** A shooting problem and its workspace (opaque). */
 typedef struct sc_shoot sc_shoot;
 
 /**
@@ -73,11 +74,11 @@ typedef struct sc_shoot sc_shoot;
  *                single shooting.
  * @return SC_OK; SC_EINVAL for a bad period or method; SC_ENOMEM.
  */
-int sc_shoot_alloc(sc_map *m, int period, sc_shoot_method method,
-                   const sc_linsolve_type *ls, sc_shoot **out, sc_msg *msg);
+SC_API int sc_shoot_alloc(sc_map *m, int period, sc_shoot_method method,
+                          const sc_linsolve_type *ls, sc_shoot **out, sc_msg *msg);
 
 /** @brief Release @p s; NULL is accepted. */
-void sc_shoot_free(sc_shoot *s);
+SC_API void sc_shoot_free(sc_shoot *s);
 
 /**
  * @brief Solve from the single guess @p d0.  Multiple shooting seeds its
@@ -106,30 +107,30 @@ void sc_shoot_free(sc_shoot *s);
  *         SC_EUNDEF, SC_ENONFINITE from the map where halving did not
  *         help; SC_EINVAL for a non-finite guess.
  */
-int sc_shoot_solve(sc_shoot *s, double d0, sc_shoot_result *res,
-                   sc_msg *msg);
+SC_API int sc_shoot_solve(sc_shoot *s, double d0, sc_shoot_result *res,
+                          sc_msg *msg);
 
 /**
  * @brief As sc_shoot_solve() from a guess of every orbit point
  * @p d0[0..period-1] (multiple shooting; single shooting uses d0[0]).
  */
-int sc_shoot_solve_orbit(sc_shoot *s, const double *d0, sc_shoot_result *res,
-                         sc_msg *msg);
+SC_API int sc_shoot_solve_orbit(sc_shoot *s, const double *d0, sc_shoot_result *res,
+                                sc_msg *msg);
 
 /** Halvings of one Newton step at most (see sc_shoot_solve()). */
 #define SC_SHOOT_MAX_HALVINGS 20
 
 /** The orbit points d_1..d_m of the last solve (period values), valid
  * until the next solve. */
-const double *sc_shoot_orbit(const sc_shoot *s);
+SC_API const double *sc_shoot_orbit(const sc_shoot *s);
 /** The period m. */
-int sc_shoot_period(const sc_shoot *s);
+SC_API int sc_shoot_period(const sc_shoot *s);
 /** The method. */
-sc_shoot_method sc_shoot_get_method(const sc_shoot *s);
+SC_API sc_shoot_method sc_shoot_get_method(const sc_shoot *s);
 /** The backend of multiple shooting (NULL for single shooting). */
-const sc_linsolve_type *sc_shoot_linsolve_type(const sc_shoot *s);
+SC_API const sc_linsolve_type *sc_shoot_linsolve_type(const sc_shoot *s);
 /** Newton iterations made by @p s since its creation. */
-unsigned long sc_shoot_nnewton(const sc_shoot *s);
+SC_API unsigned long sc_shoot_nnewton(const sc_shoot *s);
 
 #ifdef __cplusplus
 }

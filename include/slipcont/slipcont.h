@@ -1,6 +1,13 @@
 /**
  * @file slipcont.h
  * @brief The whole public API of slipcont: include this one header.
+ *
+ * Everything but io.h is implemented by libslipcont (the numerics: GSL,
+ * LAPACK, KLU, OpenMP); io.h (scenes, output files, plots) by
+ * libslipcont_io, which adds inih.  A program that calls no function of
+ * io.h links libslipcont alone (pkg-config slipcont, CMake
+ * slipcont::slipcont); one that does links slipcont_io too (pkg-config
+ * slipcont-io, CMake slipcont::slipcont_io).
  */
 #ifndef SLIPCONT_SLIPCONT_H
 #define SLIPCONT_SLIPCONT_H

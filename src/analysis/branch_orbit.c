@@ -459,11 +459,6 @@ static int iterate_orbit(sc_orbit_branch *b, double d, int q, double *out) {
   return iterate_orbit_forced(b, d, q, NULL, out);
 }
 
-static int minimal_period(const double *o, int q, double tol) {
-  for (int k = 1; k < q; k++)
-    if (q % k == 0 && fabs(o[k] - o[0]) <= tol) return k;
-  return q;
-}
 
 /* Every point of orbit a (na) within tol of a point of orbit c (nc). */
 static int close_orbits(const double *a, int na, const double *c, int nc,
@@ -719,7 +714,7 @@ static void locate_border(sc_orbit_branch *b, int period,
   /* The orbit located must be the segment's, not one of lower period
    * through the same border (bk2 with beta = 1: the synchronous orbit
    * d = d* = 0 is a fixed point of every f^m). */
-  int q = minimal_period(o, period, 1e-9 * (1 + fabs(o[0])));
+  int q = sc_orbit_minimal_period(o, period, 1e-9 * (1 + fabs(o[0])));
   if (q < period) {
     fx->ok = 0;
     snprintf(fx->why, sizeof fx->why,
@@ -735,17 +730,10 @@ static void locate_border(sc_orbit_branch *b, int period,
  * @p a and @p c ('|'-separated): "iterate K: A -> C", or "" if none. */
 static void first_change(const char *a, const char *c, char *out,
                          size_t len) {
-  out[0] = '\0';
-  for (int k = 1; *a || *c; k++) {
-    size_t na = strcspn(a, "|"), nc = strcspn(c, "|");
-    if (na != nc || strncmp(a, c, na) != 0) {
-      snprintf(out, len, "iterate %d: %.*s -> %.*s", k, (int)na, a, (int)nc,
-               c);
-      return;
-    }
-    a += na + (a[na] == '|');
-    c += nc + (c[nc] == '|');
-  }
+  char what[SC_ITIN_LEN * 2 + 8];
+  int k = sc_first_change(a, c, '|', what, sizeof what);
+  if (k) snprintf(out, len, "iterate %d: %.*s", k, (int)(len > 20 ? len - 20 : 0), what);
+  else if (len) out[0] = '\0';
 }
 
 /* After a located point at p (orbit orb of period m on the segment's side,
@@ -784,7 +772,7 @@ static int hand_over(sc_orbit_branch *b, special_rec *r, int m,
         }
         if (same) continue;
       }
-      if (minimal_period(b->orbit, q, 1e-9) != q) continue;
+      if (sc_orbit_minimal_period(b->orbit, q, 1e-9) != q) continue;
       if (!close_orbits(b->orbit, q, orb, m, tol)) continue;
       char origin[96];
       snprintf(origin, sizeof origin, "%s at %.10g",
@@ -1019,7 +1007,7 @@ static int switch_flip(sc_orbit_branch *b, int m, double p, double d) {
         if (iterate_orbit(b, d + eps, 2 * m, b->seed)) continue;
         sc_shoot_result res;
         if (shoot_at(b, 2 * m, ps, b->seed, &res) != SC_OK) continue;
-        if (minimal_period(b->orbit, 2 * m, 1e-9) != 2 * m) continue;
+        if (sc_orbit_minimal_period(b->orbit, 2 * m, 1e-9) != 2 * m) continue;
         if (fabs(b->orbit[0] - d) > 100 * sqrt(dp) * (1 + fabs(d))) continue;
         char origin[96];
         snprintf(origin, sizeof origin, "PD at %.10g", p);
@@ -1153,7 +1141,7 @@ static int segment_start(sc_orbit_branch *b, segment *S, sc_cont_problem *pb,
      * old branch twice over. */
     if (shoot_at(b, period, p1, b->seed, &res) != SC_OK ||
         strcmp(res.itinerary, b->ctx.itin) != 0 ||
-        minimal_period(b->orbit, period, 1e-9) != period)
+        sc_orbit_minimal_period(b->orbit, period, 1e-9) != period)
       continue;
     u0[0] = b->orbit[0];
     u0[1] = p1;
@@ -1261,7 +1249,7 @@ static int segment_accept(sc_orbit_branch *b, segment *S, const double *u) {
    * left its branch for a lower-period one crossing it (the doubled
    * orbit at a flip): stop rather than follow the old branch again. */
   int q = have_orbit && period > 1
-              ? minimal_period(b->orb_c, period, 1e-9 * (1 + fabs(u[0])))
+              ? sc_orbit_minimal_period(b->orb_c, period, 1e-9 * (1 + fabs(u[0])))
               : period;
   if (q < period) {
     /* Follow the lower-period branch from here instead, both ways, with

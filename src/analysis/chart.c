@@ -3,6 +3,7 @@
  * thread, taken before the loops). */
 #include <limits.h>
 #include <math.h>
+#include <stdio.h>
 #include <omp.h>
 #include <stdint.h>
 #include <string.h>
@@ -18,18 +19,14 @@ void sc_chart_spec_default(sc_chart_spec *s) {
   s->d0 = 0;
 }
 
-/* Grid value i of steps between from and to; the last is exactly to. */
-static double grid(double from, double to, long steps, long i) {
-  if (i >= steps - 1) return to;
-  return from + (double)i * ((to - from) / (double)(steps - 1));
-}
-
 double sc_chart_x(const sc_chart_spec *s, long i) {
-  return grid(s->x_from, s->x_to, s->x_steps, i);
+  return sc_grid(s->x_from, s->x_to, (size_t)s->x_steps, (size_t)i,
+                 (sc_grid_scale)s->x_scale);
 }
 
 double sc_chart_y(const sc_chart_spec *s, long j) {
-  return grid(s->y_from, s->y_to, s->y_steps, j);
+  return sc_grid(s->y_from, s->y_to, (size_t)s->y_steps, (size_t)j,
+                 (sc_grid_scale)s->y_scale);
 }
 
 /* The name of an axis: a parameter of the model. */
@@ -52,7 +49,8 @@ static int check_name(const sc_map *m, const char *key, const char *name,
 
 /* One axis: steps >= 2, both ends in the parameter's range. */
 static int check_axis(const sc_map *m, const char *key, const char *name,
-                      double from, double to, long steps, sc_msg *msg) {
+                      double from, double to, long steps, int scale,
+                      sc_msg *msg) {
   const sc_model_type *t = sc_map_type(m);
   int i = sc_map_param_index(m, name);
   if (steps < 2)
@@ -70,6 +68,10 @@ static int check_axis(const sc_map *m, const char *key, const char *name,
     if (sc_param_check(&t->params[i], ends[e], &sub))
       return sc_fail(msg, SC_EINVAL, "chart: %s-%s: %s", key, endname[e],
                      sub.text);
+  char axis[16];
+  snprintf(axis, sizeof axis, "%s-scale", key);
+  if (sc_grid_check(axis, from, to, (sc_grid_scale)scale, &sub))
+    return sc_fail(msg, SC_EINVAL, "chart: %s", sub.text);
   return SC_OK;
 }
 
@@ -82,8 +84,11 @@ int sc_chart_check(const sc_map *m, const sc_chart_spec *s, sc_msg *msg) {
                    "chart: x and y are both '%s' (valid: two different "
                    "parameters)",
                    s->x);
-  st = check_axis(m, "x", s->x, s->x_from, s->x_to, s->x_steps, msg);
-  if (!st) st = check_axis(m, "y", s->y, s->y_from, s->y_to, s->y_steps, msg);
+  st = check_axis(m, "x", s->x, s->x_from, s->x_to, s->x_steps, s->x_scale,
+                  msg);
+  if (!st)
+    st = check_axis(m, "y", s->y, s->y_from, s->y_to, s->y_steps, s->y_scale,
+                    msg);
   if (st) return st;
   double npts = (double)s->x_steps * (double)s->y_steps;
   if (npts > (double)SC_CHART_MAX_POINTS)
@@ -133,7 +138,9 @@ typedef struct {
  * message does not depend on the thread count. */
 static void record_error(shared_state *sh, long index, int status,
                          const sc_msg *msg) {
-#pragma omp critical(sc_chart_error)
+/* Unnamed: a named critical section is a global lock symbol
+ * (.gomp_critical_user_NAME) exported from the shared library. */
+#pragma omp critical
   {
     if (index < sh->err_index) {
       sh->err_index = index;

@@ -10,11 +10,6 @@
 
 #include "slipcont/branch.h"
 
-/* Two roots are points of one orbit, and an orbit has a smaller period,
- * when points agree to this many step tolerances: far above the accuracy
- * of a polished root (a few tolerances), far below the spacing of
- * distinct orbits' points (which differ by O(1e-3) and more). */
-#define SAME_POINT_TOLS 1e4
 
 /* Bisections of a bracket, far more than the 53 halvings of a double
  * interval: a guard against a loop, never reached. */
@@ -105,12 +100,8 @@ static int orbit_of(search *s, double x, int *minper) {
     if (used > s->itin_len - 1) used = s->itin_len - 1;
     y = v.f;
   }
-  double tol = SAME_POINT_TOLS * tol_x(s->acc, x);
-  for (int q = 1; q < s->period; q++)
-    if (s->period % q == 0 && fabs(s->pts[q] - x) <= tol) {
-      *minper = q;
-      break;
-    }
+  /* The one minimal-period rule (common.h). */
+  *minper = sc_orbit_minimal_period(s->pts, s->period, sc_orbit_tol(s->acc, x));
   return SC_OK;
 }
 
@@ -137,7 +128,7 @@ static int record(search *s, double x, const sc_map_value *v, int neutral,
     return SC_OK;
   }
   int m = s->period, k0 = smallest(s);
-  double tol = SAME_POINT_TOLS * tol_x(s->acc, s->pts[k0]);
+  double tol = sc_orbit_tol(s->acc, s->pts[k0]); /* one equality rule */
   for (size_t j = 0; j < s->set->n; j++) {
     const orbit_rec *o = &s->set->o[j];
     if (o->neutral != neutral) continue;
@@ -148,10 +139,7 @@ static int record(search *s, double x, const sc_map_value *v, int neutral,
           return SC_OK;
       continue;
     }
-    int same = 1;
-    for (int i = 0; i < m && same; i++)
-      if (fabs(o->d[i] - s->pts[(k0 + i) % m]) > tol) same = 0;
-    if (same) return SC_OK;
+    if (sc_orbit_same(o->d, s->pts, m, tol)) return SC_OK;
   }
   if (grow(s->set)) return sc_fail(s->msg, SC_ENOMEM, "out of memory");
   orbit_rec *o = &s->set->o[s->set->n];
@@ -219,11 +207,22 @@ static int polish(search *s, const sample *a, const sample *b) {
   return record(s, c.x, &c.v, 0, 0, 0);
 }
 
+/* Where rounding d itself (DBL_EPSILON |d|) exceeds newton_ftol, a gap
+ * f^m(d) - d of zero says nothing (d = 1e300 absorbs any shift): no orbit
+ * is reported there, the point counts as undefined. */
+static int unresolved(const search *s, double x) {
+  return DBL_EPSILON * fabs(x) > s->acc->newton_ftol;
+}
+
 /* Roots between two samples of one piece. */
 static int bracket(search *s, const sample *a, const sample *b) {
   if (a->st != SC_OK || b->st != SC_OK || a->v.neutral) return SC_OK;
   double ga = a->v.f - a->x, gb = b->v.f - b->x;
-  if (ga == 0) return record(s, a->x, &a->v, 0, 0, 0);
+  if (ga == 0) {
+    if (!unresolved(s, a->x)) return record(s, a->x, &a->v, 0, 0, 0);
+    s->set->nundef++;
+    return SC_OK;
+  }
   if (gb == 0 || (ga < 0) == (gb < 0)) return SC_OK;
   return polish(s, a, b);
 }
@@ -235,6 +234,10 @@ static int end_piece(search *s, double lo, const sample *last,
   s->set->npieces++;
   if (last->st != SC_OK || !all_neutral) return SC_OK;
   if (fabs(last->v.f - last->x) > s->acc->newton_ftol) return SC_OK;
+  if (unresolved(s, lo) || unresolved(s, last->x)) {
+    s->set->nundef++;
+    return SC_OK;
+  }
   double mid = 0.5 * (lo + last->x);
   sample c;
   int st = eval(s, mid, &c);
@@ -283,10 +286,7 @@ int sc_fixed_points_find(sc_map *m, const sc_fixed_points_spec *spec,
   if ((st = eval(&s, spec->from, &cur))) goto done;
   int all_neutral = cur.st == SC_OK && cur.v.neutral;
   for (size_t j = 1; j < spec->steps; j++) {
-    double x = j + 1 == spec->steps
-                   ? spec->to
-                   : spec->from + (spec->to - spec->from) * (double)j /
-                                      (double)(spec->steps - 1);
+    double x = sc_grid(spec->from, spec->to, spec->steps, j, SC_GRID_LINEAR);
     if ((st = eval(&s, x, &nxt))) goto done;
     for (int guard = 0;; guard++) {
       if (same_piece(&cur, &nxt)) {
@@ -325,7 +325,7 @@ int sc_fixed_points_find(sc_map *m, const sc_fixed_points_spec *spec,
     }
   }
   if ((st = end_piece(&s, piece_lo, &cur, all_neutral))) goto done;
-  qsort(set->o, set->n, sizeof *set->o, by_first_point);
+  if (set->n) qsort(set->o, set->n, sizeof *set->o, by_first_point);
 done:
   free(s.pts);
   free(s.itin);

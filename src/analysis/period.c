@@ -6,6 +6,15 @@
 
 #include "slipcont/chart.h"
 
+/* Iterates in one block of the settling test: at least this many, a
+ * whole number of cycles. */
+#define SETTLE_BLOCK 8
+/* Blocks compared, and how far their decay ratios may differ (relative
+ * to the largest): a transient converging to a period-p orbit shrinks its
+ * lag-p differences by the same factor every block (the multiplier to a
+ * power), a chaotic orbit does not do so block after block. */
+#define SETTLE_BLOCKS 4
+
 struct sc_period {
   int maxp;      /* largest period detected */
   int confirm;   /* confirmation cycles */
@@ -18,6 +27,11 @@ struct sc_period {
   double amax;   /* largest |x| so far */
   double tol;
   int found;     /* accepted period, 0 while none */
+  /* Settling (sc_period_settling()): per lag p, the largest lag-p
+   * difference of the current block of blk[p] iterates and of the one
+   * before, and how many blocks in a row the maximum decreased. */
+  long *blk, *blk_pos, *streak;
+  double *blk_max, *prev_max;
 };
 
 int sc_period_alloc(int max_period, int confirm, double rtol,
@@ -43,7 +57,16 @@ int sc_period_alloc(int max_period, int confirm, double rtol,
   pd->cap = (long)(confirm + 1) * max_period + 1;
   pd->ring = malloc((size_t)pd->cap * sizeof *pd->ring);
   pd->run = calloc((size_t)max_period + 1, sizeof *pd->run);
-  if (!pd->ring || !pd->run) goto fail;
+  pd->blk = calloc((size_t)max_period + 1, sizeof *pd->blk);
+  pd->blk_pos = calloc((size_t)max_period + 1, sizeof *pd->blk_pos);
+  pd->streak = calloc((size_t)max_period + 1, sizeof *pd->streak);
+  pd->blk_max = calloc((size_t)max_period + 1, sizeof *pd->blk_max);
+  pd->prev_max = calloc((size_t)max_period + 1, sizeof *pd->prev_max);
+  if (!pd->ring || !pd->run || !pd->blk || !pd->blk_pos || !pd->streak ||
+      !pd->blk_max || !pd->prev_max)
+    goto fail;
+  for (int p = 1; p <= max_period; p++)
+    pd->blk[p] = (long)p * ((SETTLE_BLOCK + p - 1) / p);
   sc_period_reset(pd, 0);
   *out = pd;
   return SC_OK;
@@ -56,6 +79,11 @@ void sc_period_free(sc_period *pd) {
   if (!pd) return;
   free(pd->ring);
   free(pd->run);
+  free(pd->blk);
+  free(pd->blk_pos);
+  free(pd->streak);
+  free(pd->blk_max);
+  free(pd->prev_max);
   free(pd);
 }
 
@@ -64,7 +92,11 @@ void sc_period_reset(sc_period *pd, double x0) {
   pd->n = 1;
   pd->lo = pd->hi = x0;
   pd->amax = fabs(x0);
-  for (int p = 0; p <= pd->maxp; p++) pd->run[p] = 0;
+  for (int p = 0; p <= pd->maxp; p++) {
+    pd->run[p] = 0;
+    pd->blk_pos[p] = pd->streak[p] = 0;
+    pd->blk_max[p] = pd->prev_max[p] = 0;
+  }
   pd->tol = SC_PERIOD_FLOOR_ULPS * DBL_EPSILON * pd->amax;
   pd->found = 0;
 }
@@ -139,7 +171,15 @@ int sc_period_push(sc_period *pd, double x) {
   int maxp = k < pd->maxp ? (int)k : pd->maxp;
   for (int p = 1; p <= maxp; p++) {
     long back = slot >= p ? slot - p : slot - p + pd->cap;
-    pd->run[p] = fabs(x - pd->ring[back]) <= pd->tol ? pd->run[p] + 1 : 0;
+    double dx = fabs(x - pd->ring[back]);
+    pd->run[p] = dx <= pd->tol ? pd->run[p] + 1 : 0;
+    if (dx > pd->blk_max[p]) pd->blk_max[p] = dx;
+    if (++pd->blk_pos[p] == pd->blk[p]) { /* a block of lag p is complete */
+      pd->streak[p] = pd->blk_max[p] < pd->prev_max[p] ? pd->streak[p] + 1 : 0;
+      pd->prev_max[p] = pd->blk_max[p];
+      pd->blk_max[p] = 0;
+      pd->blk_pos[p] = 0;
+    }
   }
   for (int p = 1; p <= maxp; p++) {
     if (pd->run[p] < (long)pd->confirm * p) continue;
@@ -183,9 +223,25 @@ int sc_period_find(sc_period *pd, sc_map *m, double d0, long max_iter,
       return SC_OK;
     }
   }
-  res->period = SC_PERIOD_HIGH;
+  res->period = sc_period_settling(pd) ? SC_PERIOD_UNSETTLED : SC_PERIOD_HIGH;
   res->iterations = max_iter;
   res->d = x;
   res->tol = pd->tol;
   return SC_OK;
+}
+
+/* See chart.h.  A transient converging to a period-p orbit shrinks its
+ * lag-p differences block after block for as long as it lasts; a chaotic
+ * orbit can do so only for a short episode (near an unstable periodic
+ * orbit).  So: the smallest p whose block maxima decreased in each of the
+ * last blocks covering at least half of the orbit (and at least
+ * SETTLE_BLOCKS blocks), still above the tolerance. */
+int sc_period_settling(const sc_period *pd) {
+  for (int p = 1; p <= pd->maxp; p++) {
+    long covered = pd->streak[p] * pd->blk[p];
+    if (pd->streak[p] >= SETTLE_BLOCKS && 2 * covered >= pd->n - 1 &&
+        pd->prev_max[p] > pd->tol)
+      return p;
+  }
+  return 0;
 }

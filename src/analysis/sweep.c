@@ -12,20 +12,15 @@
 #endif
 
 #include "slipcont/analysis.h"
+#include "slipcont/chart.h"
 
 double sc_grid_point(double from, double to, size_t steps, size_t i) {
-  if (steps == 0 || i >= steps) return NAN;
-  if (steps == 1 || i == 0) return from;
-  if (i == steps - 1) return to;
-  return from + (double)i * (to - from) / (double)(steps - 1);
+  return sc_grid(from, to, steps, i, SC_GRID_LINEAR);
 }
 
-/* Differences of a few ulps of the values are rounding, not a failure
- * to repeat: the floor of the period tolerance. */
-#define SC_PERIOD_ULPS (4 * DBL_EPSILON)
 
 int sc_sweep_period(const double *x, size_t n, double rtol, int pmax) {
-  if (n == 0 || !(rtol > 0)) return -1;
+  if (n == 0) return -1;
   double lo = x[0], hi = x[0], amax = 0;
   for (size_t k = 0; k < n; k++) {
     if (!isfinite(x[k])) return -1;
@@ -33,20 +28,24 @@ int sc_sweep_period(const double *x, size_t n, double rtol, int pmax) {
     hi = fmax(hi, x[k]);
     amax = fmax(amax, fabs(x[k]));
   }
-  double spread = hi - lo;
-  /* A tail that agrees with itself to rtol of its size is a fixed point
-   * (possibly still converging: its spread is then all transient, and a
-   * tolerance relative to the spread alone would never accept it). */
-  if (spread <= rtol * amax + SC_PERIOD_ULPS * amax) return 1;
-  double tol = rtol * spread + SC_PERIOD_ULPS * amax;
+  /* A tail at rest to rtol of its size is a fixed point (possibly still
+   * converging: seen alone, its small spread would make the detector's
+   * tolerance too strict to accept it). */
+  if (hi - lo <= rtol * amax + SC_PERIOD_FLOOR_ULPS * DBL_EPSILON * amax)
+    return 1;
+  if (rtol < DBL_EPSILON) rtol = DBL_EPSILON;
+  if (rtol > 0.1) rtol = 0.1;
   size_t pm = (size_t)(pmax > 0 ? pmax : 0);
   if (pm > n / 2) pm = n / 2;
-  for (size_t p = 1; p <= pm; p++) {
-    size_t k = 0;
-    while (k + p < n && fabs(x[k + p] - x[k]) <= tol) k++;
-    if (k + p >= n) return (int)p;
-  }
-  return 0;
+  if (pm > SC_PERIOD_MAX) pm = SC_PERIOD_MAX;
+  if (pm == 0) return 0;
+  sc_period *pd;
+  if (sc_period_alloc((int)pm, 1, rtol, &pd, NULL)) return -1;
+  sc_period_reset(pd, x[0]);
+  int p = 0;
+  for (size_t k = 1; k < n && !p; k++) p = sc_period_push(pd, x[k]);
+  sc_period_free(pd);
+  return p;
 }
 
 struct sc_sweep {
@@ -55,6 +54,7 @@ struct sc_sweep {
   int npasses;
   int pass_dir[2];
   sc_map **maps;
+  sc_period **pds;      /* per map: the period detector (chart.h) */
   int nmaps;
   unsigned long evals0; /* map evaluations of the clones before the run */
   double *d;            /* npoints * keep */
@@ -73,7 +73,9 @@ struct sc_sweep {
 void sc_sweep_free(sc_sweep *s) {
   if (!s) return;
   for (int i = 0; s->maps && i < s->nmaps; i++) sc_map_free(s->maps[i]);
+  for (int i = 0; s->pds && i < s->nmaps; i++) sc_period_free(s->pds[i]);
   free(s->maps);
+  free(s->pds);
   free(s->d);
   free(s->status);
   free(s->period);
@@ -95,6 +97,9 @@ int sc_sweep_alloc(const sc_map *m, const sc_sweep_spec *sp, sc_sweep **out,
   sc_msg m2;
   if (sc_param_check(pi, sp->from, &m2) || sc_param_check(pi, sp->to, &m2))
     return sc_fail(msg, SC_EINVAL, "sc_sweep_alloc: %s", m2.text);
+  if (sc_grid_check("sc_sweep_alloc: x-scale", sp->from, sp->to,
+                    (sc_grid_scale)sp->x_scale, &m2))
+    return sc_fail(msg, SC_EINVAL, "%s", m2.text);
   if (sp->steps < 1)
     return sc_fail(msg, SC_EINVAL, "sc_sweep_alloc: steps = 0 (valid: >= 1)");
   if (sp->iterations < 1 || sp->keep < 1 || sp->keep > sp->iterations)
@@ -128,16 +133,20 @@ int sc_sweep_alloc(const sc_map *m, const sc_sweep_spec *sp, sc_sweep **out,
   if (s->nmaps < 1) s->nmaps = 1;
 #endif
   s->maps = calloc((size_t)s->nmaps, sizeof *s->maps);
+  s->pds = calloc((size_t)s->nmaps, sizeof *s->pds);
   s->first_undef = calloc((size_t)s->nmaps, sizeof *s->first_undef);
   s->undef_msg = calloc((size_t)s->nmaps, sizeof *s->undef_msg);
   s->d = malloc(s->npoints * (size_t)sp->keep * sizeof *s->d);
   s->status = calloc(s->npoints, sizeof *s->status);
   s->period = calloc(s->npoints, sizeof *s->period);
-  if (!s->maps || !s->first_undef || !s->undef_msg || !s->d || !s->status ||
-      !s->period)
+  if (!s->maps || !s->pds || !s->first_undef || !s->undef_msg || !s->d ||
+      !s->status || !s->period)
     goto nomem;
   for (int i = 0; i < s->nmaps; i++) {
     int st = sc_map_clone(m, &s->maps[i], msg);
+    if (!st)
+      st = sc_period_alloc(SC_SWEEP_PERIOD_MAX, SC_PERIOD_DEFAULT_CONFIRM,
+                           sc_map_accuracy(m)->period_rtol, &s->pds[i], msg);
     if (st) {
       sc_sweep_free(s);
       return st;
@@ -170,7 +179,7 @@ static double point_value(const sc_sweep *s, size_t i, int *dir) {
   int ascending_grid = sp->to >= sp->from;
   int want_up = *dir == SC_SWEEP_UP;
   size_t g = ascending_grid == want_up ? j : sp->steps - 1 - j;
-  return sc_grid_point(sp->from, sp->to, sp->steps, g);
+  return sc_grid(sp->from, sp->to, sp->steps, g, (sc_grid_scale)sp->x_scale);
 }
 
 int sc_sweep_get_point(const sc_sweep *s, size_t i, sc_sweep_point *pt) {
@@ -203,11 +212,15 @@ static int compute_point(sc_sweep *s, int t, size_t i, double x0,
   int first_kept = sp->iterations - sp->keep;
   double x = x0;
   sc_map_value v;
-  int k;
+  int k, period = 0;
+  /* The one period rule (chart.h), over every iterate from x0, as a
+   * chart with transient = iterations would classify this point. */
+  sc_period_reset(s->pds[t], x0);
   for (k = 0; k < sp->iterations; k++) {
     st = sc_map_eval(m, x, SC_EVAL_VALUE, &v, msg);
     if (st) break;
     x = v.f;
+    period = sc_period_push(s->pds[t], x);
     if (k >= first_kept) keep[k - first_kept] = x;
   }
   if (st) {
@@ -224,9 +237,8 @@ static int compute_point(sc_sweep *s, int t, size_t i, double x0,
     return SC_OK;
   }
   s->status[i] = SC_OK;
-  s->period[i] = sc_sweep_period(keep, (size_t)sp->keep,
-                                  sc_map_accuracy(m)->period_rtol,
-                                  SC_SWEEP_PERIOD_MAX);
+  if (!period && sc_period_settling(s->pds[t])) period = SC_PERIOD_UNSETTLED;
+  s->period[i] = period; /* 0: SC_PERIOD_HIGH */
   *xend = x;
   return SC_OK;
 }
@@ -280,7 +292,7 @@ static int run_fixed(sc_sweep *s, sc_msg *msg) {
       double xend;
       int st = compute_point(s, t, (size_t)i, s->spec.d0, &xend, &m);
 #ifdef _OPENMP
-#pragma omp critical(sc_sweep_report)
+#pragma omp critical /* unnamed: no exported lock symbol */
 #endif
       {
         if (st && !s->stop) {

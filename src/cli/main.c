@@ -7,9 +7,11 @@
 #define _POSIX_C_SOURCE 200809L
 
 #include <gsl/gsl_errno.h>
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -17,6 +19,7 @@
 
 #include "cli/help.h"
 #include "cli/tasks.h"
+#include "slipcont/chart.h"
 #include "slipcont/io.h"
 
 enum { EXIT_OK = 0, EXIT_COMPUTE = 1, EXIT_INPUT = 2 };
@@ -31,6 +34,7 @@ typedef struct {
   const char *out;
   int quiet;
   long threads;
+  long stop_after_rows;
   int help;
   int markdown;
 } cli_args;
@@ -59,9 +63,14 @@ static void usage(FILE *f) {
       "  --quiet                  no notes or progress on stderr\n"
       "  --threads N              OpenMP threads for parallel tasks (N >= "
       "1)\n"
+      "  --stop-after-rows N      chart: stop after N rows with a checkpoint,"
+      " as a kill\n"
+      "                           would (to test resuming)\n"
       "\n"
-      "exit status: 0 success, 1 computation failed, 2 bad input (usage, "
-      "scene, output folder)\n"
+      "exit status: 0 success, 1 computation failed or interrupted, 2 bad "
+      "input (usage,\nscene, output folder); 130/143 when SIGINT/SIGTERM "
+      "had to end a task that did\nnot stop within a second (no "
+      "half-written file is left)\n"
       "see docs/guide.md; examples/*.ini show each task.\n",
       f);
 }
@@ -70,7 +79,8 @@ static void run_usage(FILE *f, const char *cmd) {
   fprintf(f,
           "usage: slipcont %s SCENE [--set SECTION.KEY=VALUE]... [--out DIR]"
           "%s\n\n",
-          cmd, strcmp(cmd, "run") == 0 ? " [--quiet] [--threads N]" : "");
+          cmd, strcmp(cmd, "run") == 0 ? " [--quiet] [--threads N]"
+                                         " [--stop-after-rows N]" : "");
   if (strcmp(cmd, "run") == 0)
     fputs("Validate the scene, create the output folder, compute the task, "
           "write CSV files,\nsummary.txt and gnuplot scripts, and render "
@@ -124,6 +134,13 @@ static int parse_run_args(int argc, char **argv, cli_args *a) {
       if (!val || sc_parse_long(val, 1, 4096, &a->threads))
         return bad_usage("--threads needs a count in [1, 4096], not '%s'",
                          val ? val : "");
+    } else if (strncmp(s, "--stop-after-rows", 17) == 0 &&
+               (s[17] == '\0' || s[17] == '=')) {
+      val = s[17] ? s + 18 : (i + 1 < argc ? argv[++i] : NULL);
+      if (!val || sc_parse_long(val, 1, SC_CHART_MAX_POINTS,
+                                &a->stop_after_rows))
+        return bad_usage("--stop-after-rows needs a row count >= 1, not "
+                         "'%s'", val ? val : "");
     } else if (s[0] == '-' && s[1]) {
       return bad_usage("unknown option '%s'", s);
     } else if (!a->scene) {
@@ -147,20 +164,75 @@ static int load(const cli_args *a, sc_scene **scene) {
   return EXIT_OK;
 }
 
+/* A long path shown in a message: its first and last characters. */
+static const char *shown(const char *dir, char *buf, size_t len) {
+  size_t n = strlen(dir);
+  if (n <= 80) return dir;
+  snprintf(buf, len, "%.40s...%s (%zu characters)", dir, dir + n - 30, n);
+  return buf;
+}
+
+/* The results a task writes, named in its `outputs` line: every word
+ * ending in .csv, .txt, .gp, .png or .checkpoint.  Calls fn on each. */
+static int each_output(const sc_cli_task *t, const char *dir,
+                       int (*fn)(const char *dir, const char *name)) {
+  const char *p = t->outputs;
+  while (*p) {
+    size_t k = strcspn(p, " ,;()");
+    if (k > 0 && k < 64) {
+      char name[64];
+      memcpy(name, p, k);
+      name[k] = '\0';
+      const char *dot = strrchr(name, '.');
+      if (dot && (!strcmp(dot, ".csv") || !strcmp(dot, ".txt") ||
+                  !strcmp(dot, ".gp") || !strcmp(dot, ".png") ||
+                  !strcmp(dot, ".checkpoint"))) {
+        int rc = fn(dir, name);
+        if (rc) return rc;
+      }
+    }
+    p += k;
+    if (*p) p++;
+  }
+  return 0;
+}
+
+/* A result name taken by something that is not a file (a folder, a
+ * FIFO): found now, not after computing. */
+static int output_blocked(const char *dir, const char *name) {
+  char path[PATH_MAX];
+  struct stat sb;
+  snprintf(path, sizeof path, "%s/%s", dir, name);
+  if (lstat(path, &sb) == 0 && !S_ISREG(sb.st_mode)) {
+    char buf[160];
+    fprintf(stderr,
+            "slipcont: %s/%s exists and is not a file: the result %s cannot "
+            "be written there (remove it or choose another --out)\n",
+            shown(dir, buf, sizeof buf), name, name);
+    return EXIT_INPUT;
+  }
+  return 0;
+}
+
 /* The output folder: checked (check) or created and proved writable
- * (run); the message names where dir was set. */
+ * (run); the message names where dir was set.  Result names blocked by
+ * folders are refused in both. */
 static int prepare_output(const sc_scene *s, int create) {
   sc_msg msg;
-  if (sc_output_prepare(sc_scene_output_dir(s), create, &msg) == SC_OK)
-    return EXIT_OK;
-  char where[SC_MSG_LEN];
-  const char *dir = sc_scene_output_dir(s), *reason = msg.text;
+  const char *dir = sc_scene_output_dir(s);
+  const sc_cli_task *task = sc_cli_task_find(sc_scene_task(s)->kind);
+  if (sc_output_prepare(dir, create, &msg) == SC_OK)
+    return each_output(task, dir, output_blocked);
+  char where[SC_MSG_LEN], buf[160];
+  const char *reason = msg.text;
   size_t n = strlen(dir);
   if (strncmp(reason, dir, n) == 0 && strncmp(reason + n, ": ", 2) == 0)
     reason += n + 2; /* the path is already in the message */
+  else if (strncmp(reason, "output folder: ", 15) == 0)
+    reason += 15;
   sc_scene_origin(s, "output", "dir", where, sizeof where);
-  fprintf(stderr, "slipcont: %s: [output] dir = %s: %s\n", where, dir,
-          reason);
+  fprintf(stderr, "slipcont: %s: [output] dir = %s: %s\n", where,
+          shown(dir, buf, sizeof buf), reason);
   return EXIT_INPUT;
 }
 
@@ -207,7 +279,9 @@ static int cmd_run(const cli_args *a) {
           "but no PNG (set [output] plot = no to silence this)\n",
           stderr);
   sc_cli_catch_signals();
+  r.stop_after_rows = a->stop_after_rows;
   int st = task->run(&r);
+  sc_cli_signals_done();
   if (st) {
     fprintf(stderr, "slipcont: %s: %s\n", sc_scene_name(s), msg.text);
     rc = EXIT_COMPUTE;

@@ -8,11 +8,85 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "cli/tasks.h"
 
+/* ------------------------------------------------------------------ */
+/* Signals: the one mechanism of the program (see tasks.h).              */
+
+/* Only flags of type volatile sig_atomic_t may be written by a handler. */
+static volatile sig_atomic_t interrupted;
+static volatile sig_atomic_t exit_code = 1;
+
+/* The temporaries opened through sc_cli_open(), newest last (a ring):
+ * when the process must end before the task returns, they are unlinked
+ * so that no half-written file is left.  A slot whose file was committed
+ * or aborted names a path that no longer exists; unlinking it again is
+ * harmless. */
+#define TRACKED 64
+static char tracked[TRACKED][4096];
+static volatile sig_atomic_t ntracked;
+
+static void track(const sc_file *f) {
+  const char *p = sc_file_temp_path(f);
+  size_t n = strlen(p);
+  if (n >= sizeof tracked[0]) return; /* longer paths are refused earlier */
+  int k = ntracked % TRACKED;
+  tracked[k][0] = '\0';
+  memcpy(tracked[k], p, n + 1);
+  ntracked = ntracked + 1;
+}
+
+/* Async-signal-safe: unlink(), write() and _exit() only. */
+static void end_now(void) {
+  int n = ntracked < TRACKED ? ntracked : TRACKED;
+  for (int k = 0; k < n; k++)
+    if (tracked[k][0]) unlink(tracked[k]);
+  static const char note[] = "slipcont: stopped by a signal (unfinished "
+                             "files removed; the files written are "
+                             "complete)\n";
+  ssize_t w = write(STDERR_FILENO, note, sizeof note - 1);
+  (void)w;
+  _exit(exit_code);
+}
+
+static void on_signal(int sig) {
+  if (interrupted) end_now(); /* a second signal: at once */
+  interrupted = 1;
+  exit_code = 128 + sig;
+  alarm(SC_CLI_STOP_GRACE_S);
+}
+
+static void on_alarm(int sig) {
+  (void)sig;
+  if (interrupted) end_now();
+}
+
+int sc_cli_interrupted(void) { return interrupted != 0; }
+
+void sc_cli_catch_signals(void) {
+  struct sigaction sa;
+  memset(&sa, 0, sizeof sa);
+  sa.sa_handler = on_signal;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, NULL);
+  sigaction(SIGTERM, &sa, NULL);
+  sa.sa_handler = on_alarm;
+  sigaction(SIGALRM, &sa, NULL);
+}
+
+void sc_cli_signals_done(void) {
+  /* The task has returned: its files are complete or removed. */
+  alarm(0);
+}
+
+/* ------------------------------------------------------------------ */
+
 int sc_cli_open(sc_cli_run *r, const char *name, sc_file **f) {
-  return sc_file_open(r->dir, name, f, r->msg);
+  int st = sc_file_open(r->dir, name, f, r->msg);
+  if (st == SC_OK) track(*f);
+  return st;
 }
 
 int sc_cli_commit(sc_cli_run *r, const char *name, sc_file *f) {
@@ -43,26 +117,6 @@ void sc_cli_note(const sc_cli_run *r, const char *fmt, ...) {
   vfprintf(stderr, fmt, ap);
   fputc('\n', stderr);
   va_end(ap);
-}
-
-/* The one piece of process state of the program: a signal arrived.
- * Only a flag of type volatile sig_atomic_t may be written by a handler. */
-static volatile sig_atomic_t interrupted;
-
-static void on_signal(int sig) {
-  (void)sig;
-  interrupted = 1;
-}
-
-int sc_cli_interrupted(void) { return interrupted != 0; }
-
-void sc_cli_catch_signals(void) {
-  struct sigaction sa;
-  memset(&sa, 0, sizeof sa);
-  sa.sa_handler = on_signal;
-  sigemptyset(&sa.sa_mask);
-  sigaction(SIGINT, &sa, NULL);
-  sigaction(SIGTERM, &sa, NULL);
 }
 
 char *sc_cli_csv_text(char *text) {
@@ -161,7 +215,11 @@ int sc_cli_write_map_graph(sc_cli_run *r, const char *name, int n,
   int have = 0;
   sc_map_value v;
   for (size_t i = 0; i < steps; i++) {
-    double d = from + (to - from) * (double)i / (double)(steps - 1);
+    if (sc_cli_interrupted()) {
+      sc_file_abort(csv);
+      return sc_fail(r->msg, SC_ECALLBACK, "interrupted");
+    }
+    double d = sc_grid(from, to, steps, i, SC_GRID_LINEAR);
     int e = sc_map_iterate(r->map, d, n, SC_EVAL_ITINERARY, &v, NULL);
     if (e == SC_EUNDEF || e == SC_ENONFINITE || e == SC_ENOCONV) {
       if (have) fputc('\n', f);

@@ -37,6 +37,12 @@ static const sc_key_info chart_keys[] = {
      "last y value, exactly a grid point"},
     {"y-steps", SC_KEY_INT, 0, "200", 2, SC_CHART_MAX_POINTS, 0, 0, NULL,
      "grid points along y (rows), both ends included"},
+    {"x-scale", SC_KEY_CHOICE, 0, "linear", 0, 0, 0, 0, "linear|log",
+     "x grid spacing: equal differences, or equal ratios (log; ends of one "
+     "sign)"},
+    {"y-scale", SC_KEY_CHOICE, 0, "linear", 0, 0, 0, 0, "linear|log",
+     "y grid spacing: equal differences, or equal ratios (log; ends of one "
+     "sign)"},
     {"d0", SC_KEY_REAL, 0, "0", -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
      "initial state of every point (bk2: d = Y2 - Y1 of the first GSP)"},
     {"transient", SC_KEY_INT, 0, "1000", 1, INT32_MAX, 0, 0, NULL,
@@ -64,6 +70,9 @@ static sc_chart_spec spec_of(const sc_scene *s) {
   c.y_from = sc_scene_real(s, "y-from");
   c.y_to = sc_scene_real(s, "y-to");
   c.y_steps = sc_scene_int(s, "y-steps");
+  const char *xs = sc_scene_text(s, "x-scale"), *ys = sc_scene_text(s, "y-scale");
+  c.x_scale = xs && strcmp(xs, "log") == 0 ? SC_GRID_LOG : SC_GRID_LINEAR;
+  c.y_scale = ys && strcmp(ys, "log") == 0 ? SC_GRID_LOG : SC_GRID_LINEAR;
   c.d0 = sc_scene_real(s, "d0");
   c.transient = sc_scene_int(s, "transient");
   c.max_period = (int)sc_scene_int(s, "max-period");
@@ -126,6 +135,9 @@ static int scene_text(const sc_cli_run *r, const sc_chart_spec *c, char *buf,
   ADD_("task.y = %s\ntask.y-from = %.17g\ntask.y-to = %.17g\n"
        "task.y-steps = %ld\n",
        c->y, c->y_from, c->y_to, c->y_steps);
+  if (c->x_scale || c->y_scale) /* absent when linear: old checkpoints hold */
+    ADD_("task.x-scale = %s\ntask.y-scale = %s\n",
+         c->x_scale ? "log" : "linear", c->y_scale ? "log" : "linear");
   ADD_("task.d0 = %.17g\ntask.transient = %ld\ntask.max-period = %d\n"
        "task.confirm = %d\ntask.seed = %s\n",
        c->d0, c->transient, c->max_period, c->confirm,
@@ -149,63 +161,130 @@ static uint64_t fnv1a(const char *s) {
 /* Checkpoint: `chart.checkpoint` in the output folder                   */
 
 #define CKPT_NAME "chart.checkpoint"
-#define CKPT_MAGIC "slipcont chart checkpoint 1\n"
+#define CKPT_MAGIC "slipcont chart checkpoint 2\n"
 #define SCENE_TEXT_LEN 8192
+/* Bytes per point on disk: d (IEEE 754 binary64), period, iterations
+ * (two's-complement int32), each little-endian whatever the host. */
+#define CKPT_POINT_BYTES 16
+
+/* The layout, version 2: the magic line, then the text lines
+ *   hash H       FNV-1a of the scene text (16 hex digits)
+ *   rows R       rows done, columns C, bytes B of the scene text
+ *   columns C
+ *   bytes B
+ *   checksum S   FNV-1a of the R*C points as stored
+ * then the scene text and R*C points of CKPT_POINT_BYTES.  Every value
+ * read back is checked (ckpt_read()); anything off starts the chart over. */
+
+static void put_le(unsigned char *p, uint64_t v, int n) {
+  for (int i = 0; i < n; i++) p[i] = (unsigned char)(v >> (8 * i));
+}
+
+static uint64_t get_le(const unsigned char *p, int n) {
+  uint64_t v = 0;
+  for (int i = n - 1; i >= 0; i--) v = v << 8 | p[i];
+  return v;
+}
+
+static void point_encode(const sc_chart_point *pt, unsigned char *b) {
+  uint64_t bits;
+  memcpy(&bits, &pt->d, sizeof bits);
+  put_le(b, bits, 8);
+  put_le(b + 8, (uint32_t)pt->period, 4);
+  put_le(b + 12, (uint32_t)pt->iterations, 4);
+}
+
+static void point_decode(const unsigned char *b, sc_chart_point *pt) {
+  uint64_t bits = get_le(b, 8);
+  memcpy(&pt->d, &bits, sizeof bits);
+  uint32_t p = (uint32_t)get_le(b + 8, 4), it = (uint32_t)get_le(b + 12, 4);
+  pt->period = p > INT32_MAX ? -(int32_t)(UINT32_MAX - p) - 1 : (int32_t)p;
+  pt->iterations = it > INT32_MAX ? -1 : (int32_t)it;
+}
+
+static uint64_t fnv1a_bytes(uint64_t h, const unsigned char *p, size_t n) {
+  for (size_t i = 0; i < n; i++) {
+    h ^= p[i];
+    h *= 1099511628211ULL;
+  }
+  return h;
+}
+#define FNV_OFFSET 1469598103934665603ULL
 
 /* Write the rows done so far, atomically (temporary name + rename). */
-static int ckpt_write(const char *dir, const char *text, uint64_t hash,
-                      long nx, long rows, const sc_chart_point *grid,
-                      sc_msg *msg) {
+static int ckpt_write(sc_cli_run *r, const char *text, uint64_t hash,
+                      long nx, long rows, const sc_chart_point *grid) {
+  const char *dir = r->dir;
+  sc_msg *msg = r->msg;
+  const size_t n = (size_t)(rows * nx);
+  unsigned char b[CKPT_POINT_BYTES];
+  uint64_t sum = FNV_OFFSET;
+  for (size_t k = 0; k < n; k++) {
+    point_encode(&grid[k], b);
+    sum = fnv1a_bytes(sum, b, sizeof b);
+  }
   sc_file *f = NULL;
-  int st = sc_file_open(dir, CKPT_NAME, &f, msg);
+  int st = sc_cli_open(r, CKPT_NAME, &f);
   if (st) return st;
   FILE *o = sc_file_stream(f);
   fputs(CKPT_MAGIC, o);
-  fprintf(o, "hash %016llx\nrows %ld\nbytes %zu\n", (unsigned long long)hash,
-          rows, strlen(text));
+  fprintf(o, "hash %016llx\nrows %ld\ncolumns %ld\nbytes %zu\n"
+             "checksum %016llx\n",
+          (unsigned long long)hash, rows, nx, strlen(text),
+          (unsigned long long)sum);
   fputs(text, o);
-  if (fwrite(grid, sizeof *grid, (size_t)(rows * nx), o) != (size_t)(rows * nx)) {
-    sc_file_abort(f);
-    return sc_fail(msg, SC_EIO, "%s/%s: write failed", dir, CKPT_NAME);
+  for (size_t k = 0; k < n; k++) {
+    point_encode(&grid[k], b);
+    if (fwrite(b, 1, sizeof b, o) != sizeof b) {
+      sc_file_abort(f);
+      return sc_fail(msg, SC_EIO, "%s/%s: write failed", dir, CKPT_NAME);
+    }
   }
   return sc_file_commit(f, msg);
 }
 
-/* First line where two scene texts differ, as "old -> new". */
-static void first_change(const char *old, const char *now, char *buf,
-                         size_t len) {
-  while (*old && *now) {
-    size_t a = strcspn(old, "\n"), b = strcspn(now, "\n");
-    if (a != b || strncmp(old, now, a) != 0) {
-      snprintf(buf, len, "%.*s -> %.*s", (int)a, old, (int)b, now);
-      return;
-    }
-    old += a + (old[a] == '\n');
-    now += b + (now[b] == '\n');
-  }
-  snprintf(buf, len, "the scene");
+
+/* A point as the chart can have computed it: a period class in range,
+ * iterations within the transient, d finite (or NaN where undefined). */
+static int point_valid(const sc_chart_point *p, const sc_chart_spec *c) {
+  if (p->period != SC_PERIOD_UNDEFINED && p->period != SC_PERIOD_HIGH &&
+      p->period != SC_PERIOD_UNSETTLED && (p->period < 1 || p->period > c->max_period))
+    return 0;
+  if (p->iterations < 0 || p->iterations > c->transient) return 0;
+  if (p->period != SC_PERIOD_UNDEFINED && !isfinite(p->d)) return 0;
+  return 1;
 }
 
 /* Read a checkpoint into grid; returns the rows it holds (0 when there is
- * none, it is unreadable, or it belongs to another scene: then a note
- * says so and the chart starts over). */
-static long ckpt_read(const sc_cli_run *r, const char *text, uint64_t hash,
-                      long nx, long ny, sc_chart_point *grid) {
+ * none, it is unreadable, corrupt, or it belongs to another scene: then a
+ * note says so and the chart starts over). */
+static long ckpt_read(const sc_cli_run *r, const sc_chart_spec *c,
+                      const char *text, uint64_t hash, sc_chart_point *grid) {
+  const long nx = c->x_steps, ny = c->y_steps;
   char path[4096];
   snprintf(path, sizeof path, "%s/%s", r->dir, CKPT_NAME);
   FILE *in = fopen(path, "rb");
   if (!in) return 0;
   char magic[sizeof CKPT_MAGIC] = "";
-  unsigned long long h = 0;
-  long rows = -1;
+  unsigned long long h = 0, sum = 0;
+  long rows = -1, cols = -1;
   size_t bytes = 0;
   long got = 0;
   char *old = NULL;
   if (fread(magic, 1, sizeof magic - 1, in) != sizeof magic - 1 ||
       strcmp(magic, CKPT_MAGIC) != 0 ||
-      fscanf(in, "hash %llx\nrows %ld\nbytes %zu", &h, &rows, &bytes) != 3 ||
-      fgetc(in) != '\n' || rows < 0 || rows > ny || bytes >= SCENE_TEXT_LEN) {
-    sc_cli_note(r, "%s is not a chart checkpoint: starting over", path);
+      fscanf(in, "hash %16llx\nrows %9ld\ncolumns %9ld\nbytes %5zu\n"
+                 "checksum %16llx",
+             &h, &rows, &cols, &bytes, &sum) != 5 ||
+      fgetc(in) != '\n') {
+    sc_cli_note(r, "%s is not a chart checkpoint of this version: starting "
+                   "over", path);
+    goto done;
+  }
+  if (rows < 0 || rows > ny || cols != nx || bytes >= SCENE_TEXT_LEN) {
+    sc_cli_note(r, "%s is corrupt (rows %ld of %ld, columns %ld of %ld, "
+                   "%zu bytes of scene): starting over",
+                path, rows, ny, cols, nx, bytes);
     goto done;
   }
   old = calloc(1, bytes + 1);
@@ -215,16 +294,33 @@ static long ckpt_read(const sc_cli_run *r, const char *text, uint64_t hash,
   }
   if (h != hash || strcmp(old, text) != 0) {
     char change[256];
-    first_change(old, text, change, sizeof change);
+    if (!sc_first_change(old, text, '\n', change, sizeof change))
+      snprintf(change, sizeof change, "the scene");
     sc_cli_note(r,
                 "the checkpoint %s was made for another scene (%s): "
                 "starting over",
                 path, change);
     goto done;
   }
-  if (fread(grid, sizeof *grid, (size_t)(rows * nx), in) !=
-      (size_t)(rows * nx)) {
-    sc_cli_note(r, "%s is truncated: starting over", path);
+  uint64_t s = FNV_OFFSET;
+  for (long k = 0; k < rows * nx; k++) {
+    unsigned char b[CKPT_POINT_BYTES];
+    if (fread(b, 1, sizeof b, in) != sizeof b) {
+      sc_cli_note(r, "%s is truncated: starting over", path);
+      goto done;
+    }
+    s = fnv1a_bytes(s, b, sizeof b);
+    point_decode(b, &grid[k]);
+    if (!point_valid(&grid[k], c)) {
+      sc_cli_note(r, "%s is corrupt (point %ld: period %d, %d iterations): "
+                     "starting over", path, k, (int)grid[k].period,
+                  (int)grid[k].iterations);
+      goto done;
+    }
+  }
+  if (s != sum || fgetc(in) != EOF) {
+    sc_cli_note(r, "%s is corrupt (checksum or length differs): starting "
+                   "over", path);
     goto done;
   }
   got = rows;
@@ -237,13 +333,18 @@ done:
 /* ------------------------------------------------------------------ */
 /* Output files                                                          */
 
-/* Classes present, counted: index period + 1 (0: undefined, 1: high). */
+/* Index of a period class in the counts: 0 unsettled, 1 undefined,
+ * 2 high, 2 + p period p. */
+#define CLASS(p) ((p) + 2)
+#define NCLASSES(maxp) ((size_t)(maxp) + 3)
+
+/* Classes present, counted at CLASS(period). */
 static void count_classes(const sc_chart_point *g, long n, int maxp,
                           long *count, double *iterations) {
-  memset(count, 0, (size_t)(maxp + 2) * sizeof *count);
+  memset(count, 0, NCLASSES(maxp) * sizeof *count);
   *iterations = 0;
   for (long k = 0; k < n; k++) {
-    count[g[k].period + 1]++;
+    count[CLASS(g[k].period)]++;
     *iterations += g[k].iterations;
   }
 }
@@ -279,10 +380,12 @@ static const unsigned period_rgb[16] = {
     0x98df8a, 0xff9896, 0xc5b0d5, 0x00ffff};
 #define HIGH_RGB 0x000000u
 #define UNDEF_RGB 0xd9d9d9u
+#define UNSETTLED_RGB 0xffffffu /* white: unlike every period colour */
 
 static unsigned class_rgb(int period) {
   if (period == SC_PERIOD_UNDEFINED) return UNDEF_RGB;
   if (period == SC_PERIOD_HIGH) return HIGH_RGB;
+  if (period == SC_PERIOD_UNSETTLED) return UNSETTLED_RGB;
   return period_rgb[(period - 1) % 16];
 }
 
@@ -319,42 +422,58 @@ static int write_plot(sc_cli_run *r, const sc_chart_spec *c,
   FILE *o = sc_file_stream(f);
   char title[512], xl[128], yl[128];
   chart_title(r->map, c, title, sizeof title);
-  snprintf(xl, sizeof xl, "%s", sc_plot_label(r->map, c->x));
-  snprintf(yl, sizeof yl, "%s", sc_plot_label(r->map, c->y));
+  /* A log axis is drawn as log10 of the values: the cells are then
+   * equal, as rgbimage needs. */
+  snprintf(xl, sizeof xl, c->x_scale ? "log10 %s" : "%s",
+           sc_plot_label(r->map, c->x));
+  snprintf(yl, sizeof yl, c->y_scale ? "log10 %s" : "%s",
+           sc_plot_label(r->map, c->y));
   sc_plot_head(o, "chart.png", title, xl, yl);
-  double hx = (c->x_to - c->x_from) / (double)(c->x_steps - 1) / 2;
-  double hy = (c->y_to - c->y_from) / (double)(c->y_steps - 1) / 2;
-  fprintf(o, "set xrange [%.17g:%.17g]\n", fmin(c->x_from, c->x_to) - fabs(hx),
-          fmax(c->x_from, c->x_to) + fabs(hx));
-  fprintf(o, "set yrange [%.17g:%.17g]\n", fmin(c->y_from, c->y_to) - fabs(hy),
-          fmax(c->y_from, c->y_to) + fabs(hy));
+  double x0 = c->x_scale ? log10(fabs(c->x_from)) : c->x_from;
+  double x1 = c->x_scale ? log10(fabs(c->x_to)) : c->x_to;
+  double y0 = c->y_scale ? log10(fabs(c->y_from)) : c->y_from;
+  double y1 = c->y_scale ? log10(fabs(c->y_to)) : c->y_to;
+  double hx = (x1 - x0) / (double)(c->x_steps - 1) / 2;
+  double hy = (y1 - y0) / (double)(c->y_steps - 1) / 2;
+  fprintf(o, "set xrange [%.17g:%.17g]\n", fmin(x0, x1) - fabs(hx),
+          fmax(x0, x1) + fabs(hx));
+  fprintf(o, "set yrange [%.17g:%.17g]\n", fmin(y0, y1) - fabs(hy),
+          fmax(y0, y1) + fabs(hy));
   fputs("set size square\nunset grid\nset tics out\n"
         "set key outside right top title 'period' box\n",
         o);
-  fputs("# colour of a period class (column 3): -1 undefined, 0 high\n", o);
+  fputs("# colour of a period class (column 3): -2 not settled, -1 "
+        "undefined, 0 high\n", o);
   fputs("array C[16] = [", o);
   for (int k = 0; k < 16; k++)
     fprintf(o, "%s0x%06x", k ? ", " : "", period_rgb[k]);
   fputs("]\n", o);
   fprintf(o,
-          "rgb(p) = p < 0 ? 0x%06x : p == 0 ? 0x%06x : C[int(p - 1) %% 16 + "
-          "1]\n",
-          UNDEF_RGB, HIGH_RGB);
-  fputs("plot 'chart.csv' skip 1 using 1:2:(int(rgb($3)) >> 16 & 255):"
-        "(int(rgb($3)) >> 8 & 255):(int(rgb($3)) & 255) with rgbimage "
+          "rgb(p) = p == -2 ? 0x%06x : p < 0 ? 0x%06x : p == 0 ? 0x%06x : "
+          "C[int(p - 1) %% 16 + 1]\n",
+          UNSETTLED_RGB, UNDEF_RGB, HIGH_RGB);
+  fprintf(o, "plot 'chart.csv' skip 1 using %s:%s:(int(rgb($3)) >> 16 & "
+             "255):",
+          c->x_scale ? "(log10(abs($1)))" : "1",
+          c->y_scale ? "(log10(abs($2)))" : "2");
+  fputs("(int(rgb($3)) >> 8 & 255):(int(rgb($3)) & 255) with rgbimage "
         "notitle",
         o);
   /* A key entry for each class present. */
   for (int p = 1; p <= c->max_period; p++)
-    if (count[p + 1])
+    if (count[CLASS(p)])
       fprintf(o, ", \\\n  keyentry with boxes fs solid fc rgb '#%06x' "
               "title '%d'",
               class_rgb(p), p);
-  if (count[SC_PERIOD_HIGH + 1])
+  if (count[CLASS(SC_PERIOD_HIGH)])
     fprintf(o, ", \\\n  keyentry with boxes fs solid fc rgb '#%06x' "
             "title '> %d or chaos'",
             HIGH_RGB, c->max_period);
-  if (count[SC_PERIOD_UNDEFINED + 1])
+  if (count[CLASS(SC_PERIOD_UNSETTLED)])
+    fprintf(o, ", \\\n  keyentry with boxes fs solid border lc rgb "
+            "'#000000' fc rgb '#%06x' title 'not settled'",
+            UNSETTLED_RGB);
+  if (count[CLASS(SC_PERIOD_UNDEFINED)])
     fprintf(o, ", \\\n  keyentry with boxes fs solid border lc rgb "
             "'#000000' fc rgb '#%06x' title 'undefined'",
             UNDEF_RGB);
@@ -378,34 +497,24 @@ static int write_summary(sc_cli_run *r, const sc_chart_spec *c,
   if (resumed) fprintf(o, ", resumed after %ld rows", resumed);
   fputc('\n', o);
   for (int p = 1; p <= c->max_period; p++)
-    if (count[p + 1])
-      fprintf(o, "  period %-3d %10ld points (%.2f%%)\n", p, count[p + 1],
-              100.0 * (double)count[p + 1] / (double)n);
-  fprintf(o, "  high       %10ld points (%.2f%%): period > %d, chaos, or not "
-          "settled in %ld iterates\n",
-          count[1], 100.0 * (double)count[1] / (double)n, c->max_period,
-          c->transient);
-  fprintf(o, "  undefined  %10ld points (%.2f%%)\n", count[0],
-          100.0 * (double)count[0] / (double)n);
+    if (count[CLASS(p)])
+      fprintf(o, "  period %-3d %10ld points (%.2f%%)\n", p, count[CLASS(p)],
+              100.0 * (double)count[CLASS(p)] / (double)n);
+  long high = count[CLASS(SC_PERIOD_HIGH)];
+  long unset = count[CLASS(SC_PERIOD_UNSETTLED)];
+  long undef = count[CLASS(SC_PERIOD_UNDEFINED)];
+  fprintf(o, "  high       %10ld points (%.2f%%): period > %d or chaos\n",
+          high, 100.0 * (double)high / (double)n, c->max_period);
+  fprintf(o, "  not settled %9ld points (%.2f%%): still converging after %ld "
+          "iterates (raise transient)\n",
+          unset, 100.0 * (double)unset / (double)n, c->transient);
+  fprintf(o, "  undefined  %10ld points (%.2f%%)\n", undef,
+          100.0 * (double)undef / (double)n);
   return sc_cli_commit(r, "summary.txt", f);
 }
 
 /* ------------------------------------------------------------------ */
 /* The run                                                               */
-
-/* Set by SIGINT/SIGTERM during a serial run: the points under way finish
- * and the run stops with a checkpoint.  A second signal ends the process
- * at once (a point that never finishes cannot hold it hostage). */
-static volatile sig_atomic_t interrupted;
-
-static void on_signal(int sig) {
-  if (interrupted) {
-    signal(sig, SIG_DFL);
-    raise(sig);
-    return;
-  }
-  interrupted = 1;
-}
 
 typedef struct {
   sc_progress *bar;
@@ -416,7 +525,7 @@ typedef struct {
 static int on_progress(void *ctx, long done) {
   progress_ctx *p = ctx;
   sc_progress_update(p->bar, p->base + done * p->mult);
-  return interrupted != 0;
+  return sc_cli_interrupted();
 }
 
 /* Seconds between checkpoints: often enough that a kill loses little,
@@ -427,197 +536,211 @@ static int on_progress(void *ctx, long done) {
  * (a second or so of bk2) that a kill loses little. */
 #define BLOCK_POINTS 2048
 
-static int chart_run(sc_cli_run *r) {
-  const sc_chart_spec c = spec_of(r->scene);
-  const long nx = c.x_steps, ny = c.y_steps;
-  int rank = 0, size = 1;
-  int st = sc_chart_check(r->map, &c, r->msg);
-  if (st) return st;
+/* One chart run: the spec, this process's place among the ranks, and
+ * the buffers (rank 0 holds the whole grid). */
+typedef struct {
+  sc_chart_spec c;
+  long nx, ny;
+  int rank, size, threads;
+  double t0;
+  long block;      /* rows per block */
+  long stop_after; /* --stop-after-rows (rank 0's, broadcast) */
+  long start;      /* rows read back from a checkpoint */
+  char *text;      /* the scene's effective values (checkpoint) */
+  uint64_t hash;   /* and their fingerprint */
+  sc_chart_point *grid, *mine, *stage;
+} chart_job;
+
+/* Rows per block: enough points to keep the threads busy (whole rows per
+ * thread with seed = neighbour), a multiple of the ranks. */
+static long block_rows(const chart_job *j) {
+  long block = (BLOCK_POINTS + j->nx - 1) / j->nx;
+  if (j->c.seed == SC_CHART_SEED_NEIGHBOUR && block < 2L * j->threads)
+    block = 2L * j->threads;
+  if (j->size > 1 && block < 4L * j->size) block = 4L * j->size;
+  block = (block + j->size - 1) / j->size * j->size;
+  return block > j->ny ? j->ny : block;
+}
+
+/* All ranks learn the worst status; a rank that was fine says which
+ * failed. */
+static int agree(sc_cli_run *r, int st, const char *who) {
 #ifdef SLIPCONT_MPI
-  if ((st = sc_mpi_chart_begin(&rank, &size, r->msg))) return st;
+  int all = sc_mpi_chart_min_status(st);
+  if (all && !st)
+    st = sc_fail(r->msg, all, "chart: %s failed (%s)", who, sc_strerror(all));
+#else
+  (void)r;
+  (void)who;
 #endif
-  const int threads = omp_get_max_threads();
-  const double t0 = sc_progress_now();
-  sc_chart_point *grid = NULL, *mine = NULL, *stage = NULL;
-  char *text = malloc(SCENE_TEXT_LEN);
-  struct sigaction old_int, old_term;
-  int handlers = 0;
+  return st;
+}
 
-  /* Rows per block: enough points to keep the threads busy (whole rows
-   * per thread with seed = neighbour), a multiple of the ranks. */
-  long block = (BLOCK_POINTS + nx - 1) / nx;
-  if (c.seed == SC_CHART_SEED_NEIGHBOUR && block < 2L * threads)
-    block = 2L * threads;
-  if (size > 1 && block < 4L * size) block = 4L * size; /* balance ranks */
-  block = (block + size - 1) / size * size;
-  if (block > ny) block = ny;
-
-  /* The test hook SLIPCONT_CHART_STOP_AFTER_ROWS=k stops after k rows
-   * with a checkpoint, as a kill would, but at a known place. */
-  long stop_after = 0;
-  const char *hook = getenv("SLIPCONT_CHART_STOP_AFTER_ROWS");
-  if (rank == 0 && hook) stop_after = atol(hook);
-  uint64_t hash = 0;
-  long start = 0;
-  /* Failures before the first collective call fall through to it, so
-   * that every rank learns of them. */
-  if (!text)
+/* Step 1: the scene text and its hash, the buffers, the checkpoint.
+ * Failures before the first collective call fall through to it, so that
+ * every rank learns of them. */
+static int chart_prepare(sc_cli_run *r, chart_job *j) {
+  int st = SC_OK;
+  j->text = malloc(SCENE_TEXT_LEN);
+  if (!j->text)
     st = sc_fail(r->msg, SC_ENOMEM, "chart: out of memory");
-  else if (scene_text(r, &c, text, SCENE_TEXT_LEN))
+  else if (scene_text(r, &j->c, j->text, SCENE_TEXT_LEN))
     st = sc_fail(r->msg, SC_EINTERNAL,
                  "chart: scene text longer than %d bytes", SCENE_TEXT_LEN);
   else
-    hash = fnv1a(text);
-  if (!st && rank == 0) {
-    grid = malloc((size_t)(nx * ny) * sizeof *grid);
-    if (size > 1) stage = malloc((size_t)(block * nx) * sizeof *stage);
-    if (!grid || (size > 1 && !stage)) {
+    j->hash = fnv1a(j->text);
+  const long nx = j->nx, ny = j->ny;
+  if (!st && j->rank == 0) {
+    j->grid = malloc((size_t)(nx * ny) * sizeof *j->grid);
+    if (j->size > 1)
+      j->stage = malloc((size_t)(j->block * nx) * sizeof *j->stage);
+    if (!j->grid || (j->size > 1 && !j->stage)) {
       st = sc_fail(r->msg, SC_ENOMEM,
                    "chart: out of memory for %ld x %ld points (%.0f MiB)", nx,
-                   ny, (double)(nx * ny) * sizeof *grid / 1048576);
+                   ny, (double)(nx * ny) * sizeof *j->grid / 1048576);
     } else {
-      start = ckpt_read(r, text, hash, nx, ny, grid);
-      if (start)
+      j->start = ckpt_read(r, &j->c, j->text, j->hash, j->grid);
+      if (j->start)
         sc_cli_note(r, "resuming from %s/%s: %ld of %ld rows done", r->dir,
-                    CKPT_NAME, start, ny);
+                    CKPT_NAME, j->start, ny);
     }
   }
-  if (!st && size > 1) {
-    mine = malloc((size_t)((block + size - 1) / size * nx) * sizeof *mine);
-    if (!mine)
-      st = sc_fail(r->msg, SC_ENOMEM, "chart: out of memory (rank %d)", rank);
+  if (!st && j->size > 1) {
+    j->mine = malloc((size_t)((j->block + j->size - 1) / j->size * nx) *
+                     sizeof *j->mine);
+    if (!j->mine)
+      st = sc_fail(r->msg, SC_ENOMEM, "chart: out of memory (rank %d)",
+                   j->rank);
   }
+  st = agree(r, st, "another rank");
 #ifdef SLIPCONT_MPI
-  {
-    int all = sc_mpi_chart_min_status(st);
-    if (all && !st)
-      st = sc_fail(r->msg, all, "chart: another rank failed (%s)",
-                   sc_strerror(all));
-  }
-  sc_mpi_chart_bcast_long(&start);
-  sc_mpi_chart_bcast_long(&stop_after);
+  sc_mpi_chart_bcast_long(&j->start);
+  sc_mpi_chart_bcast_long(&j->stop_after);
 #endif
-  if (st) goto out;
-  if (size == 1) {
-    struct sigaction sa;
-    memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on_signal;
-    sigemptyset(&sa.sa_mask);
-    interrupted = 0;
-    sigaction(SIGINT, &sa, &old_int);
-    sigaction(SIGTERM, &sa, &old_term);
-    handlers = 1;
-  }
+  return st;
+}
 
+/* Step 2: the rows from the checkpoint's end to the last, block by
+ * block, with a checkpoint every CKPT_INTERVAL_S, on a signal (then
+ * SC_ECALLBACK) and at --stop-after-rows. */
+static int chart_compute(sc_cli_run *r, chart_job *j) {
+  const long nx = j->nx, ny = j->ny;
+  int st = SC_OK;
   sc_progress bar;
-  sc_progress_start(&bar, "points", nx * ny, start * nx,
-                    rank == 0 && sc_progress_wanted(r->quiet));
+  sc_progress_start(&bar, "points", nx * ny, j->start * nx,
+                    j->rank == 0 && sc_progress_wanted(r->quiet));
   double last_ckpt = sc_progress_now();
-  long done_rows = start;
+  long done_rows = j->start;
   while (done_rows < ny) {
-    long r0 = done_rows, r1 = r0 + block < ny ? r0 + block : ny;
-    if (stop_after > r0 && stop_after < r1) r1 = stop_after;
+    long r0 = done_rows, r1 = r0 + j->block < ny ? r0 + j->block : ny;
+    if (j->stop_after > r0 && j->stop_after < r1) r1 = j->stop_after;
     long nb = r1 - r0;
-    progress_ctx pc = {&bar, r0 * nx, size};
-    sc_chart_point *dst = size > 1 ? mine : grid + r0 * nx;
-    long count = rank < nb ? (nb - rank + size - 1) / size : 0;
-    st = sc_chart_rows(r->map, &c, r0 + rank, count, size, 0, on_progress,
-                       &pc, dst, r->msg);
+    progress_ctx pc = {&bar, r0 * nx, j->size};
+    sc_chart_point *dst = j->size > 1 ? j->mine : j->grid + r0 * nx;
+    long count = j->rank < nb ? (nb - j->rank + j->size - 1) / j->size : 0;
+    st = sc_chart_rows(r->map, &j->c, r0 + j->rank, count, j->size, 0,
+                       on_progress, &pc, dst, r->msg);
+    st = agree(r, st, "another rank");
 #ifdef SLIPCONT_MPI
-    int all = sc_mpi_chart_min_status(st);
-    if (all && !st)
-      st = sc_fail(r->msg, all, "chart: another rank failed (%s)",
-                   sc_strerror(all));
-    if (!st && size > 1)
-      st = sc_mpi_chart_gather(mine, nx, r0, nb, rank, size, stage, grid,
-                               r->msg);
+    if (!st && j->size > 1)
+      st = sc_mpi_chart_gather(j->mine, nx, r0, nb, j->rank, j->size,
+                               j->stage, j->grid, r->msg);
 #endif
-    if (st == SC_ECALLBACK && interrupted) {
+    if (st == SC_ECALLBACK && sc_cli_interrupted()) {
       sc_progress_finish(&bar);
-      int e = ckpt_write(r->dir, text, hash, nx, done_rows, grid, r->msg);
-      st = e ? e
-             : sc_fail(r->msg, SC_ECALLBACK,
-                       "chart: interrupted after %ld of %ld rows; the "
-                       "checkpoint %s/%s is saved: run the same command to "
-                       "resume",
-                       done_rows, ny, r->dir, CKPT_NAME);
-      goto out;
+      int e = j->rank == 0
+                  ? ckpt_write(r, j->text, j->hash, nx, done_rows, j->grid)
+                  : SC_OK;
+      return e ? e
+               : sc_fail(r->msg, SC_ECALLBACK,
+                         "chart: interrupted after %ld of %ld rows; the "
+                         "checkpoint %s/%s is saved: run the same command "
+                         "to resume",
+                         done_rows, ny, r->dir, CKPT_NAME);
     }
-    if (st) goto out;
+    if (st) break;
     done_rows = r1;
     sc_progress_update(&bar, done_rows * nx); /* all ranks' points */
-    int hooked = stop_after > 0 && done_rows == stop_after && done_rows < ny;
-    if (rank == 0 && done_rows < ny &&
+    int hooked = j->stop_after > 0 && done_rows == j->stop_after &&
+                 done_rows < ny;
+    if (j->rank == 0 && done_rows < ny &&
         (hooked || sc_progress_now() - last_ckpt >= CKPT_INTERVAL_S)) {
-      st = ckpt_write(r->dir, text, hash, nx, done_rows, grid, r->msg);
+      st = ckpt_write(r, j->text, j->hash, nx, done_rows, j->grid);
       last_ckpt = sc_progress_now();
     }
-#ifdef SLIPCONT_MPI
-    {
-      int ck_all = sc_mpi_chart_min_status(st); /* rank 0's checkpoint */
-      if (ck_all && !st)
-        st = sc_fail(r->msg, ck_all, "chart: rank 0 failed (%s)",
-                     sc_strerror(ck_all));
-    }
-#endif
-    if (st) goto out;
+    st = agree(r, st, "rank 0"); /* rank 0's checkpoint */
+    if (st) break;
     if (hooked) {
       sc_progress_finish(&bar);
-      st = sc_fail(r->msg, SC_ECALLBACK,
-                   "chart: stopped after %ld of %ld rows by "
-                   "SLIPCONT_CHART_STOP_AFTER_ROWS; checkpoint saved",
-                   done_rows, ny);
-      goto out;
+      return sc_fail(r->msg, SC_ECALLBACK,
+                     "chart: stopped after %ld of %ld rows by "
+                     "--stop-after-rows; checkpoint saved",
+                     done_rows, ny);
     }
   }
   sc_progress_finish(&bar);
-  /* From here a signal ends the process as usual: the files are written
-   * atomically, and a long chart leaves a complete checkpoint behind
-   * until they are, so a rerun only writes them. */
-  if (handlers) {
-    sigaction(SIGINT, &old_int, NULL);
-    sigaction(SIGTERM, &old_term, NULL);
-    handlers = 0;
-  }
-  if (rank == 0 && start < ny && sc_progress_now() - t0 >= CKPT_INTERVAL_S &&
-      (st = ckpt_write(r->dir, text, hash, nx, ny, grid, r->msg)))
-    goto out;
+  return st;
+}
 
-  if (rank == 0) {
-    long *count = calloc((size_t)c.max_period + 2, sizeof *count);
-    double iterations = 0;
-    if (!count) {
-      st = sc_fail(r->msg, SC_ENOMEM, "chart: out of memory");
-      goto out;
-    }
-    count_classes(grid, nx * ny, c.max_period, count, &iterations);
-    st = write_csv(r, &c, grid);
-    if (!st)
-      st = write_summary(r, &c, count, iterations, sc_progress_now() - t0,
-                         start, size, threads);
-    if (!st) st = write_plot(r, &c, count);
-    if (!st) {
-      char path[4096];
-      snprintf(path, sizeof path, "%s/%s", r->dir, CKPT_NAME);
-      if (remove(path) != 0 && errno != ENOENT)
-        sc_cli_note(r, "could not remove %s: %s", path, strerror(errno));
-      sc_cli_note(r,
-                  "chart: %ld points in %.2f s (%d rank(s) x %d thread(s)); "
-                  "%ld high, %ld undefined",
-                  nx * ny, sc_progress_now() - t0, size, threads, count[1],
-                  count[0]);
-    }
-    free(count);
+/* Step 3 (rank 0): the files, then the checkpoint is removed.  A long
+ * chart first leaves a complete checkpoint, so that a rerun after a kill
+ * while writing only writes the files. */
+static int chart_write(sc_cli_run *r, chart_job *j) {
+  const long n = j->nx * j->ny;
+  int st = SC_OK;
+  if (j->start < j->ny && sc_progress_now() - j->t0 >= CKPT_INTERVAL_S &&
+      (st = ckpt_write(r, j->text, j->hash, j->nx, j->ny, j->grid)))
+    return st;
+  long *count = calloc(NCLASSES(j->c.max_period), sizeof *count);
+  double iterations = 0;
+  if (!count) return sc_fail(r->msg, SC_ENOMEM, "chart: out of memory");
+  count_classes(j->grid, n, j->c.max_period, count, &iterations);
+  st = write_csv(r, &j->c, j->grid);
+  if (!st)
+    st = write_summary(r, &j->c, count, iterations,
+                       sc_progress_now() - j->t0, j->start, j->size,
+                       j->threads);
+  if (!st) st = write_plot(r, &j->c, count);
+  if (!st) {
+    char path[4096];
+    snprintf(path, sizeof path, "%s/%s", r->dir, CKPT_NAME);
+    if (remove(path) != 0 && errno != ENOENT)
+      sc_cli_note(r, "could not remove %s: %s", path, strerror(errno));
+    sc_cli_note(r,
+                "chart: %ld points in %.2f s (%d rank(s) x %d thread(s)); "
+                "%ld high, %ld not settled, %ld undefined",
+                n, sc_progress_now() - j->t0, j->size, j->threads,
+                count[CLASS(SC_PERIOD_HIGH)],
+                count[CLASS(SC_PERIOD_UNSETTLED)],
+                count[CLASS(SC_PERIOD_UNDEFINED)]);
   }
-out:
-  if (handlers) {
-    sigaction(SIGINT, &old_int, NULL);
-    sigaction(SIGTERM, &old_term, NULL);
-  }
-  free(grid);
-  free(mine);
-  free(stage);
-  free(text);
+  free(count);
+  return st;
+}
+
+static int chart_run(sc_cli_run *r) {
+  chart_job j;
+  memset(&j, 0, sizeof j);
+  j.c = spec_of(r->scene);
+  j.nx = j.c.x_steps;
+  j.ny = j.c.y_steps;
+  j.size = 1;
+  int st = sc_chart_check(r->map, &j.c, r->msg);
+  if (st) return st;
+#ifdef SLIPCONT_MPI
+  if ((st = sc_mpi_chart_begin(&j.rank, &j.size, r->msg))) return st;
+#endif
+  j.threads = omp_get_max_threads();
+  j.t0 = sc_progress_now();
+  j.block = block_rows(&j);
+  j.stop_after = j.rank == 0 ? r->stop_after_rows : 0;
+  st = chart_prepare(r, &j);
+  if (!st) st = chart_compute(r, &j);
+  if (!st && j.rank == 0) st = chart_write(r, &j);
+  free(j.grid);
+  free(j.mine);
+  free(j.stage);
+  free(j.text);
 #ifdef SLIPCONT_MPI
   sc_mpi_chart_end();
 #endif

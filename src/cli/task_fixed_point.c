@@ -48,7 +48,14 @@ static int fp_run(sc_cli_run *r) {
   unsigned long ev0 = sc_map_nevals(m);
   double t0 = now();
   sc_orbit_set *set = NULL;
+  /* The search cannot be stopped from outside: a signal during it ends
+   * the process after SC_CLI_STOP_GRACE_S (tasks.h), before any file is
+   * opened; one that arrived by the time it returns stops here. */
   int st = sc_fixed_points_find(m, &sp, &set, r->msg);
+  if (!st && sc_cli_interrupted()) {
+    sc_orbit_set_free(set);
+    return sc_fail(r->msg, SC_ECALLBACK, "interrupted");
+  }
   if (st) return st;
   double elapsed = now() - t0;
   unsigned long nev = sc_map_nevals(m) - ev0;

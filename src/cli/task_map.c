@@ -72,6 +72,8 @@ static int map_run(sc_cli_run *r) {
   size_t nundef = 0, nok = 0;
   double flo = HUGE_VAL, fhi = -HUGE_VAL;
   char first_reason[SC_MSG_LEN] = "";
+  char first_failure[SC_MSG_LEN] = "";
+  size_t nfailed = 0;
   sc_map_value v;
   sc_msg em;
   map_pieces *pieces = calloc(1, sizeof *pieces);
@@ -109,12 +111,22 @@ static int map_run(sc_cli_run *r) {
       nundef++;
       fprintf(f, "nan,nan,,%s\n", sc_cli_csv_text(em.text));
       add_point(pieces, d, NAN, "undefined");
-    } else {
+    } else if (st == SC_ENOMEM) {
       sc_progress_finish(&bar);
       sc_file_abort(csv);
       free(pieces);
       return sc_fail(r->msg, st, "map at %s = %.17g: %s",
                      sc_map_type(m)->state_name, d, em.text);
+    } else {
+      /* The model refused this point (an extreme d, parameters it cannot
+       * handle): one point is lost, not the run; the row says why, the
+       * summary and a note count them. */
+      if (!nfailed)
+        snprintf(first_failure, sizeof first_failure, "at %.17g: %s: %.400s",
+                 d, sc_strerror(st), em.text);
+      nfailed++;
+      fprintf(f, "nan,nan,,%s\n", sc_cli_csv_text(em.text));
+      add_point(pieces, d, NAN, "failed");
     }
     sc_progress_update(&bar, (long)i + 1);
   }
@@ -129,6 +141,12 @@ static int map_run(sc_cli_run *r) {
           steps, nok, nundef);
   if (nok) fprintf(f, "  range of f^%d: [%.17g, %.17g]\n", n, flo, fhi);
   if (nundef) fprintf(f, "  first undefined point %s\n", first_reason);
+  if (nfailed) {
+    fprintf(f, "  %zu points refused by the model; first %s\n", nfailed,
+            first_failure);
+    sc_cli_note(r, "map: %zu of %zu points refused by the model; first %s",
+                nfailed, steps, first_failure);
+  }
   fputs("  pieces of constant itinerary (grid points; f^n on them):\n", f);
   for (size_t i = 0; i < pieces->n; i++) {
     const map_piece *p = &pieces->p[i];
@@ -174,7 +192,7 @@ static int map_run(sc_cli_run *r) {
   fputs("# points, not lines, so that jumps of the map stay open\n", f);
   if (strcmp(sc_map_type(m)->name, "bk2") == 0) {
     fputs("# column 4 is the itinerary: without '12' only one block slips at "
-          "a time\n# (single-block slips: f' = 1, MODEL.md)\n"
+          "a time\n# (single-block slips: f' = 1, docs/model.md)\n"
           "single(s) = strstrt(s, '12') == 0\n",
           f);
     fputs("plot 'map.csv' skip 1 using 1:(single(strcol(4)) ? $2 : NaN) "

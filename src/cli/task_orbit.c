@@ -21,6 +21,23 @@ static const sc_key_info orbit_keys[] = {
      "trajectory sampling step in dimensionless time (events are added)"},
 };
 
+/* Most rows of trajectory.csv (about 100 bytes each: 500 MB). */
+#define TRAJ_MAX_ROWS 5000000L
+
+/* Rows the trajectory will have at least: each iterate has a slip, and a
+ * block that slips alone comes back to the driver's speed after about
+ * half its period pi / sqrt(1 + alpha) (docs/model.md); so many samples
+ * of dtau, whatever the stick phases add. */
+static double traj_rows_estimate(const sc_scene *s) {
+  const sc_map *m = sc_scene_map(s);
+  long it = sc_scene_int(s, "trajectory-iterates");
+  if (it == 0) it = sc_scene_int(s, "iterations");
+  int ia = sc_map_param_index(m, "alpha");
+  double alpha = ia >= 0 ? sc_map_get_param(m, (size_t)ia) : 0;
+  const double pi = 3.14159265358979323846;
+  return (double)it * (pi / sqrt(1 + alpha)) / sc_scene_real(s, "dtau");
+}
+
 /* Iterates summarised at the end: enough for a period up to 16 to repeat
  * several times. */
 #define ORBIT_TAIL 128
@@ -38,6 +55,15 @@ static int orbit_check(const sc_scene *s, sc_msg *msg) {
                              "iterations = %ld (valid: [0, iterations])",
                              sc_scene_int(s, "trajectory-iterates"),
                              sc_scene_int(s, "iterations"));
+  if (sc_scene_flag(s, "trajectory")) {
+    double rows = traj_rows_estimate(s);
+    if (!(rows <= (double)TRAJ_MAX_ROWS))
+      return sc_scene_fail_key(s, "task", "dtau", msg,
+                               "dtau = %s: the trajectory would have at least "
+                               "%.3g rows (limit %ld, about 500 MB): raise dtau "
+                               "or lower trajectory-iterates",
+                               sc_scene_text(s, "dtau"), rows, TRAJ_MAX_ROWS);
+  }
   return SC_OK;
 }
 
@@ -60,7 +86,8 @@ static int on_sample(void *ctx, double tau, const double *x, int mode) {
   c->y2lo = fmin(c->y2lo, x[1]);
   c->y2hi = fmax(c->y2hi, x[1]);
   c->rows++;
-  return ferror(c->f) || sc_cli_interrupted() ? 1 : 0;
+  return ferror(c->f) || sc_cli_interrupted() || c->rows > TRAJ_MAX_ROWS ? 1
+                                                                         : 0;
 }
 
 static double param(const sc_map *m, const char *name, double dflt) {
@@ -68,7 +95,7 @@ static double param(const sc_map *m, const char *name, double dflt) {
   return i < 0 ? dflt : sc_map_get_param(m, (size_t)i);
 }
 
-/* The stuck block's velocity during slips (MODEL.md: V with the driver
+/* The stuck block's velocity during slips (docs/model.md: V with the driver
  * moving, 0 with it frozen). */
 static double stuck_velocity(const sc_map *m) {
   const char *drv = sc_map_get_option(m, "driver");
@@ -270,6 +297,11 @@ static int orbit_run(sc_cli_run *r) {
                            on_sample, &c, &em);
     if (st) {
       if (sc_cli_interrupted()) sc_fail(r->msg, SC_ECALLBACK, "interrupted");
+      else if (c.rows > TRAJ_MAX_ROWS)
+        sc_fail(r->msg, SC_EINVAL,
+                "trajectory longer than %ld rows (long stick phases: V is "
+                "small): raise dtau or lower trajectory-iterates",
+                TRAJ_MAX_ROWS);
       else sc_fail(r->msg, st, "trajectory from d = %.17g: %s", d[n - mt],
                    em.text);
       goto done;

@@ -7,6 +7,7 @@
 #include "cli/progress.h"
 #include "cli/tasks.h"
 #include "slipcont/analysis.h"
+#include "slipcont/chart.h"
 
 static const sc_key_info sweep_keys[] = {
     {"parameter", SC_KEY_PARAM, 1, NULL, 0, 0, 0, 0, NULL,
@@ -17,6 +18,9 @@ static const sc_key_info sweep_keys[] = {
      "last grid value (inside the parameter's range; may be below from)"},
     {"steps", SC_KEY_INT, 0, "200", 1, 10000000, 0, 0, NULL,
      "grid points, both ends included (1: from only)"},
+    {"x-scale", SC_KEY_CHOICE, 0, "linear", 0, 0, 0, 0, "linear|log",
+     "grid spacing: equal differences, or equal ratios (log; from and to "
+     "of one sign), drawn on a log axis"},
     {"iterations", SC_KEY_INT, 0, "300", 1, 100000000, 0, 0, NULL,
      "map iterates at each parameter value"},
     {"keep", SC_KEY_INT, 0, "100", 1, 100000000, 0, 0, NULL,
@@ -50,6 +54,14 @@ static int sweep_check(const sc_scene *s, sc_msg *msg) {
                                "%s = %s out of range of %s (valid: %s)",
                                ends[k], sc_scene_text(s, ends[k]), name, text);
   }
+  const char *xs = sc_scene_text(s, "x-scale");
+  if (xs && strcmp(xs, "log") == 0 &&
+      sc_grid_check("x-scale", sc_scene_real(s, "from"), sc_scene_real(s, "to"),
+                    SC_GRID_LOG, NULL))
+    return sc_scene_fail_key(s, "task", "x-scale", msg,
+                             "x-scale = log needs from and to of one sign and "
+                             "not 0 (from %s, to %s)",
+                             sc_scene_text(s, "from"), sc_scene_text(s, "to"));
   long it = sc_scene_int(s, "iterations"), keep = sc_scene_int(s, "keep");
   if (keep > it)
     return sc_scene_fail_key(s, "task", "keep", msg,
@@ -79,14 +91,16 @@ static const char *dir_name(int d) { return d == SC_SWEEP_DOWN ? "down" : "up"; 
 /* Runs of equal period along each pass, for the summary. */
 static void write_findings(FILE *f, const sc_sweep *sw, const char *pname) {
   size_t n = sc_sweep_npoints(sw);
-  int seen[SC_SWEEP_PERIOD_MAX + 2] = {0};
+  /* seen[period + 2]: -2 not settled, -1 undefined, 0 none, 1..max */
+  int seen[SC_SWEEP_PERIOD_MAX + 3] = {0};
   sc_sweep_point a, b;
   fprintf(f, "  parameter values: %zu points; map undefined at %zu\n", n,
           sc_sweep_nundefined(sw));
   if (sc_sweep_nundefined(sw))
     fprintf(f, "  first undefined: %s\n", sc_sweep_undefined_reason(sw));
   fputs("  period by parameter range (0: none found up to 16, i.e. chaos "
-        "or a longer period; -1: map undefined):\n",
+        "or a longer period; -1: map undefined; -2: not settled, still "
+        "converging after the iterations):\n",
         f);
   size_t i = 0;
   while (i < n) {
@@ -100,12 +114,13 @@ static void write_findings(FILE *f, const sc_sweep *sw, const char *pname) {
     sc_sweep_get_point(sw, j, &b);
     fprintf(f, "    %-4s %s from %.10g to %.10g (%zu values): period %d\n",
             dir_name(a.direction), pname, a.p, b.p, j - i + 1, a.period);
-    seen[a.period + 1] = 1;
+    if (a.period >= SC_PERIOD_UNSETTLED && a.period <= SC_SWEEP_PERIOD_MAX)
+      seen[a.period + 2] = 1;
     i = j + 1;
   }
   fputs("  periods seen:", f);
-  for (int p = -1; p <= SC_SWEEP_PERIOD_MAX; p++)
-    if (seen[p + 1]) fprintf(f, " %d", p);
+  for (int p = SC_PERIOD_UNSETTLED; p <= SC_SWEEP_PERIOD_MAX; p++)
+    if (seen[p + 2]) fprintf(f, " %d", p);
   fputc('\n', f);
 }
 
@@ -118,6 +133,8 @@ static int sweep_run(sc_cli_run *r) {
   sp.from = sc_scene_real(s, "from");
   sp.to = sc_scene_real(s, "to");
   sp.steps = (size_t)sc_scene_int(s, "steps");
+  sp.x_scale = strcmp(sc_scene_text(s, "x-scale"), "log") == 0 ? SC_GRID_LOG
+                                                               : SC_GRID_LINEAR;
   sp.iterations = (int)sc_scene_int(s, "iterations");
   sp.keep = (int)sc_scene_int(s, "keep");
   sp.d0 = sc_scene_real(s, "d0");
@@ -194,6 +211,7 @@ static int sweep_run(sc_cli_run *r) {
                sc_plot_label(m, sc_map_type(m)->state_name));
   fprintf(f, "set xrange [%.17g:%.17g]\n", fmin(sp.from, sp.to),
           fmax(sp.from, sp.to));
+  if (sp.x_scale == SC_GRID_LOG) fputs("set logscale x\n", f);
   snprintf(key[0], sizeof key[0], "increasing %s", xl);
   snprintf(key[1], sizeof key[1], "decreasing %s", xl);
   fputs("set key inside right top box opaque\n", f);

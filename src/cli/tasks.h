@@ -63,6 +63,9 @@ typedef struct sc_cli_run {
   char plot_script[SC_CLI_MAXPLOTS][64]; /**< "sweep.gp" */
   char plot_png[SC_CLI_MAXPLOTS][64];    /**< "sweep.png" */
   char written[1024];    /**< names of the files written, for the notes */
+  long stop_after_rows;  /**< chart: stop with a checkpoint after this
+                              many rows, as a kill would (0: never); the
+                              option --stop-after-rows, for tests */
 } sc_cli_run;
 
 /** A task kind of the program: see the contract above. */
@@ -91,7 +94,8 @@ const sc_cli_task *sc_cli_task_find(const char *kind);
 /** The scene-level descriptions of all tasks, for sc_scene_options. */
 const sc_task_type *const *sc_cli_task_types(size_t *n);
 
-/** Open `dir/name` atomically (sc_file_open()); message into r->msg. */
+/** Open `dir/name` atomically (sc_file_open()); message into r->msg.
+ * The temporary is unlinked if a signal ends the process early. */
 int sc_cli_open(sc_cli_run *r, const char *name, sc_file **f);
 /** Commit a file opened with sc_cli_open() and remember its name. */
 int sc_cli_commit(sc_cli_run *r, const char *name, sc_file *f);
@@ -111,16 +115,27 @@ int sc_cli_add_plot(sc_cli_run *r, const char *script, const char *png);
 void sc_cli_note(const sc_cli_run *r, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));
 
+/** Seconds a task has, after SIGINT/SIGTERM, to return by itself. */
+#define SC_CLI_STOP_GRACE_S 1
+
 /**
- * 1 once SIGINT or SIGTERM has arrived during a run (main installs the
- * handler with sc_cli_catch_signals() before calling run()).  A task
- * checks it in its loops; when set it aborts the files it was writing
- * (sc_file_abort(): no temporary is left) and returns SC_ECALLBACK with
- * "interrupted" in r->msg.  Progress bars: src/cli/progress.h.
+ * The one signal mechanism of the program.  1 once SIGINT or SIGTERM has
+ * arrived during a run (main installs the handler with
+ * sc_cli_catch_signals() before calling run()).  A task checks it in its
+ * loops (and progress callbacks return it, so that library loops stop);
+ * when set it aborts the files it was writing (sc_file_abort(): no
+ * temporary is left) and returns SC_ECALLBACK with "interrupted" in
+ * r->msg.  A task that has not returned SC_CLI_STOP_GRACE_S seconds
+ * after the signal (a library call that cannot be stopped), or a second
+ * signal, ends the process at once with status 128 + the signal number,
+ * after unlinking the temporaries opened with sc_cli_open(): files are
+ * left complete or not at all.  Progress bars: src/cli/progress.h.
  */
 int sc_cli_interrupted(void);
 /** Install the SIGINT/SIGTERM handler behind sc_cli_interrupted(). */
 void sc_cli_catch_signals(void);
+/** The task has returned: no more forced end (main calls it). */
+void sc_cli_signals_done(void);
 
 /** Replace ',' by ';' and control characters by ' ' so that @p text can
  * be one CSV field; returns @p text. */

@@ -5,6 +5,7 @@
 
 #include <errno.h>
 #include <fcntl.h>
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -90,9 +91,37 @@ static int check_ancestor(const char *path, sc_msg *msg) {
   return st;
 }
 
+/* Room a result file needs inside the folder: its temporary name
+ * "/.chart.checkpoint.XXXXXX" and a little more. */
+#define SC_OUT_NAME_ROOM 64
+
+/* Refuse, before anything is created, a path the system cannot hold:
+ * the whole path with a result file in it, or one part longer than a
+ * name may be.  The message says which and the limits. */
+static int check_path_length(const char *dir, sc_msg *msg) {
+  size_t n = strlen(dir);
+  if (n + SC_OUT_NAME_ROOM >= PATH_MAX)
+    return sc_fail(msg, SC_EIO,
+                   "output folder: path too long (%zu characters; at most "
+                   "%d)",
+                   n, PATH_MAX - SC_OUT_NAME_ROOM - 1);
+  for (const char *p = dir; *p;) {
+    size_t k = strcspn(p, "/");
+    if (k + SC_OUT_NAME_ROOM > NAME_MAX)
+      return sc_fail(msg, SC_EIO,
+                     "output folder: a part of the path is too long (%zu "
+                     "characters; at most %d)",
+                     k, NAME_MAX - SC_OUT_NAME_ROOM);
+    p += k + (p[k] == '/');
+  }
+  return SC_OK;
+}
+
 int sc_output_prepare(const char *dir, int create, sc_msg *msg) {
   if (!dir || !dir[0])
     return sc_fail(msg, SC_EIO, "output folder: empty name");
+  int lst = check_path_length(dir, msg);
+  if (lst) return lst;
   if (!create) return check_ancestor(dir, msg);
   int err = mkdir_p(dir);
   if (err)
@@ -160,6 +189,8 @@ nomem:
 }
 
 FILE *sc_file_stream(sc_file *f) { return f->f; }
+
+const char *sc_file_temp_path(const sc_file *f) { return f->tmp; }
 
 int sc_file_commit(sc_file *w, sc_msg *msg) {
   int err = 0;

@@ -65,7 +65,7 @@ char *sc_plot_title(const sc_map *m, const char *skip, char *buf,
 }
 
 const char *sc_plot_label(const sc_map *m, const char *name) {
-  /* The model tables carry the symbols of MODEL.md where they differ
+  /* The model tables carry the symbols of docs/model.md where they differ
    * from the names in code. */
   const sc_model_type *t = sc_map_type(m);
   if (strcmp(name, t->state_name) == 0)

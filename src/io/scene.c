@@ -1,9 +1,12 @@
+#define _POSIX_C_SOURCE 200809L
 /* Scenes: INI files read with inih, collected into a list of entries
  * (section, key, value, where it was set), overridden by --set and
  * --out, then validated section by section against the key tables: the
  * model's parameter and option tables (models.h), the accuracy fields
  * (common.h), the task kind's keys (sc_task_type) and [output]'s.
  * Nothing is computed or written before the whole scene has passed. */
+#include <errno.h>
+#include <fcntl.h>
 #include <ini.h>
 #include <limits.h>
 #include <math.h>
@@ -11,6 +14,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "slipcont/io.h"
 
@@ -105,16 +110,24 @@ static int in_list(const char *list, const char *word) {
   return 0;
 }
 
-/* A number that is not one: say whether it is non-finite or malformed. */
+/* A number that is not one: say whether it is too large or malformed,
+ * and the rule (sc_number_syntax()). */
 static int bad_number(const char *name, const char *value, const char *range,
                       sc_msg *msg) {
   char *end;
   double x = strtod(value, &end);
-  if (end != value && !isfinite(x))
+  if (end != value && isnan(x) + isinf(x) && sc_number_syntax(value) == 0 &&
+      !strchr(value, 'x') && !strchr(value, 'X'))
     return sc_fail(msg, SC_EINVAL, "%s = %s is not a finite number (valid: %s)",
                    name, value, range);
-  return sc_fail(msg, SC_EINVAL, "%s = '%s' is not a number (valid: %s)", name,
-                 value, range);
+  if (sc_number_syntax(value) != SC_NUM_NONE)
+    return sc_fail(msg, SC_EINVAL,
+                   "%s = %s is too large for a double (valid: %s)", name,
+                   value, range);
+  return sc_fail(msg, SC_EINVAL,
+                 "%s = '%s' is not a number: numbers are decimal, like 0.025, "
+                 "-3 or 1e-3 (valid: %s)",
+                 name, value, range);
 }
 
 int sc_key_check(const sc_key_info *k, const char *value, const sc_map *m,
@@ -135,12 +148,21 @@ int sc_key_check(const sc_key_info *k, const char *value, const sc_map *m,
   case SC_KEY_INT: {
     double x;
     long l;
+    (void)x;
     if (sc_parse_long(value, (long)k->lo, (long)k->hi, &l) == SC_OK)
       return SC_OK;
-    if (sc_parse_double(value, &x) == SC_OK && x == floor(x))
+    int syn = sc_number_syntax(value);
+    if (syn == SC_NUM_INT)
       return sc_fail(msg, SC_EINVAL, "%s = %s out of range (valid: %s)",
                      k->name, value, range);
-    return sc_fail(msg, SC_EINVAL, "%s = '%s' is not an integer (valid: %s)",
+    if (syn == SC_NUM_REAL)
+      return sc_fail(msg, SC_EINVAL,
+                     "%s = %s is not an integer: write integers in decimal "
+                     "digits only, without a point or exponent (valid: %s)",
+                     k->name, value, range);
+    return sc_fail(msg, SC_EINVAL,
+                   "%s = '%s' is not an integer: integers are decimal "
+                   "digits, like 1000 (valid: %s)",
                    k->name, value, range);
   }
   case SC_KEY_CHOICE:
@@ -303,6 +325,16 @@ static void scan_header(reader_state *st, const char *line, size_t n) {
   size_t j = i + 1;
   while (j < n && line[j] != ']') j++;
   if (j == n) return; /* inih reports the syntax error */
+  size_t t = j + 1;
+  while (t < n && (line[t] == ' ' || line[t] == '\t')) t++;
+  if (t < n && line[t] != ';' && line[t] != '#') {
+    record(st, SC_EINVAL,
+           "text after the section header: '%.*s' (a header is [name] "
+           "alone on its line, or followed by a comment)",
+           (int)(n - t), line + t);
+    st->prev_key = NULL;
+    return;
+  }
   char name[128];
   size_t k = j - i - 1 < sizeof name - 1 ? j - i - 1 : sizeof name - 1;
   memcpy(name, line + i + 1, k);
@@ -326,13 +358,15 @@ static void scan_header(reader_state *st, const char *line, size_t n) {
 static char *read_line(char *str, int num, void *stream) {
   reader_state *st = stream;
   if (!*st->pos) return NULL;
-  const char *nl = strchr(st->pos, '\n');
-  size_t n = nl ? (size_t)(nl - st->pos) + 1 : strlen(st->pos);
+  /* A line ends at LF, CR LF or a lone CR (old Mac files). */
+  size_t body0 = strcspn(st->pos, "\r\n");
+  size_t n = body0;
+  if (st->pos[n] == '\r') n++;
+  if (st->pos[n] == '\n' && (n == body0 || st->pos[n - 1] == '\r')) n++;
   st->line++;
   st->indented = st->pos[0] == ' ' || st->pos[0] == '\t';
   size_t cap = num > 2 ? (size_t)num - 2 : 0; /* room for "\n\0" */
-  size_t body = n && st->pos[n - 1] == '\n' ? n - 1 : n;
-  if (body && st->pos[body - 1] == '\r') body--;
+  size_t body = body0;
   if (body > cap) {
     record(st, SC_EINVAL, "line too long (%zu characters; limit %zu)", body,
            cap);
@@ -669,9 +703,25 @@ int sc_scene_parse(const char *name, const char *text,
 int sc_scene_load(const char *path, const sc_scene_options *opts,
                   sc_scene **out, sc_msg *msg) {
   *out = NULL;
-  FILE *f = fopen(path, "rb");
-  if (!f)
-    return sc_fail(msg, SC_EIO, "%s: cannot open the scene file", path);
+  /* Opened without blocking (a FIFO would wait for a writer forever),
+   * then refused unless it is a regular file. */
+  int fd = open(path, O_RDONLY | O_NONBLOCK);
+  if (fd < 0)
+    return sc_fail(msg, SC_EIO, "%s: cannot open the scene file (%s)", path,
+                   strerror(errno));
+  struct stat sb;
+  if (fstat(fd, &sb) != 0 || !S_ISREG(sb.st_mode)) {
+    close(fd);
+    return sc_fail(msg, SC_EINVAL,
+                   "%s: not a regular file (a scene is read from a file, "
+                   "not a folder, pipe or device)",
+                   path);
+  }
+  FILE *f = fdopen(fd, "rb");
+  if (!f) {
+    close(fd);
+    return sc_fail(msg, SC_ENOMEM, "%s: out of memory", path);
+  }
   char *text = malloc(SC_SCENE_MAXBYTES + 2);
   if (!text) {
     fclose(f);

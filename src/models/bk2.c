@@ -489,7 +489,10 @@ void sc_bk2_border_add(sc_border_list *l, sc_border_kind kind,
   bd->value = m->v;
   bd->dd = m->d[0];
   for (int k = 0; k < 4; k++) bd->dp[k] = m->d[k + 1];
-  snprintf(bd->name, sizeof bd->name, "%s", name);
+  size_t len = strlen(name);
+  if (len >= sizeof bd->name) len = sizeof bd->name - 1; /* cut */
+  memcpy(bd->name, name, len);
+  bd->name[len] = '\0';
 }
 
 static const char *mode_name(int mode) {
@@ -1038,9 +1041,24 @@ static int nonfinite_derivative(const bk2_inst *b, double d, int st,
                  d, d - b->dstar);
 }
 
+/* The largest |d| the model resolves: the onset state is ~ alpha d and
+ * the guards combine it with terms of size 1; beyond this their sums and
+ * event horizons overflow or lose every digit of the slip (1e100 leaves
+ * alpha up to 1e6 and its squares far from overflow). */
+#define BK2_D_MAX 1e100
+
+static int d_out_of_reach(double d, sc_msg *msg) {
+  if (fabs(d) <= BK2_D_MAX) return SC_OK;
+  return sc_fail(msg, SC_EUNDEF,
+                 "bk2: d = %g is beyond what the model resolves (valid: "
+                 "|d| <= %g)",
+                 d, BK2_D_MAX);
+}
+
 static int bk2_eval(void *vinst, double d, unsigned flags, sc_map_value *out,
                     sc_msg *msg) {
   const bk2_inst *b = vinst;
+  if (d_out_of_reach(d, msg)) return SC_EUNDEF;
   if (b->acc.precision == SC_PRECISION_QUAD) { /* bk2_quad.c */
     if (flags & SC_EVAL_DERIV2)
       return sc_fail(msg, SC_EINVAL,
@@ -1076,6 +1094,7 @@ static int bk2_eval_ex(void *vinst, double d, unsigned flags,
                        sc_border_list *borders, sc_map_value *out,
                        sc_msg *msg) {
   const bk2_inst *b = vinst;
+  if (d_out_of_reach(d, msg)) return SC_EUNDEF;
   if (flags & SC_EVAL_DERIV2)
     return sc_bk2_eval_jet_ex(b, d, flags, force, code, borders, out, NULL,
                               msg);

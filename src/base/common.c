@@ -225,8 +225,45 @@ static int only_blanks(const char *s) {
   return *s == '\0';
 }
 
+/* The one rule for numbers in scenes and options (docs/guide.md,
+ * "Numbers"): decimal only.  A real is [sign] digits [. digits]
+ * [e|E [sign] digits] (at least one digit before the exponent); an
+ * integer is [sign] digits.  Hexadecimal, nan, inf and anything else are
+ * refused.  Surrounding blanks are allowed.  Returns the length of the
+ * number at @p p (0 if none), and whether it has a point or exponent. */
+static size_t scan_decimal(const char *p, int *real) {
+  size_t i = 0, digits = 0;
+  *real = 0;
+  if (p[i] == '+' || p[i] == '-') i++;
+  while (isdigit((unsigned char)p[i])) i++, digits++;
+  if (p[i] == '.') {
+    *real = 1;
+    i++;
+    while (isdigit((unsigned char)p[i])) i++, digits++;
+  }
+  if (!digits) return 0;
+  if (p[i] == 'e' || p[i] == 'E') {
+    size_t j = i + 1, ed = 0;
+    if (p[j] == '+' || p[j] == '-') j++;
+    while (isdigit((unsigned char)p[j])) j++, ed++;
+    if (!ed) return 0;
+    *real = 1;
+    i = j;
+  }
+  return i;
+}
+
+int sc_number_syntax(const char *text) {
+  if (!text) return SC_NUM_NONE;
+  while (isspace((unsigned char)*text)) text++;
+  int real;
+  size_t n = scan_decimal(text, &real);
+  if (!n || !only_blanks(text + n)) return SC_NUM_NONE;
+  return real ? SC_NUM_REAL : SC_NUM_INT;
+}
+
 int sc_parse_double(const char *text, double *out) {
-  if (!text || only_blanks(text)) return SC_EINVAL;
+  if (sc_number_syntax(text) == SC_NUM_NONE) return SC_EINVAL;
   char *end;
   errno = 0;
   double d = strtod(text, &end);
@@ -237,11 +274,90 @@ int sc_parse_double(const char *text, double *out) {
 }
 
 int sc_parse_long(const char *text, long lo, long hi, long *out) {
-  if (!text || only_blanks(text)) return SC_EINVAL;
+  if (sc_number_syntax(text) != SC_NUM_INT) return SC_EINVAL;
   char *end;
   errno = 0;
   long l = strtol(text, &end, 10);
   if (errno || !only_blanks(end) || l < lo || l > hi) return SC_EINVAL;
   *out = l;
   return SC_OK;
+}
+
+/* The one grid formula (common.h). */
+double sc_grid(double from, double to, size_t steps, size_t i,
+               sc_grid_scale scale) {
+  if (steps == 0 || i >= steps || !isfinite(from) || !isfinite(to))
+    return NAN;
+  if (scale == SC_GRID_LOG && (from == 0 || to == 0 || (from < 0) != (to < 0)))
+    return NAN;
+  if (i == 0 || steps == 1) return from;
+  if (i == steps - 1) return to;
+  const double t = (double)i / (double)(steps - 1);
+  if (scale == SC_GRID_LOG) {
+    const double q = to / from; /* > 0: the ends have one sign */
+    if (isfinite(q) && q > 0) {
+      const double x = from * pow(q, t);
+      if (isfinite(x) && x != 0) return x;
+    }
+    const double a = log(fabs(from)), b = log(fabs(to));
+    const double x = exp(a + t * (b - a));
+    return from < 0 ? -x : x;
+  }
+  const double span = to - from;
+  if (isfinite(span)) return from + span * t;
+  return from * (1 - t) + to * t;
+}
+
+int sc_grid_check(const char *name, double from, double to,
+                  sc_grid_scale scale, sc_msg *msg) {
+  if (!isfinite(from) || !isfinite(to))
+    return sc_fail(msg, SC_EINVAL, "%s: grid ends must be finite (%g, %g)",
+                   name, from, to);
+  if (scale == SC_GRID_LOG && (from == 0 || to == 0 || (from < 0) != (to < 0)))
+    return sc_fail(msg, SC_EINVAL,
+                   "%s: a log scale needs both ends of one sign and not 0 "
+                   "(from %.17g, to %.17g)",
+                   name, from, to);
+  if (scale != SC_GRID_LINEAR && scale != SC_GRID_LOG)
+    return sc_fail(msg, SC_EINVAL, "%s: unknown grid scale %d", name,
+                   (int)scale);
+  return SC_OK;
+}
+
+/* Orbits (common.h). */
+double sc_orbit_tol(const sc_accuracy *acc, double x) {
+  return SC_ORBIT_SAME_TOLS * (acc->newton_atol + acc->newton_rtol * fabs(x));
+}
+
+int sc_orbit_minimal_period(const double *pts, int m, double tol) {
+  for (int q = 1; q < m; q++)
+    if (m % q == 0 && fabs(pts[q] - pts[0]) <= tol) return q;
+  return m;
+}
+
+int sc_orbit_same(const double *a, const double *b, int m, double tol) {
+  for (int r = 0; r < m; r++) {
+    int same = 1;
+    for (int i = 0; i < m && same; i++)
+      same = fabs(a[i] - b[(r + i) % m]) <= tol;
+    if (same) return 1;
+  }
+  return 0;
+}
+
+int sc_first_change(const char *a, const char *b, char sep, char *out,
+                    size_t len) {
+  const char set[2] = {sep, '\0'};
+  if (len) out[0] = '\0';
+  for (int k = 1; *a || *b; k++) {
+    size_t na = strcspn(a, set), nb = strcspn(b, set);
+    if (na != nb || strncmp(a, b, na) != 0) {
+      if (len)
+        snprintf(out, len, "%.*s -> %.*s", (int)na, a, (int)nb, b);
+      return k;
+    }
+    a += na + (a[na] == sep);
+    b += nb + (b[nb] == sep);
+  }
+  return 0;
 }
