@@ -1,6 +1,6 @@
 /* The two-block model: closed forms against numerical integration,
  * derivatives against differences, symmetries and special pieces of the
- * map, the reference behaviours of MODEL.md, and bad input. */
+ * map, the reference behaviours of docs/model.md, and bad input. */
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
@@ -214,7 +214,7 @@ static void test_properties(void) {
   }
   tu_true(same, "driver frozen: f identical for v = 0.01 and v = 0.7");
 
-  /* Continuity at d*: f(d* -+ h) -> f(d*), like sqrt(h) (MODEL.md). */
+  /* Continuity at d*: f(d* -+ h) -> f(d*), like sqrt(h) (docs/model.md). */
   double ds = sc_bk2_dstar(3.3, 2.5);
   double f0 = feval(a, ds, NULL);
   double jl = fabs(feval(a, ds - 1e-12, NULL) - f0);
@@ -339,7 +339,7 @@ static void test_reference(void) {
           "fig 5.6: v = 0.016 orbit made of single-block slips (%s)", itin16);
   sc_map_free(m);
 
-  /* An undefined map: a slip cycle that never returns (MODEL.md). */
+  /* An undefined map: a slip cycle that never returns (docs/model.md). */
   m = make(8, 1, 0.025, "moving");
   sc_map_value r;
   sc_msg msg = {""};

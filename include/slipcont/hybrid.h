@@ -62,7 +62,7 @@ SC_API double sc_guard_m3(const sc_guard *g);
  *        its own re-stick guard): that root is skipped, its sign taken
  *        from g'(0), g''(0).  With 0, a g(0) within rounding of zero is a
  *        root at t = 0 only if g moves up through zero there (g'(0) > 0,
- *        or g'(0) = 0 < g''(0)): every event of MODEL.md is a guard
+ *        or g'(0) = 0 < g''(0)): every event of docs/model.md is a guard
  *        reaching zero from below; otherwise it is skipped likewise.
  * @param atol, rtol tolerance on the root time: the returned root lies in
  *        an interval of width <= atol + rtol t (or g is within rounding of

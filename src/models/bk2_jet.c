@@ -4,7 +4,7 @@
  * modes and durations, and from the next mode the event that ends each.
  * This file replays those phases in jet arithmetic (src/hybrid/jet.h)
  * over the directions (d, alpha, beta, phi, v): the closed-form flows of
- * MODEL.md with jet coefficients, and each event time tau as a jet found
+ * docs/model.md with jet coefficients, and each event time tau as a jet found
  * by Newton's method on the guard, g(tau) = 0, started at the known root.
  * Each Newton step at least doubles the order to which the jet of tau is
  * exact (orders 1, 3, 7), so SC_BK2_JET_NEWTON steps give the exact
@@ -156,7 +156,7 @@ static void guard_at(const jpar *P, int mode, int kind, const jstate *x,
   }
 }
 
-/* The event that ends a phase of `mode` followed by `next` (MODEL.md's
+/* The event that ends a phase of `mode` followed by `next` (docs/model.md's
  * event table); 0 for two re-sticks at once (not twice differentiable). */
 static int event_kind(int mode, int next) {
   if (mode == SC_BK2_SLIP1) return next == SC_BK2_STICK ? 1 : 3;
@@ -254,7 +254,7 @@ int sc_bk2_eval_jet_ex(const bk2_inst *b, double d, unsigned flags,
       guard_at(&P, mode, kind, &x, acc, &g, &gt);
       if (gt.v == 0 || !isfinite(gt.v)) {
         /* A guard with zero slope: the event time is not differentiable
-         * (MODEL.md: at grazing, or at d* with V_s = 0). */
+         * (docs/model.md: at grazing, or at d* with V_s = 0). */
         fill_nan(out, grad);
         return SC_OK;
       }
@@ -267,7 +267,7 @@ int sc_bk2_eval_jet_ex(const bk2_inst *b, double d, unsigned flags,
   }
   sc_jet fj = sc_jsub(x.y2, x.y1, ND);
   if (out->neutral) {
-    /* f = d + c(p) exactly (MODEL.md): no curvature in d. */
+    /* f = d + c(p) exactly (docs/model.md): no curvature in d. */
     out->d2fdd2 = out->d3fdd3 = 0;
     for (int k = 0; k < 4; k++)
       out->d2fddp[k] = out->d3fdd2p[k] = 0;
