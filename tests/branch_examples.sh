@@ -142,4 +142,33 @@ run_sc check "$TMP/row.ini" --set task.starts="3.9 0.2 99999999999"
 expect_rc "a start period above max-period" 2
 expect_err "a start period above max-period" "(valid: [1, max-period = 8])"
 
+# The border examples: the motion at a located point of each kind
+# (docs/branches.md shows their velocity.png).  Driver frozen: V_s = 0.
+# GR: block 1's velocity in the two-block slip rises back to 0 and no
+# further (a sampled maximum within 1e-5 below 0).
+example border-gr
+png border-gr velocity.png
+gr=$(awk -F, 'BEGIN { m = -1e9 } NR > 1 && $6 == 3 && $4 > m { m = $4 } END { print m }' \
+  "$TMP/border-gr/trajectory.csv")
+check "border-gr: max U1 in the two-block slip is 0 (got $gr)" \
+  awk -v m="$gr" 'BEGIN { exit !(m != "" && m <= 1e-12 && m >= -1e-5) }'
+# CS: when block 1 re-sticks, block 2's spring force is at its threshold
+# beta = 3.2 (no global stick phase in between): S2 = (1 + alpha) Y2 - alpha Y1.
+example border-cs
+cs=$(awk -F, -v a=5.6487539210982636 'NR > 1 && $6 == 1 { r = $0 }
+  NR > 1 && $6 != 1 && r != "" { split(r, x, ","); printf "%.17g", (1 + a) * x[3] - a * x[2]; exit }' \
+  "$TMP/border-cs/trajectory.csv")
+check "border-cs: S2 at block 1's re-stick is beta = 3.2 (got $cs)" \
+  awk -v s="$cs" 'BEGIN { e = s - 3.2; if (e < 0) e = -e; exit !(e <= 1e-9) }'
+# SW: the orbit's first point is d* = (beta - 1)/(1 + 2 alpha) and both
+# blocks start together.
+example border-sw
+has border-sw orbit.csv '^0,0\.1998735313134[0-9]*,12'
+# BR: at the end of the two-block slip both velocities are 0 together.
+example border-br
+br=$(awk -F, 'NR > 1 && $6 == 3 { r = $0 } NR > 1 && $6 != 3 && r != "" { split(r, x, ","); u = x[4] < 0 ? -x[4] : x[4]; w = x[5] < 0 ? -x[5] : x[5]; printf "%.3g", (u > w ? u : w); exit }' \
+  "$TMP/border-br/trajectory.csv")
+check "border-br: both velocities 0 at the end of the two-block slip (got $br)" \
+  awk -v m="$br" 'BEGIN { exit !(m != "" && m <= 1e-9) }'
+
 finish

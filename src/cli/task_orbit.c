@@ -199,6 +199,12 @@ static int orbit_run(sc_cli_run *r) {
       goto done;
     }
     fail = sc_map_eval(m, d[k], SC_EVAL_DERIV | SC_EVAL_ITINERARY, &v, &em);
+    if (fail == SC_ENONFINITE) {
+      /* f' does not exist here (an event with zero slope, or d* with the
+       * driver frozen): the iterate does; the multiplier is then unknown */
+      fail = sc_map_eval(m, d[k], SC_EVAL_ITINERARY, &v, &em);
+      v.dfdd = NAN;
+    }
     fprintf(f, "%ld,", k);
     sc_csv_double(f, d[k]);
     if (fail) {
