@@ -85,6 +85,8 @@ typedef int (*sc_curve_jet_fn)(double x, const double *p, sc_curve_jet *jet,
 typedef enum {
   SC_CURVE_FOLD = 0, /**< g = x, g_x = +1 */
   SC_CURVE_FLIP = 1, /**< g = x, g_x = -1 */
+  SC_CURVE_BORDER = 2, /**< g = x, m_k = 0: the orbit on one of its
+                            borders (sc_curve_trace() only) */
 } sc_curve_type;
 
 /**
@@ -176,6 +178,9 @@ typedef struct {
   double ylo, yhi;
   double h0, hmax; /**< arclength steps (in (d, x, y)) */
   long max_points; /**< per direction */
+  /** SC_CURVE_BORDER: the kind of border followed; the start's orbit
+   * border of this kind nearest to zero is taken */
+  sc_border_kind border;
 } sc_curve_settings;
 
 /** @brief Defaults: fold, period 1, steps 1e-3 and 2e-2, 2000 points. */
@@ -185,20 +190,26 @@ void sc_curve_settings_default(sc_curve_settings *s);
 typedef struct {
   double x, y, d;     /**< parameters and the orbit point carried */
   double multiplier;  /**< (f^m)' there: +1 or -1 up to the tolerance */
-  double coefficient; /**< the normal-form coefficient (psi_0) */
+  double coefficient; /**< the normal-form coefficient (psi_0); on a
+                           border curve the border's value m_k (zero up
+                           to the residual) */
   int branch;         /**< 0: the first direction, 1: the other */
   const char *itinerary;
 } sc_curve_point;
 
 /** A codimension-two or end point of a traced curve. */
 typedef struct {
-  char label[8]; /**< "CP", "GPD", "TP", "EP" (end); with a '?'
-                      ("CP?") for a sign change of the test that
-                      was not located or is not a zero (note says
-                      why) */
+  char label[8]; /**< "CP", "GPD", "TP", "EP" (end); on a border
+                      curve "LP", "PD" (the orbit on the border has
+                      (f^m)' = +1, -1); where the curve meets a border
+                      of the orbit, that border's kind (sc_border_label:
+                      "GR", "CS", "SW", "BR", "TT"); with a '?' ("CP?",
+                      "GR?") for a sign change of the test that was not
+                      located or is not a zero (note says why) */
   double x, y, d;
   double coefficient;
-  double residual; /**< sc_curve_cert.residual; NaN for EP */
+  double residual; /**< sc_curve_cert.residual; NaN for EP; for a
+                        border point, the largest of |F| and |m_k| */
   char note[128];  /**< "beta min", "supercritical to subcritical",
                         why the curve ended, ... */
 } sc_curve_special;
@@ -226,12 +237,25 @@ typedef struct {
  * @brief Trace the fold or flip curve of the period-m orbit through
  * (d0, x, y) of map @p m (its parameters ix, iy hold the start's x, y):
  * correct the start at fixed y, continue both ways, locate CP / GPD /
- * TP, stop at the box, where the curve closes, or where the orbit's
- * itinerary changes (a border: said in the EP note).  The map's
- * parameters are changed during the trace and restored at the end.
- * Needs SC_EVAL_DERIV2 of the model (bk2: exact flows).
- * @return SC_OK; SC_EINVAL for bad settings; SC_ENOCONV if the start
- *         could not be corrected; SC_ECALLBACK if an output callback
+ * TP, stop at the box, or where the curve closes.  The orbit keeps the
+ * itinerary code of its start (single shooting: evaluated along it past
+ * a border, sc_map_iterate_ex()); the borders of the orbit are test
+ * functions, and where one changes sign the point {f^m(d) = d, (f^m)' =
+ * +-1, m_k = 0} is located by Newton in (d, x, y), reported with the
+ * border's kind as label, and the curve ends there (the note says so);
+ * what cannot be located is a "KIND?" row with the reason.
+ *
+ * With set->type SC_CURVE_BORDER the curve is that of the orbit on its
+ * border of kind set->border nearest to the start: {f^m(d) = d, m_k = 0}
+ * along the start's itinerary code (the border's own code for its
+ * iterate), with LP and PD ((f^m)' = +-1) and the crossings of the
+ * orbit's other borders located (docs/curves.md).
+ * The map's parameters are changed during the trace and restored at the
+ * end.  Needs SC_EVAL_DERIV2 of the model for fold and flip curves (bk2:
+ * exact flows), and borders (sc_map_has_borders()) for border curves.
+ * @return SC_OK; SC_EINVAL for bad settings, a border curve of a model
+ *         without borders or of an orbit without a border of that kind;
+ *         SC_ENOCONV if the start could not be corrected; SC_ECALLBACK if an output callback
  *         stopped; the map's errors at the start.
  */
 int sc_curve_trace(sc_map *m, const sc_curve_settings *set, double d0,

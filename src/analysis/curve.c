@@ -9,15 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "slipcont/curve.h"
-
-/* The smallest residual tolerance of a curve's system: its residual
- * g_x -+ 1 is a product of m derivatives, each good to ~1e-13 relative
- * at event-rtol 1e-14 and amplified near d* and grazings, so 1e-13 (the
- * default preset's) is below its rounding floor on period-4 and -6
- * orbits of fig 5.8 (measured: 5e-13 .. 1.2e-12); 1e-11 is a factor 10
- * inside the 1e-10 the curves must meet (docs/curves.md). */
-#define SC_CURVE_FTOL 1e-11
+#include "analysis/curve_impl.h"
 
 void sc_curve_settings_default(sc_curve_settings *s) {
   memset(s, 0, sizeof *s);
@@ -139,9 +131,6 @@ static double dist_inf(const trace *T, const double *a, const double *b) {
     m = fmax(m, fabs(a[i] - b[i]));
   return m;
 }
-
-/* sqrt(DBL_EPSILON) */
-#define SC_SQRT_EPS 1.4901161193847656e-08
 
 /* Locate the zero of test k between the points a and b (psi values pa,
  * pb of opposite signs) and report it. */
@@ -357,6 +346,8 @@ int sc_curve_trace(sc_map *m, const sc_curve_settings *set, double d0,
                    "sc_curve_trace: bad settings (period %d >= 1, x, y "
                    "distinct parameters, 0 < h0 <= hmax, lo < hi)",
                    set->period);
+  if (set->type == SC_CURVE_BORDER)
+    return sc_curve_trace_border(m, set, d0, out, stats, msg);
   trace T;
   memset(&T, 0, sizeof T);
   T.set = set;
@@ -428,11 +419,7 @@ int sc_curve_trace(sc_map *m, const sc_curve_settings *set, double d0,
    * start where that is larger (reported), never beyond 1e-9 (the fast
    * preset's). */
   sc_accuracy acc = *T.acc;
-  acc.newton_ftol = fmax(acc.newton_ftol, SC_CURVE_FTOL);
-  if (floor > acc.newton_ftol && floor <= 2.5e-10) {
-    acc.newton_ftol = 4 * floor;
-    acc.newton_atol = fmax(acc.newton_atol, 4 * floor);
-  }
+  sc_curve_ftol(&acc, floor);
   stats->ftol = acc.newton_ftol;
   T.acc = &acc;
   if (st == SC_OK) st = run(&T, +1, 0, msg);

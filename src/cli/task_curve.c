@@ -13,8 +13,11 @@
 #include "slipcont/curve.h"
 
 static const sc_key_info curve_keys[] = {
-    {"type", SC_KEY_CHOICE, 1, NULL, 0, 0, 0, 0, "fold|flip",
-     "fold: multiplier +1 (f^m(d) = d, (f^m)' = 1); flip: (f^m)' = -1"},
+    {"type", SC_KEY_CHOICE, 1, NULL, 0, 0, 0, 0,
+     "fold|flip|graze|cross|switch|both|touch",
+     "fold: multiplier +1 (f^m(d) = d, (f^m)' = 1); flip: (f^m)' = -1; "
+     "graze, cross, switch, both, touch: the orbit on its nearest border of "
+     "that kind (GR, CS, SW, BR, TT), f^m(d) = d and m_k = 0"},
     {"x", SC_KEY_PARAM, 1, NULL, 0, 0, 0, 0, NULL,
      "the parameter the start was located in (horizontal axis)"},
     {"y", SC_KEY_PARAM, 1, NULL, 0, 0, 0, 0, NULL,
@@ -34,7 +37,8 @@ static const sc_key_info curve_keys[] = {
      "guess of an orbit point at the start (or give start)"},
     {"start", SC_KEY_TEXT, 0, NULL, 0, 0, 0, 0, NULL,
      "FILE:N, row N (1 = first after the header) of a branch task's "
-     "points.csv: an LP (type = fold) or PD (type = flip) located in x; "
+     "points.csv: an LP (type = fold), PD (type = flip) or border point "
+     "(GR for graze, CS cross, SW switch, BR both, TT touch) located in x; "
      "x, d0 and period are taken from it (instead of d0)"},
     {"shooting", SC_KEY_CHOICE, 0, "single", 0, 0, 0, 0, "single|multiple",
      "single: on f^m in (d, x, y); multiple: one equation per iterate in "
@@ -49,6 +53,21 @@ static const sc_key_info curve_keys[] = {
      "a chart.csv of the chart task over the same x and y, drawn under "
      "the curve (path relative to the working folder)"},
 };
+
+/* The curve types in key order; border kinds of the border types. */
+static const char *const type_names[] = {"fold",  "flip", "graze", "cross",
+                                         "switch", "both", "touch"};
+static const char *const type_labels[] = {"LP", "PD", "GR", "CS",
+                                          "SW", "BR", "TT"};
+static const sc_border_kind type_kinds[] = {
+    0, 0, SC_BORDER_GRAZING, SC_BORDER_CROSSING, SC_BORDER_SWITCHING,
+    SC_BORDER_BOTH, SC_BORDER_TOUCH};
+
+static int type_index(const char *t) {
+  for (int i = 0; i < 7; i++)
+    if (strcmp(t, type_names[i]) == 0) return i;
+  return 0; /* the key's choices are checked by the scene */
+}
 
 /* The overlay's header must start with "<x>,<y>,period": a chart of
  * these two parameters.  Returns 0 or a status with the reason. */
@@ -178,7 +197,7 @@ static int curve_check(const sc_scene *s, sc_msg *msg) {
                                "start = %s: %s (valid: FILE:N, a row of a "
                                "branch task's points.csv)",
                                spec, why);
-    const char *want = strcmp(sc_scene_text(s, "type"), "flip") ? "LP" : "PD";
+    const char *want = type_labels[type_index(sc_scene_text(s, "type"))];
     if (strcmp(row.param, xn) || strcmp(row.label, want))
       return sc_scene_fail_key(s, "task", "start", msg,
                                "start = %s is a %s in %s (valid: a %s in x "
@@ -277,8 +296,9 @@ static int curve_run(sc_cli_run *r) {
   const char *xn = sc_scene_text(s, "x"), *yn = sc_scene_text(s, "y");
   sc_curve_settings set;
   sc_curve_settings_default(&set);
-  set.type = strcmp(sc_scene_text(s, "type"), "flip") == 0 ? SC_CURVE_FLIP
-                                                           : SC_CURVE_FOLD;
+  int ti = type_index(sc_scene_text(s, "type"));
+  set.type = ti == 0 ? SC_CURVE_FOLD : ti == 1 ? SC_CURVE_FLIP : SC_CURVE_BORDER;
+  set.border = type_kinds[ti];
   set.period = (int)sc_scene_int(s, "period");
   set.multiple = strcmp(sc_scene_text(s, "shooting"), "multiple") == 0;
   set.ix = sc_map_param_index(m, xn);
@@ -340,7 +360,7 @@ static int curve_run(sc_cli_run *r) {
   if ((st = sc_cli_summary_begin(r, &sum))) goto done;
   FILE *f = sc_file_stream(sum);
   fprintf(f, "  %s curve of the period-%d orbit in (%s, %s): %ld points%s\n",
-          set.type == SC_CURVE_FOLD ? "fold" : "flip", set.period, xn, yn,
+          type_names[ti], set.period, xn, yn,
           stats.npoints, stats.closed ? ", closed" : "");
   fprintf(f,
           "  largest residual of the defining system over the points: "
@@ -366,8 +386,8 @@ static int curve_run(sc_cli_run *r) {
   f = sc_file_stream(gp);
   char title[512], full[640];
   sc_plot_title(m, NULL, title, sizeof title);
-  snprintf(full, sizeof full, "%s curve, period %d (%s)",
-           set.type == SC_CURVE_FOLD ? "fold" : "flip", set.period, title);
+  snprintf(full, sizeof full, "%s curve, period %d (%s)", type_names[ti],
+           set.period, title);
   sc_plot_head(f, "curve.png", full, sc_plot_label(m, xn),
                sc_plot_label(m, yn));
   fprintf(f, "set xrange [%.17g:%.17g]\nset yrange [%.17g:%.17g]\n", set.xlo,
@@ -394,15 +414,26 @@ static int curve_run(sc_cli_run *r) {
   fprintf(f,
           "'curve.csv' skip 1 using 1:2 with lines lw 2 lc rgb "
           "'#1f4e9e' title '%s curve', \\\n",
-          set.type == SC_CURVE_FOLD ? "fold" : "flip");
-  const char *labels[4] = {"CP", "GPD", "TP", "EP"};
-  const char *colors[4] = {"#d62728", "#9467bd", "#2ca02c", "#777777"};
-  int pts[4] = {7, 5, 9, 6};
-  for (int k = 0; k < 4; k++)
-    fprintf(f,
-            "     'points.csv' skip 1 using 2:(lab('%s')) with points pt "
-            "%d ps 2 lc rgb '%s' title '%s'%s\n",
-            labels[k], pts[k], colors[k], labels[k], k < 3 ? ", \\" : "");
+          type_names[ti]);
+  /* the labels present, each once in the key */
+  const char *labels[11] = {"CP", "GPD", "TP", "LP", "PD", "GR", "CS",
+                            "SW", "BR", "TT", "EP"};
+  const char *colors[11] = {"#d62728", "#9467bd", "#2ca02c", "#ff7f0e",
+                            "#8c564b", "#e377c2", "#17becf", "#bcbd22",
+                            "#1f77b4", "#7f7f7f", "#777777"};
+  int pts[11] = {7, 5, 9, 11, 13, 4, 8, 10, 12, 3, 6}, nk = 0, shown[11];
+  for (int k = 0; k < 11; k++) {
+    shown[k] = k == 10;
+    for (size_t i = 0; i < c.nsp && !shown[k]; i++)
+      shown[k] = strcmp(c.sp[i].label, labels[k]) == 0;
+    nk += shown[k];
+  }
+  for (int k = 0; k < 11; k++)
+    if (shown[k])
+      fprintf(f,
+              "     'points.csv' skip 1 using 2:(lab('%s')) with points pt "
+              "%d ps 2 lc rgb '%s' title '%s'%s\n",
+              labels[k], pts[k], colors[k], labels[k], --nk ? ", \\" : "");
   st = sc_cli_commit(r, "curve.gp", gp);
   gp = NULL;
   if (st) goto done;
@@ -420,9 +451,11 @@ done:
 
 const sc_cli_task sc_cli_task_curve = {
     .type = {.kind = "curve",
-             .doc = "fold or flip curve of a period-m orbit in two "
-                    "parameters, with its cusps (CP), generalized flips "
-                    "(GPD) and turning points (TP)",
+             .doc = "fold, flip or border curve of a period-m orbit in "
+                    "two parameters, with its cusps (CP), generalized flips "
+                    "(GPD), turning points (TP), the borders it meets (GR, "
+                    "CS, SW, BR, TT) and, on a border curve, folds (LP) and "
+                    "flips (PD)",
              .keys = curve_keys,
              .nkeys = sizeof curve_keys / sizeof curve_keys[0],
              .check = curve_check},
