@@ -35,9 +35,12 @@ expect_err "curve: x-to below x-from" "x-to"
 run_sc check "$SRC/examples/curve-cubic.ini" --set model.mu2=1.8
 expect_rc "curve: start outside the box" 2
 expect_err "curve: start outside the box" "outside"
-run_sc run "$SRC/examples/curve-cubic.ini" --set task.type=graze --out "$TMP/bad"
+run_sc run "$SRC/examples/curve-cubic.ini" --set task.type=saddle --out "$TMP/bad"
 expect_rc "curve: unknown type" 2
-expect_err "curve: unknown type" "fold|flip"
+expect_err "curve: unknown type" "fold|flip|graze"
+run_sc run "$SRC/examples/curve-cubic.ini" --set task.type=graze --out "$TMP/bad"
+expect_rc "curve: border curve of a map without borders" 2
+expect_err "curve: border curve of a map without borders" "declares no borders"
 check "curve: nothing written on bad input" test ! -e "$TMP/bad/curve.csv"
 
 # overlay: a chart of other parameters is refused; a chart of (mu1, mu2)

@@ -183,6 +183,11 @@ static int curve_check(const sc_scene *s, sc_msg *msg) {
                              "y = %s is the same parameter as x (valid: "
                              "another parameter of the model)",
                              yn);
+  if (type_index(sc_scene_text(s, "type")) >= 2 && !sc_map_has_borders(m))
+    return sc_scene_fail_key(s, "task", "type", msg,
+                             "type = %s: model %s declares no borders "
+                             "(valid: fold or flip)",
+                             sc_scene_text(s, "type"), sc_map_type(m)->name);
   const char *spec = sc_scene_text(s, "start");
   int has_d0 = !isnan(sc_scene_real(s, "d0"));
   if (!spec == !has_d0)
