@@ -27,9 +27,56 @@ void sc_curve_settings_default(sc_curve_settings *s) {
 typedef struct {
   sc_map *m;
   int period, ix, iy;
-  char itin[SC_ITIN_LEN]; /* of the last evaluation */
+  char itin[SC_ITIN_LEN]; /* of the last evaluation (natural) */
   sc_msg emsg;            /* of the last failed evaluation */
+  /* single shooting along the start's code: where the natural itinerary
+   * is not itin0 (past a border), the orbit is evaluated along fs's codes
+   * instead; NULL: natural only */
+  sc_forced_sys *fs;
+  const char *itin0;
 } map_ctx;
+
+/* g's jet along c->fs's codes: g, g_x, g_p exact (first derivatives of
+ * the forced evaluation), the second and third ones by central
+ * differences of the exact g_x with step fd_step (1 + |u|): they enter
+ * only the continuation's Jacobian and tests past a border, where the
+ * curve ends at the located border point. */
+static int forced_jet(map_ctx *c, double x, const double *p, sc_curve_jet *j) {
+  sc_forced_sys *fs = c->fs;
+  sc_map_value v;
+  double u[3] = {x, p[c->ix], p[c->iy]};
+  int rc = sc_forced_eval(fs, u, fs->codes, NULL, &v);
+  if (rc) {
+    c->emsg = fs->emsg;
+    return rc;
+  }
+  size_t np = sc_map_nparam(c->m);
+  j->g = v.f, j->gx = v.dfdd;
+  for (size_t i = 0; i < np; i++)
+    j->gp[i] = v.dfdp[i], j->gxp[i] = j->gxxp[i] = 0;
+  double gx0 = v.dfdd;
+  for (int k = 0; k < 3; k++) {
+    double w[3] = {u[0], u[1], u[2]}, h = fs->fd_step * (1 + fabs(u[k]));
+    double gd[2];
+    for (int e = 0; e < 2; e++) {
+      w[k] = u[k] + (e ? -h : h);
+      if ((rc = sc_forced_eval(fs, w, fs->codes, NULL, &v))) return rc;
+      gd[e] = v.dfdd;
+    }
+    double dk = (gd[0] - gd[1]) / (2 * h);
+    if (k == 0) {
+      j->gxx = dk;
+      j->gxxx = (gd[0] - 2 * gx0 + gd[1]) / (h * h);
+    } else {
+      j->gxp[k == 1 ? c->ix : c->iy] = dk;
+    }
+  }
+  /* the parameters back at p (the differences moved them) */
+  if (sc_map_set_param(c->m, (size_t)c->ix, p[c->ix], &c->emsg) ||
+      sc_map_set_param(c->m, (size_t)c->iy, p[c->iy], &c->emsg))
+    return 1;
+  return isfinite(j->gxx) && isfinite(j->gxxx) ? 0 : 1;
+}
 
 static int jet_fn(double x, const double *p, sc_curve_jet *j, void *user) {
   map_ctx *c = user;
@@ -38,9 +85,12 @@ static int jet_fn(double x, const double *p, sc_curve_jet *j, void *user) {
     return 1; /* outside the parameters' range: shrink the step */
   sc_map_value v;
   if (sc_map_iterate(c->m, x, c->period, SC_EVAL_DERIV2 | SC_EVAL_ITINERARY, &v,
-                     &c->emsg))
-    return 1;
+                     &c->emsg)) {
+    c->itin[0] = '\0';
+    return c->fs ? forced_jet(c, x, p, j) : 1;
+  }
   snprintf(c->itin, sizeof c->itin, "%s", v.itinerary);
+  if (c->fs && strcmp(c->itin, c->itin0)) return forced_jet(c, x, p, j);
   j->g = v.f;
   j->gx = v.dfdd;
   j->gxx = v.d2fdd2;
@@ -67,6 +117,10 @@ typedef struct {
   map_ctx mc1; /* f, for multiple shooting */
   const sc_accuracy *acc;
   char itin0[SC_ITIN_LEN];
+  /* the start's itinerary code and the orbit's borders there, watched
+   * along the curve (fs.nwatch = 0: none, a model without borders) */
+  sc_forced_sys fs;
+  double *bpa, *bpb; /* border values at prev, cur */
   size_t N;   /* unknowns: 3, or m + 2 with multiple shooting */
   double *u0; /* N: the corrected start */
   double *prev, *cur, *u, *mid, *F; /* N each: work */
@@ -235,6 +289,110 @@ static int correct_start(trace *T, double *u, double *floor_out, sc_msg *msg) {
   return SC_OK; /* the branch corrector decides */
 }
 
+/* ---- the borders of the orbit along the curve ------------------------ */
+
+/* The watched borders' values at the point u (trace layout), along the
+ * start's code; NaN where one cannot be evaluated. */
+static void border_values(trace *T, const double *u, double *bv) {
+  double w[3] = {u[0], UX(T, u), UY(T, u)};
+  sc_map_value v;
+  int rc = sc_forced_eval(&T->fs, w, T->fs.codes, NULL, &v);
+  for (size_t j = 0; j < T->fs.nwatch; j++) {
+    const sc_border *b = rc ? NULL : sc_forced_find(&T->fs.bl, &T->fs.watch[j]);
+    bv[j] = b ? b->value : NAN;
+  }
+}
+
+/* Locate where the curve meets watched border j: Newton on {f^m(d) = d,
+ * (f^m)' = +-1, m_j = 0} in (d, x, y) from w (overwritten), along the
+ * start's code with the border's own code for its iterate.  Reported
+ * with the border's kind as label, or as "KIND?" with the reason (not
+ * when `fallback`: then *found says whether it was).  `pa`, `pb`: m_j at
+ * the bracket's ends; `reach`: how far from w the point may lie. */
+static int locate_border_pt(trace *T, size_t j, double *w, double pa,
+                            double pb, double reach, int fallback,
+                            int *found) {
+  const sc_border *bw = &T->fs.watch[j];
+  const char *kl = sc_border_label(bw->kind);
+  const char *tn = T->set->type == SC_CURVE_FOLD ? "fold" : "flip";
+  char rej[8], note[256];
+  snprintf(rej, sizeof rej, "%s?", kl);
+  *found = 0;
+  sc_forced_sys L;
+  sc_msg lm;
+  int st = sc_forced_init(&L, T->mc.m, T->set->period, T->set->ix,
+                          T->set->iy, T->set->type, T->acc->fd_step, &lm);
+  if (st) return st;
+  memcpy(L.codes, T->fs.codes, (size_t)T->set->period * sizeof *L.codes);
+  sc_forced_use_alt(&L, bw);
+  if ((st = sc_forced_watch(&L, bw, 1, &lm))) {
+    sc_forced_free(&L);
+    return st;
+  }
+  sc_curve_system cs;
+  sc_forced_system(&L, &cs);
+  double mid[3] = {w[0], w[1], w[2]};
+  sc_curve_cert cert;
+  int rc = sc_curve_locate(&cs, 0, w, T->acc, &cert, &lm);
+  double dist = fmax(fabs(w[0] - mid[0]),
+                     fmax(fabs(w[1] - mid[1]), fabs(w[2] - mid[2])));
+  if (rc == SC_OK &&
+      !(fabs(cert.psi) <= SC_SQRT_EPS * fmax(fabs(pa), fabs(pb)) &&
+        dist <= reach)) {
+    rc = SC_ENOCONV;
+    snprintf(lm.text, sizeof lm.text,
+             "converged to a point %.3g away (reach %.3g), m = %.3g", dist,
+             reach, cert.psi);
+  }
+  double *u = T->u;
+  if (rc) {
+    sc_forced_free(&L);
+    if (fallback) return SC_OK;
+    u[0] = mid[0], UX(T, u) = mid[1], UY(T, u) = mid[2];
+    snprintf(note, sizeof note, "%s meets %s (%.40s): not located: %.100s", tn,
+             kl, bw->name, lm.text);
+    return emit_special(T, rej, u, NAN, cert.residual, note);
+  }
+  *found = 1;
+  sc_forced_free(&L);
+  u[0] = w[0], UX(T, u) = w[1], UY(T, u) = w[2];
+  sc_curve_jet j2;
+  double coef =
+      g_at(T, u, &j2) ? NAN : sc_curve_coefficient(T->set->type, &j2);
+  snprintf(note, sizeof note,
+           "%s meets %s at iterate %d%s: the curve ends here (not continued "
+           "across); %.60s",
+           tn, kl, bw->iterate + 1,
+           fallback ? ", found after the corrector stopped" : "", bw->name);
+  return emit_special(T, kl, u, coef, fmax(cert.residual, fabs(cert.psi)),
+                      note);
+}
+
+/* The start's itinerary code and the orbit's borders, at the corrected
+ * start (d, x, y): the borders are watched along the curve, and single
+ * shooting follows the code past a border. */
+static int watch_setup(trace *T, const double *start, sc_msg *msg) {
+  int st = sc_forced_init(&T->fs, T->mc.m, T->set->period, T->set->ix,
+                          T->set->iy, T->set->type, T->acc->fd_step, msg);
+  if (st) return st;
+  sc_map_value v;
+  double w[3] = {start[0], start[1], start[2]};
+  if (sc_forced_eval(&T->fs, w, NULL, T->fs.codes, &v)) return SC_OK;
+  for (int k = 0; k < T->set->period; k++)
+    if (T->fs.codes[k].n == 0) return SC_OK; /* no code to follow */
+  size_t nb = T->fs.bl.n;
+  if ((st = sc_forced_watch(&T->fs, T->fs.bl.b, nb, msg))) return st;
+  T->bpa = calloc(2 * (nb ? nb : 1), sizeof *T->bpa);
+  if (!T->bpa) return sc_fail(msg, SC_ENOMEM, "curve: out of memory");
+  T->bpb = T->bpa + nb;
+  snprintf(T->itin0, sizeof T->itin0, "%s", v.itinerary);
+  if (!T->set->multiple) {
+    T->mc.fs = &T->fs;
+    T->mc.itin0 = T->itin0;
+  }
+  return SC_OK;
+}
+
 /* One direction from the corrected start. */
 static int run(trace *T, int dir, int branch, sc_msg *msg) {
   const sc_curve_settings *s = T->set;
@@ -270,7 +428,10 @@ static int run(trace *T, int dir, int branch, sc_msg *msg) {
   if (branch == 0) {
     memcpy(T->u0, prev, N * sizeof *prev);
     /* the start's itinerary: the curve follows this one */
+    sc_forced_sys *keep = T->mc.fs;
+    T->mc.fs = NULL;
     g_at(T, prev, &j);
+    T->mc.fs = keep;
     snprintf(T->itin0, sizeof T->itin0, "%s", T->mc.itin);
     if ((st = emit_point(T, prev, 0))) goto done;
   } else if ((st = emit_point(T, prev, 1))) {
@@ -281,10 +442,25 @@ static int run(trace *T, int dir, int branch, sc_msg *msg) {
     st = sc_fail(msg, SC_ENOCONV, "curve: test functions fail at the start");
     goto done;
   }
+  size_t nw = T->fs.nwatch;
+  if (nw) border_values(T, prev, T->bpa);
   double far = 0;
   for (;;) {
     sc_msg bm;
     int bs = sc_branch_step(b, &bm);
+    if (bs < 0 && nw) {
+      /* a border past which the orbit cannot be followed (a forced event
+       * that does not occur) shows no sign change: the nearest one is
+       * located from the last point */
+      double dist, w[3] = {prev[0], UX(T, prev), UY(T, prev)};
+      long jn = sc_forced_nearest(&T->fs, w, &dist);
+      int found = 0;
+      if (jn >= 0 && dist <= 4 * s->hmax &&
+          (st = locate_border_pt(T, (size_t)jn, w, T->bpa[jn], T->bpa[jn],
+                                 8 * s->hmax, 1, &found)))
+        goto done;
+      if (found) break;
+    }
     if (bs < 0) {
       char why[128];
       snprintf(why, sizeof why, "stopped: %.110s", bm.text);
@@ -292,19 +468,47 @@ static int run(trace *T, int dir, int branch, sc_msg *msg) {
       break;
     }
     memcpy(cur, sc_branch_point(b), N * sizeof *cur);
-    /* the orbit must keep its itinerary: a change is a border */
-    if (g_at(T, cur, &j) == 0 && strcmp(T->mc.itin, T->itin0)) {
+    /* the borders of the orbit: the first to change sign along the step
+     * is located, and the curve ends there */
+    size_t jb = nw;
+    double wb = 2, ma = 0, mb = 0;
+    if (nw) {
+      border_values(T, cur, T->bpb);
+      for (size_t k = 0; k < nw; k++) {
+        double ba = T->bpa[k], bb = T->bpb[k];
+        if (((ba > 0 && bb < 0) || (ba < 0 && bb > 0)) && ba / (ba - bb) < wb)
+          wb = ba / (ba - bb), jb = k, ma = ba, mb = bb;
+      }
+      memcpy(T->bpa, T->bpb, nw * sizeof *T->bpa);
+    }
+    if (T->cs.test(cur, psi, T->cs.user) == 0) {
+      for (size_t k = 0; k < 3; k++)
+        if (((psi_prev[k] > 0 && psi[k] < 0) ||
+             (psi_prev[k] < 0 && psi[k] > 0)) &&
+            psi_prev[k] / (psi_prev[k] - psi[k]) < wb)
+          if ((st = locate(T, k, prev, cur, psi_prev[k], psi[k]))) goto done;
+      memcpy(psi_prev, psi, sizeof psi);
+    }
+    if (jb < nw) {
+      double w[3], a3[3], b3[3];
+      a3[0] = prev[0], a3[1] = UX(T, prev), a3[2] = UY(T, prev);
+      b3[0] = cur[0], b3[1] = UX(T, cur), b3[2] = UY(T, cur);
+      for (int i = 0; i < 3; i++)
+        w[i] = a3[i] + wb * (b3[i] - a3[i]);
+      double span = fmax(fabs(b3[0] - a3[0]),
+                         fmax(fabs(b3[1] - a3[1]), fabs(b3[2] - a3[2])));
+      int found;
+      st = locate_border_pt(T, jb, w, ma, mb, 2 * span, 0, &found);
+      break;
+    }
+    /* the orbit must keep its itinerary: a change without a border of
+     * the orbit changing sign is reported as such */
+    if (g_at(T, cur, &j) == 0 && T->mc.itin[0] && strcmp(T->mc.itin, T->itin0)) {
       char why[128];
       snprintf(why, sizeof why, "border: itinerary %.40s -> %.40s", T->itin0,
                T->mc.itin);
       st = end_point(T, prev, why);
       break;
-    }
-    if (T->cs.test(cur, psi, T->cs.user) == 0) {
-      for (size_t k = 0; k < 3; k++)
-        if ((psi_prev[k] > 0 && psi[k] < 0) || (psi_prev[k] < 0 && psi[k] > 0))
-          if ((st = locate(T, k, prev, cur, psi_prev[k], psi[k]))) goto done;
-      memcpy(psi_prev, psi, sizeof psi);
     }
     if (UX(T, cur) < s->xlo || UX(T, cur) > s->xhi) {
       st = end_point(T, prev, "the box's edge in x");
@@ -422,12 +626,15 @@ int sc_curve_trace(sc_map *m, const sc_curve_settings *set, double d0,
   sc_curve_ftol(&acc, floor);
   stats->ftol = acc.newton_ftol;
   T.acc = &acc;
+  if (st == SC_OK && sc_map_has_borders(m)) st = watch_setup(&T, start, msg);
   if (st == SC_OK) st = run(&T, +1, 0, msg);
   if (st == SC_OK && !T.closed) st = run(&T, -1, 1, msg);
   stats->closed = T.closed;
   sc_map_set_param(m, (size_t)set->ix, x0, NULL);
   sc_map_set_param(m, (size_t)set->iy, y0, NULL);
   sc_curve_ms_work_free(T.msys.work);
+  sc_forced_free(&T.fs);
+  free(T.bpa);
   free(mem);
   return st;
 }
