@@ -120,7 +120,7 @@ typedef struct {
   /* the start's itinerary code and the orbit's borders there, watched
    * along the curve (fs.nwatch = 0: none, a model without borders) */
   sc_forced_sys fs;
-  double *bpa, *bpb; /* border values at prev, cur */
+  double *bpa, *bpb, *bpc; /* border values at prev, cur; prev's copy */
   size_t N;   /* unknowns: 3, or m + 2 with multiple shooting */
   double *u0; /* N: the corrected start */
   double *prev, *cur, *u, *mid, *F; /* N each: work */
@@ -306,8 +306,8 @@ static void border_values(trace *T, const double *u, double *bv) {
 /* Locate where the curve meets watched border j: Newton on {f^m(d) = d,
  * (f^m)' = +-1, m_j = 0} in (d, x, y) from w (overwritten), along the
  * start's code with the border's own code for its iterate.  Reported
- * with the border's kind as label, or as "KIND?" with the reason (not
- * when `fallback`: then *found says whether it was).  `pa`, `pb`: m_j at
+ * with the border's kind as label, or as "KIND?" with the reason; *found
+ * says whether it was.  `pa`, `pb`: m_j at
  * the bracket's ends; `reach`: how far from w the point may lie. */
 static int locate_border_pt(trace *T, size_t j, double *w, double pa,
                             double pb, double reach, int fallback,
@@ -347,10 +347,10 @@ static int locate_border_pt(trace *T, size_t j, double *w, double pa,
   double *u = T->u;
   if (rc) {
     sc_forced_free(&L);
-    if (fallback) return SC_OK;
     u[0] = mid[0], UX(T, u) = mid[1], UY(T, u) = mid[2];
-    snprintf(note, sizeof note, "%s meets %s (%.40s): not located: %.100s", tn,
-             kl, bw->name, lm.text);
+    snprintf(note, sizeof note, "%s meets %s%s: not located: %.90s; %.40s", tn,
+             kl, fallback ? " (the nearest when the corrector stopped)" : "",
+             lm.text, bw->name);
     return emit_special(T, rej, u, NAN, cert.residual, note);
   }
   *found = 1;
@@ -382,9 +382,9 @@ static int watch_setup(trace *T, const double *start, sc_msg *msg) {
     if (T->fs.codes[k].n == 0) return SC_OK; /* no code to follow */
   size_t nb = T->fs.bl.n;
   if ((st = sc_forced_watch(&T->fs, T->fs.bl.b, nb, msg))) return st;
-  T->bpa = calloc(2 * (nb ? nb : 1), sizeof *T->bpa);
+  T->bpa = calloc(3 * (nb ? nb : 1), sizeof *T->bpa);
   if (!T->bpa) return sc_fail(msg, SC_ENOMEM, "curve: out of memory");
-  T->bpb = T->bpa + nb;
+  T->bpb = T->bpa + nb, T->bpc = T->bpb + nb;
   snprintf(T->itin0, sizeof T->itin0, "%s", v.itinerary);
   if (!T->set->multiple) {
     T->mc.fs = &T->fs;
@@ -471,14 +471,15 @@ static int run(trace *T, int dir, int branch, sc_msg *msg) {
     /* the borders of the orbit: the first to change sign along the step
      * is located, and the curve ends there */
     size_t jb = nw;
-    double wb = 2, ma = 0, mb = 0;
+    double wb = 2;
     if (nw) {
       border_values(T, cur, T->bpb);
       for (size_t k = 0; k < nw; k++) {
         double ba = T->bpa[k], bb = T->bpb[k];
         if (((ba > 0 && bb < 0) || (ba < 0 && bb > 0)) && ba / (ba - bb) < wb)
-          wb = ba / (ba - bb), jb = k, ma = ba, mb = bb;
+          wb = ba / (ba - bb), jb = k;
       }
+      memcpy(T->bpc, T->bpa, nw * sizeof *T->bpa);
       memcpy(T->bpa, T->bpb, nw * sizeof *T->bpa);
     }
     if (T->cs.test(cur, psi, T->cs.user) == 0) {
@@ -490,15 +491,41 @@ static int run(trace *T, int dir, int branch, sc_msg *msg) {
       memcpy(psi_prev, psi, sizeof psi);
     }
     if (jb < nw) {
-      double w[3], a3[3], b3[3];
+      /* every border that changed sign, in the order met along the step
+       * (a border may jump rather than cross: its location fails and is
+       * reported, and the next one is tried); the first located ends the
+       * curve */
+      double a3[3], b3[3];
       a3[0] = prev[0], a3[1] = UX(T, prev), a3[2] = UY(T, prev);
       b3[0] = cur[0], b3[1] = UX(T, cur), b3[2] = UY(T, cur);
-      for (int i = 0; i < 3; i++)
-        w[i] = a3[i] + wb * (b3[i] - a3[i]);
       double span = fmax(fabs(b3[0] - a3[0]),
                          fmax(fabs(b3[1] - a3[1]), fabs(b3[2] - a3[2])));
-      int found;
-      st = locate_border_pt(T, jb, w, ma, mb, 2 * span, 0, &found);
+      int found = 0;
+      double wlast = -1;
+      for (;;) {
+        size_t jn = nw;
+        double wn = 2;
+        for (size_t k = 0; k < nw; k++) {
+          double ba = T->bpc[k], bb = T->bpb[k];
+          if (((ba > 0 && bb < 0) || (ba < 0 && bb > 0))) {
+            double wk = ba / (ba - bb);
+            if ((wk > wlast || (wk == wlast && k > jb)) && wk < wn)
+              wn = wk, jn = k;
+          }
+        }
+        if (jn == nw) break;
+        jb = jn, wlast = wn;
+        double w[3];
+        for (int i = 0; i < 3; i++)
+          w[i] = a3[i] + wn * (b3[i] - a3[i]);
+        if ((st = locate_border_pt(T, jn, w, T->bpc[jn], T->bpb[jn], 2 * span,
+                                   0, &found)))
+          goto done;
+        if (found) break;
+      }
+      if (found) break;
+      st = end_point(T, prev, "borders changed sign, none located (rows "
+                              "above)");
       break;
     }
     /* the orbit must keep its itinerary: a change without a border of

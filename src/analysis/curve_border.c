@@ -288,10 +288,23 @@ static int bfallback(btrace *B, const double *u, int *st) {
   size_t k = 2 + (size_t)j;
   sc_curve_cert cert;
   sc_msg msg;
-  if (sc_curve_locate(&B->cs, k, w, &B->acc, &cert, &msg) ||
-      dist3(w, u) > 8 * B->set->hmax)
-    return 0;
   char note[256];
+  int rc = sc_curve_locate(&B->cs, k, w, &B->acc, &cert, &msg);
+  if (rc == SC_OK && dist3(w, u) > 8 * B->set->hmax) {
+    rc = SC_ENOCONV;
+    snprintf(msg.text, sizeof msg.text, "converged %.3g away",
+             dist3(w, u));
+  }
+  if (rc) {
+    char rej[8];
+    snprintf(rej, sizeof rej, "%s?", B->cs.labels[k]);
+    snprintf(note, sizeof note,
+             "meets %s (the nearest when the corrector stopped): not "
+             "located: %.80s; %.30s",
+             B->cs.labels[k], msg.text, B->fs.watch[j].name);
+    *st = bemit(B, rej, u, NAN, note);
+    return 0;
+  }
   snprintf(note, sizeof note,
            "%s curve meets %s (%.30s, iterate %d; found after the corrector "
            "stopped): ends",
@@ -334,6 +347,7 @@ static int brun(btrace *B, int dir, int branch, sc_msg *msg) {
     sc_msg bm;
     int bs = sc_branch_step(b, &bm);
     if (bs < 0 && bfallback(B, prev, &st)) break;
+    if (st) goto done;
     if (bs < 0) {
       char why[128];
       if (strstr(bm.text, "callback failed") && B->fs.emsg.text[0])
