@@ -337,7 +337,8 @@ static int locate_border_pt(trace *T, size_t j, double *w, double pa,
   double dist = fmax(fabs(w[0] - mid[0]),
                      fmax(fabs(w[1] - mid[1]), fabs(w[2] - mid[2])));
   if (rc == SC_OK &&
-      !(fabs(cert.psi) <= SC_SQRT_EPS * fmax(fabs(pa), fabs(pb)) &&
+      !(fabs(cert.psi) <= fmax(SC_SQRT_EPS * fmax(fabs(pa), fabs(pb)),
+                               T->acc->newton_ftol) &&
         dist <= reach)) {
     rc = SC_ENOCONV;
     snprintf(lm.text, sizeof lm.text,
@@ -500,6 +501,10 @@ static int run(trace *T, int dir, int branch, sc_msg *msg) {
       b3[0] = cur[0], b3[1] = UX(T, cur), b3[2] = UY(T, cur);
       double span = fmax(fabs(b3[0] - a3[0]),
                          fmax(fabs(b3[1] - a3[1]), fabs(b3[2] - a3[2])));
+      /* the point may lie off the chord: where the steps shrank (near d*,
+       * the orbit moves fast in d) the bracket is short, so at least one
+       * largest step */
+      double reach = fmax(2 * span, s->hmax);
       int found = 0;
       double wlast = -1;
       for (;;) {
@@ -518,7 +523,7 @@ static int run(trace *T, int dir, int branch, sc_msg *msg) {
         double w[3];
         for (int i = 0; i < 3; i++)
           w[i] = a3[i] + wn * (b3[i] - a3[i]);
-        if ((st = locate_border_pt(T, jn, w, T->bpc[jn], T->bpb[jn], 2 * span,
+        if ((st = locate_border_pt(T, jn, w, T->bpc[jn], T->bpb[jn], reach,
                                    0, &found)))
           goto done;
         if (found) break;
