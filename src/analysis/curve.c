@@ -349,9 +349,18 @@ static int locate_border_pt(trace *T, size_t j, double *w, double pa,
   if (rc) {
     sc_forced_free(&L);
     u[0] = mid[0], UX(T, u) = mid[1], UY(T, u) = mid[2];
-    snprintf(note, sizeof note, "%s meets %s%s: not located: %.90s; %.40s", tn,
-             kl, fallback ? " (the nearest when the corrector stopped)" : "",
-             lm.text, bw->name);
+    if (bw->on_state)
+      /* f' may be unbounded on a border in the state (bk2, driver
+       * frozen: |d - d*|^(-1/2)), so (f^m)' = +-1 cannot hold there */
+      snprintf(note, sizeof note,
+               "%s ends next to %s: not located (the multiplier is singular "
+               "on this border: %.40s); %.40s",
+               tn, kl, lm.text, bw->name);
+    else
+      snprintf(note, sizeof note, "%s meets %s%s: not located: %.90s; %.40s",
+               tn, kl,
+               fallback ? " (the nearest when the corrector stopped)" : "",
+               lm.text, bw->name);
     return emit_special(T, rej, u, NAN, cert.residual, note);
   }
   *found = 1;
