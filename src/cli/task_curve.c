@@ -3,6 +3,7 @@
  * (sc_curve_trace, curve.h; docs/curves.md). */
 #define _XOPEN_SOURCE 700 /* realpath */
 
+#include <glob.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -52,7 +53,22 @@ static const sc_key_info curve_keys[] = {
     {"overlay", SC_KEY_TEXT, 0, NULL, 0, 0, 0, 0, NULL,
      "a chart.csv of the chart task over the same x and y, drawn under "
      "the curve (path relative to the working folder)"},
+    {"also", SC_KEY_TEXT, 0, NULL, 0, 0, 0, 0, NULL,
+     "output folders of other curve tasks (separated by spaces; shell "
+     "patterns such as out/curve-fig58-* allowed), whose curves and "
+     "labelled points are drawn in the same plot"},
 };
+
+/* The folders of `also`, one at a time: copies the next word of *p into
+ * buf and advances; 0 at the end. */
+static int next_word(const char **p, char *buf, size_t len) {
+  const char *s = *p + strspn(*p, " \t");
+  size_t n = strcspn(s, " \t");
+  if (n == 0) return 0;
+  snprintf(buf, len, "%.*s", (int)n, s);
+  *p = s + n;
+  return 1;
+}
 
 /* The curve types in key order; border kinds of the border types. */
 static const char *const type_names[] = {"fold",  "flip", "graze", "cross",
@@ -227,6 +243,37 @@ static int curve_check(const sc_scene *s, sc_msg *msg) {
           "(valid: inside the box)",
           nm[k], v, sc_scene_text(s, lo[k]), sc_scene_text(s, hi[k]));
   }
+  const char *also = sc_scene_text(s, "also");
+  char dir[2048], path[2100];
+  for (const char *p = also; p && next_word(&p, dir, sizeof dir);) {
+    glob_t g;
+    int gr = glob(dir, 0, NULL, &g);
+    size_t ng = gr == 0 ? g.gl_pathc : 0;
+    if (ng == 0) {
+      if (gr == 0) globfree(&g);
+      return sc_scene_fail_key(s, "task", "also", msg,
+                               "also: %s matches no folder (valid: output "
+                               "folders of curve tasks; run them first)",
+                               dir);
+    }
+    for (size_t i = 0; i < ng; i++) {
+    snprintf(path, sizeof path, "%s/curve.csv", g.gl_pathv[i]);
+    FILE *f = fopen(path, "r");
+    char line[256] = "", want[256];
+    char *ok = f ? fgets(line, sizeof line, f) : NULL;
+    if (f) fclose(f);
+    snprintf(want, sizeof want, "%s,%s,", xn, yn);
+    if (!ok || strncmp(line, want, strlen(want)) != 0) {
+      globfree(&g);
+      return sc_scene_fail_key(s, "task", "also", msg,
+                               "also: %s is not a readable curve.csv in (%s, "
+                               "%s) (valid: output folders of curve tasks in "
+                               "x = %s, y = %s; run them first)",
+                               path, xn, yn, xn, yn);
+    }
+    }
+    globfree(&g);
+  }
   const char *ov = sc_scene_text(s, "overlay");
   if (ov) return overlay_check(s, ov, xn, yn, msg);
   return SC_OK;
@@ -397,7 +444,11 @@ static int curve_run(sc_cli_run *r) {
                sc_plot_label(m, yn));
   fprintf(f, "set xrange [%.17g:%.17g]\nset yrange [%.17g:%.17g]\n", set.xlo,
           set.xhi, set.ylo, set.yhi);
-  fputs("set datafile separator ','\nset key inside right top box opaque\n", f);
+  fputs("set datafile separator ','\n", f);
+  /* with other curves drawn the key goes under the plot */
+  fputs(sc_scene_text(s, "also") ? "set key below horizontal font ',9'\n"
+                                 : "set key inside right top box opaque\n",
+        f);
   fputs("lab(l) = strcol(1) eq l ? column(3) : NaN\n", f);
   const char *ov = sc_scene_text(s, "overlay");
   char ovpath[4096];
@@ -415,6 +466,37 @@ static int curve_run(sc_cli_run *r) {
     fputs(" skip 1 using 1:2:($3 < 0 ? NaN : $3) with image notitle, \\\n"
           "     ",
           f);
+  }
+  /* the other curves (also): thin lines, their points labelled */
+  const char *also = sc_scene_text(s, "also");
+  const char *acol[6] = {"#b2182b", "#2166ac", "#1b7837", "#762a83",
+                         "#e08214", "#4d4d4d"};
+  char dir[2048], apath[4096];
+  int ia = 0;
+  for (const char *p = also; p && next_word(&p, dir, sizeof dir);) {
+    glob_t g;
+    if (glob(dir, 0, NULL, &g) != 0) continue; /* checked before the run */
+    for (size_t gi = 0; gi < g.gl_pathc; gi++) {
+      if (!realpath(g.gl_pathv[gi], apath)) continue;
+      const char *base = strrchr(apath, '/');
+      base = base ? base + 1 : apath;
+      char q[4200];
+      snprintf(q, sizeof q, "%s/curve.csv", apath);
+      sc_plot_quote(f, q);
+      fprintf(f,
+              " skip 1 using 1:2 with lines lw 1.5 lc rgb '%s' title '%s', "
+              "\\\n     ",
+              acol[ia % 6], base);
+      snprintf(q, sizeof q, "%s/points.csv", apath);
+      sc_plot_quote(f, q);
+      fprintf(f,
+              " skip 1 using 2:(strcol(1) eq 'EP' ? NaN : column(3)):1 with "
+              "labels point pt 7 ps 0.8 lc rgb '%s' offset 0.6,0.6 font ',8' "
+              "tc rgb '%s' notitle, \\\n     ",
+              acol[ia % 6], acol[ia % 6]);
+      ia++;
+    }
+    globfree(&g);
   }
   fprintf(f,
           "'curve.csv' skip 1 using 1:2 with lines lw 2 lc rgb "
