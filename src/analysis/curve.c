@@ -378,6 +378,19 @@ static int locate_border_pt(trace *T, size_t j, double *w, double pa,
                       note);
 }
 
+/* Where the curve cannot go on from u (the corrector stopped, or the
+ * residual's floor rose above the tolerance): a border past which the
+ * orbit cannot be followed (a forced event that does not occur) shows no
+ * sign change, so the nearest watched border is located from u. */
+static int near_border(trace *T, const double *u, int *found) {
+  double dist, w[3] = {u[0], UX(T, u), UY(T, u)};
+  long jn = sc_forced_nearest(&T->fs, w, &dist);
+  *found = 0;
+  if (jn < 0 || !(dist <= 4 * T->set->hmax)) return SC_OK;
+  return locate_border_pt(T, (size_t)jn, w, T->bpa[jn], T->bpa[jn],
+                          8 * T->set->hmax, 1, found);
+}
+
 /* The start's itinerary code and the orbit's borders, at the corrected
  * start (d, x, y): the borders are watched along the curve, and single
  * shooting follows the code past a border. */
@@ -459,16 +472,8 @@ static int run(trace *T, int dir, int branch, sc_msg *msg) {
     sc_msg bm;
     int bs = sc_branch_step(b, &bm);
     if (bs < 0 && nw) {
-      /* a border past which the orbit cannot be followed (a forced event
-       * that does not occur) shows no sign change: the nearest one is
-       * located from the last point */
-      double dist, w[3] = {prev[0], UX(T, prev), UY(T, prev)};
-      long jn = sc_forced_nearest(&T->fs, w, &dist);
       int found = 0;
-      if (jn >= 0 && dist <= 4 * s->hmax &&
-          (st = locate_border_pt(T, (size_t)jn, w, T->bpa[jn], T->bpa[jn],
-                                 8 * s->hmax, 1, &found)))
-        goto done;
+      if ((st = near_border(T, prev, &found))) goto done;
       if (found) break;
     }
     if (bs < 0) {
@@ -540,6 +545,22 @@ static int run(trace *T, int dir, int branch, sc_msg *msg) {
       if (found) break;
       st = end_point(T, prev, "borders changed sign, none located (rows "
                               "above)");
+      break;
+    }
+    /* A point accepted at the corrector's rounding floor with a residual
+     * far above the tolerance: next to d* (f'' unbounded, MODEL.md) the
+     * multiplier's rounding error grows without bound; the curve ends
+     * where its points stop meeting their system (10 tolerances). */
+    if (T->cs.pb.f(cur, T->F, T->cs.pb.user) == 0 &&
+        norm_inf(T->F, T->cs.pb.n) > 10 * T->acc->newton_ftol) {
+      char why[128];
+      snprintf(why, sizeof why,
+               "the residual's rounding floor (%.3g) exceeds the tolerance "
+               "(%.3g): f'' grows without bound here",
+               norm_inf(T->F, T->cs.pb.n), T->acc->newton_ftol);
+      int found = 0;
+      if (nw && (st = near_border(T, prev, &found))) goto done;
+      if (!found) st = end_point(T, prev, why);
       break;
     }
     /* the orbit must keep its itinerary: a change without a border of
