@@ -4,9 +4,9 @@
  *    f^4(d) = d and m_GR = 0 to 1e-10, recomputed here from the map
  *    layer alone (sc_map_iterate_ex), and its flip (PD) has (f^4)' = -1
  *    to 1e-10;
- *  - the period-4 flip curve meets BR: the located point agrees to 1e-9
- *    with the border point the branch task (sc_orbit_branch) locates at
- *    that beta, and with its flip;
+ *  - the period-4 flip and fold curves meet BR: the located point agrees
+ *    to 1e-9 with the border point the branch task (sc_orbit_branch)
+ *    locates at that beta, and with its flip or fold;
  *  - error paths: a border curve of a map without borders, an orbit
  *    without a border of the kind asked for. */
 #include <math.h>
@@ -147,12 +147,16 @@ static void test_graze4(void) {
   sc_map_free(m);
 }
 
-static void test_flip4_meets_br(void) {
-  sc_map *m = fig58(3.1525203451104247, 2.5);
+/* A fold or flip curve of fig 5.8 / 5.12 that meets a border: the located
+ * point against the branch task's at that beta. */
+static void meets_border(const char *what, sc_curve_type type, double alpha,
+                         double beta, double d0, int period, const char *kl,
+                         sc_point_label want, sc_point_label bif, double side) {
+  sc_map *m = fig58(alpha, beta);
   sc_curve_settings s;
   sc_curve_settings_default(&s);
-  s.type = SC_CURVE_FLIP;
-  s.period = 4;
+  s.type = type;
+  s.period = period;
   s.ix = sc_map_param_index(m, "alpha");
   s.iy = sc_map_param_index(m, "beta");
   s.xlo = 1, s.xhi = 8, s.ylo = 1.02, s.yhi = 5;
@@ -162,52 +166,66 @@ static void test_flip4_meets_br(void) {
   sc_curve_output out = {on_point, on_special, &c};
   sc_curve_stats st;
   sc_msg msg = {""};
-  int rc = sc_curve_trace(m, &s, 0.11040557323488316, &out, &st, &msg);
-  tu_int("flip curve: SC_OK", rc, SC_OK);
-  const sc_curve_special *br = find(&c, "BR");
-  tu_true(br != NULL, "%s", "flip curve meets BR");
+  char t[160];
+  int rc = sc_curve_trace(m, &s, d0, &out, &st, &msg);
+  snprintf(t, sizeof t, "%s: SC_OK", what);
+  tu_int(t, rc, SC_OK);
+  const sc_curve_special *br = find(&c, kl);
+  tu_true(br != NULL, "%s meets %s", what, kl);
   if (!br) {
     sc_map_free(m);
     return;
   }
-  tu_true(br->residual <= 1e-10, "%s: %.3g (tolerance %.3g)", "BR: residual", br->residual, 1e-10);
-  /* The branch task at that beta, from a little below the point. */
-  sc_map *mb = fig58(br->x - 0.01, br->y);
+  tu_true(br->residual <= 1e-10, "%s: %s residual %.3g (tolerance 1e-10)",
+          what, kl, br->residual);
+  /* The branch task at that beta, from a little to the side of the point
+   * where the orbit exists (side -1: below it in alpha, +1: above). */
+  sc_map *mb = fig58(br->x + side * 0.01, br->y);
   sc_orbit_branch_spec sp;
   memset(&sp, 0, sizeof sp);
   sp.param = (size_t)sc_map_param_index(mb, "alpha");
-  sp.from = br->x - 0.01;
-  sp.to = br->x + 0.01;
-  sp.period = 4;
+  sp.from = br->x + side * 0.01;
+  sp.to = br->x - side * 0.01;
+  sp.period = period;
   sp.d0 = br->d;
   sp.max_points = 2000;
   sp.max_branches = 4;
-  sp.max_period = 4;
+  sp.max_period = period;
   sp.switch_pd = 0;
   sc_orbit_branch *b;
   rc = sc_orbit_branch_alloc(mb, &sp, &b, &msg);
   if (rc == SC_OK) rc = sc_orbit_branch_run(b, &msg);
-  tu_int("branch at the BR point's beta: SC_OK", rc, SC_OK);
-  int nbr = 0, npd = 0;
+  snprintf(t, sizeof t, "%s: branch at the point's beta: SC_OK", what);
+  tu_int(t, rc, SC_OK);
+  int nbr = 0, nbif = 0;
   for (size_t i = 0; rc == SC_OK && i < sc_orbit_branch_nspecial(b); i++) {
     sc_orbit_special_info si;
     sc_orbit_branch_special(b, i, &si);
     printf("  branch: %s alpha %.17g d %.17g\n", sc_point_label_text(si.label),
            si.p, si.d);
-    if (si.label == SC_PT_BR && si.method == SC_LOC_NEWTON) {
+    /* 1e-9: the brief's agreement between the two computations (each
+     * is located to ~1e-12; the bifurcation and the border coincide only
+     * at the codimension-two point, whose beta is known to ~1e-13) */
+    if (si.label == want && si.method == SC_LOC_NEWTON) {
       nbr++;
-      /* 1e-9: the brief's agreement between the two computations (each
-       * is located to ~1e-12; the flip and the border coincide only at
-       * the codimension-two point, whose beta is known to ~1e-13) */
-      tu_close("BR of the branch = BR of the flip curve", si.p, br->x, 1e-9);
+      snprintf(t, sizeof t, "%s: %s of the branch = %s of the curve", what,
+               kl, kl);
+      tu_close(t, si.p, br->x, 1e-9);
     }
-    if (si.label == SC_PT_PD) {
-      npd++;
-      tu_close("PD of the branch = BR of the flip curve", si.p, br->x, 1e-9);
+    if (si.label == bif) {
+      nbif++;
+      snprintf(t, sizeof t, "%s: %s of the branch = %s of the curve", what,
+               sc_point_label_text(bif), kl);
+      tu_close(t, si.p, br->x, 1e-9);
     }
   }
-  tu_true(nbr >= 1, "%s", "the branch locates the BR point");
-  tu_true(npd >= 1, "%s", "the branch locates the flip");
+  tu_true(nbr >= 1, "%s: the branch locates the %s point", what, kl);
+  /* The flip is found by its own test on the branch; a fold exactly at
+   * the border is where the branch hands over to the other itinerary,
+   * and need not be reported as an LP as well. */
+  if (bif == SC_PT_PD)
+    tu_true(nbif >= 1, "%s: the branch locates the %s", what,
+            sc_point_label_text(bif));
   if (rc == SC_OK) sc_orbit_branch_free(b);
   sc_map_free(mb);
   sc_map_free(m);
@@ -243,7 +261,13 @@ static void test_errors(void) {
 
 int main(void) {
   test_graze4();
-  test_flip4_meets_br();
+  /* the period-4 flip of fig 5.8 (PD at alpha 3.1525 of
+   * examples/branch-fig58.ini) meets BR */
+  meets_border("flip 4", SC_CURVE_FLIP, 3.1525203451104247, 2.5,
+               0.11040557323488316, 4, "BR", SC_PT_BR, SC_PT_PD, -1);
+  /* the period-4 fold at alpha 3.9338 meets BR */
+  meets_border("fold 4", SC_CURVE_FOLD, 3.9337814025560522, 2.5,
+               0.1816583738136692, 4, "BR", SC_PT_BR, SC_PT_LP, +1);
   test_errors();
   return tu_finish();
 }
