@@ -178,6 +178,14 @@ static void meets_border(const char *what, sc_curve_type type, double alpha,
   }
   tu_true(br->residual <= 1e-10, "%s: %s residual %.3g (tolerance 1e-10)",
           what, kl, br->residual);
+  /* every point, before and after the border, meets its system */
+  tu_true(st.max_residual <= 1e-10,
+          "%s: largest residual over %ld points %.3g (tolerance 1e-10)", what,
+          st.npoints, st.max_residual);
+  /* BR: f^m stays continuous, the fold or flip persists with the new
+   * itinerary and the curve goes on (docs/curves.md) */
+  tu_true(strstr(br->note, "continued across") != NULL,
+          "%s: continued across %s (%s)", what, kl, br->note);
   /* The branch task at that beta, from a little to the side of the point
    * where the orbit exists (side -1: below it in alpha, +1: above). */
   sc_map *mb = fig58(br->x + side * 0.01, br->y);

@@ -121,6 +121,7 @@ typedef struct {
    * along the curve (fs.nwatch = 0: none, a model without borders) */
   sc_forced_sys fs;
   double *bpa, *bpb, *bpc; /* border values at prev, cur; prev's copy */
+  double start3[3];         /* the corrected start (d, x, y) */
   size_t N;   /* unknowns: 3, or m + 2 with multiple shooting */
   double *u0; /* N: the corrected start */
   double *prev, *cur, *u, *mid, *F; /* N each: work */
@@ -309,10 +310,16 @@ static void border_values(trace *T, const double *u, double *bv) {
  * with the border's kind as label, or as "KIND?" with the reason; *found
  * says whether it was.  `pa`, `pb`: m_j at
  * the bracket's ends; `reach`: how far from w the point may lie. */
+static int cross_border(trace *T, const double *w, const double *dir3,
+                        double *v, int *ok, sc_msg *msg);
+
 static int locate_border_pt(trace *T, size_t j, double *w, double pa,
                             double pb, double reach, int fallback,
-                            int *found) {
-  const sc_border *bw = &T->fs.watch[j];
+                            int *found, const double *dir3, double *next,
+                            int *crossed) {
+  const sc_border bwc = T->fs.watch[j]; /* the watch may be replaced */
+  const sc_border *bw = &bwc;
+  *crossed = 0;
   const char *kl = sc_border_label(bw->kind);
   const char *tn = T->set->type == SC_CURVE_FOLD ? "fold" : "flip";
   char rej[8], note[256];
@@ -369,11 +376,22 @@ static int locate_border_pt(trace *T, size_t j, double *w, double pa,
   sc_curve_jet j2;
   double coef =
       g_at(T, u, &j2) ? NAN : sc_curve_coefficient(T->set->type, &j2);
-  snprintf(note, sizeof note,
-           "%s meets %s at iterate %d%s: the curve ends here (not continued "
-           "across); %.60s",
-           tn, kl, bw->iterate + 1,
-           fallback ? ", found after the corrector stopped" : "", bw->name);
+  char old[SC_ITIN_LEN];
+  snprintf(old, sizeof old, "%s", T->itin0);
+  if (dir3 && (st = cross_border(T, w, dir3, next, crossed, &lm))) return st;
+  if (*crossed)
+    snprintf(note, sizeof note,
+             "%s meets %s at iterate %d: continued across, itinerary %.50s "
+             "-> %.50s; %.50s",
+             tn, kl, bw->iterate + 1, old, T->itin0, bw->name);
+  else
+    snprintf(note, sizeof note,
+             "%s meets %s at iterate %d%s: the curve ends here (%s); %.50s",
+             tn, kl, bw->iterate + 1,
+             fallback ? ", found after the corrector stopped" : "",
+             T->set->multiple ? "not continued across with multiple shooting"
+                              : "no such point on the other side",
+             bw->name);
   return emit_special(T, kl, u, coef, fmax(cert.residual, fabs(cert.psi)),
                       note);
 }
@@ -387,8 +405,9 @@ static int near_border(trace *T, const double *u, int *found) {
   long jn = sc_forced_nearest(&T->fs, w, &dist);
   *found = 0;
   if (jn < 0 || !(dist <= 4 * T->set->hmax)) return SC_OK;
+  int crossed;
   return locate_border_pt(T, (size_t)jn, w, T->bpa[jn], T->bpa[jn],
-                          8 * T->set->hmax, 1, found);
+                          8 * T->set->hmax, 1, found, NULL, NULL, &crossed);
 }
 
 /* The start's itinerary code and the orbit's borders, at the corrected
@@ -416,6 +435,58 @@ static int watch_setup(trace *T, const double *start, sc_msg *msg) {
   return SC_OK;
 }
 
+/* Most border crossings per direction of a curve: a guard against
+ * crossing the same border back and forth. */
+#define SC_CURVE_MAX_CROSSINGS 16
+
+/* The watch of the start again (a direction that crossed borders
+ * replaced it). */
+static int watch_reset(trace *T, const double *start, sc_msg *msg) {
+  sc_forced_free(&T->fs);
+  free(T->bpa);
+  T->bpa = T->bpb = T->bpc = NULL;
+  T->mc.fs = NULL;
+  T->mc.itin0 = NULL;
+  return watch_setup(T, start, msg);
+}
+
+/* After the border point w (d, x, y), met going along dir3: does the
+ * fold or flip persist on the other side with the orbit's new itinerary?
+ * From w one small step (h0) along dir3, the new itinerary's code is
+ * taken and the point corrected onto the curve's system at fixed y along
+ * it; it persists when that converges within one largest step of w with
+ * the natural itinerary the new one (*ok = 1, the start in v).  The watch
+ * is then the new itinerary's borders.  Single shooting only. */
+static int cross_border(trace *T, const double *w, const double *dir3,
+                        double *v, int *ok, sc_msg *msg) {
+  *ok = 0;
+  if (T->set->multiple) return SC_OK;
+  double nt = fmax(fabs(dir3[0]), fmax(fabs(dir3[1]), fabs(dir3[2])));
+  if (!(nt > 0)) return SC_OK;
+  for (int i = 0; i < 3; i++)
+    v[i] = w[i] + T->set->h0 * dir3[i] / nt;
+  char old[SC_ITIN_LEN];
+  snprintf(old, sizeof old, "%s", T->itin0);
+  int st = watch_reset(T, v, msg);
+  if (st) return st;
+  if (!T->mc.fs || strcmp(old, T->itin0) == 0) return SC_OK;
+  double floor;
+  if (correct_start(T, v, &floor, msg) != SC_OK ||
+      !(floor <= 10 * T->acc->newton_ftol))
+    return SC_OK;
+  sc_map_value val;
+  if (sc_forced_eval(&T->fs, v, NULL, NULL, &val) ||
+      strcmp(val.itinerary, T->itin0) != 0)
+    return SC_OK;
+  double dist = fmax(fabs(v[0] - w[0]),
+                     fmax(fabs(v[1] - w[1]), fabs(v[2] - w[2])));
+  /* the new side's curve must start at the border point: within a few
+   * of the small steps taken across (a multiplier that jumps across the
+   * border leaves the new itinerary's fold or flip elsewhere) */
+  *ok = dist <= 4 * T->set->h0;
+  return SC_OK;
+}
+
 /* One direction from the corrected start. */
 static int run(trace *T, int dir, int branch, sc_msg *msg) {
   const sc_curve_settings *s = T->set;
@@ -438,7 +509,10 @@ static int run(trace *T, int dir, int branch, sc_msg *msg) {
     cset.linsolve = sc_linsolve_klu;
   }
   sc_branch *b;
-  int st = sc_branch_alloc(&pb, &cset, T->acc, &b, msg);
+  int st;
+  if (branch == 1 && T->bpa && (st = watch_reset(T, T->start3, msg)))
+    return st;
+  st = sc_branch_alloc(&pb, &cset, T->acc, &b, msg);
   if (st) return st;
   st = sc_branch_set(b, T->u0, msg);
   if (st) {
@@ -468,6 +542,7 @@ static int run(trace *T, int dir, int branch, sc_msg *msg) {
   size_t nw = T->fs.nwatch;
   if (nw) border_values(T, prev, T->bpa);
   double far = 0;
+  int ncross = 0;
   for (;;) {
     sc_msg bm;
     int bs = sc_branch_step(b, &bm);
@@ -519,8 +594,10 @@ static int run(trace *T, int dir, int branch, sc_msg *msg) {
        * the orbit moves fast in d) the bracket is short, so at least one
        * largest step */
       double reach = fmax(2 * span, s->hmax);
-      int found = 0;
-      double wlast = -1;
+      int found = 0, crossed = 0;
+      double wlast = -1, dir3[3], next[3];
+      for (int i = 0; i < 3; i++)
+        dir3[i] = b3[i] - a3[i];
       for (;;) {
         size_t jn = nw;
         double wn = 2;
@@ -537,10 +614,40 @@ static int run(trace *T, int dir, int branch, sc_msg *msg) {
         double w[3];
         for (int i = 0; i < 3; i++)
           w[i] = a3[i] + wn * (b3[i] - a3[i]);
-        if ((st = locate_border_pt(T, jn, w, T->bpc[jn], T->bpb[jn], reach,
-                                   0, &found)))
+        if ((st = locate_border_pt(
+                 T, jn, w, T->bpc[jn], T->bpb[jn], reach, 0, &found,
+                 ncross < SC_CURVE_MAX_CROSSINGS ? dir3 : NULL, next,
+                 &crossed)))
           goto done;
         if (found) break;
+      }
+      if (found && crossed) {
+        /* a new branch from the other side, going on the same way in y */
+        ncross++;
+        sc_branch_free(b);
+        b = NULL;
+        cset.direction = dir3[2] >= 0 ? 1 : -1;
+        double *u = T->mid;
+        u[0] = next[0], UX(T, u) = next[1], UY(T, u) = next[2];
+        for (size_t k = 1; k + 2 < N; k++) /* multiple: not crossed */
+          u[k] = next[0];
+        if ((st = sc_branch_alloc(&pb, &cset, T->acc, &b, msg))) goto done;
+        if (sc_branch_set(b, u, &bm)) {
+          char why[128];
+          snprintf(why, sizeof why, "across the border the start fails: %.90s",
+                   bm.text);
+          st = end_point(T, u, why);
+          break;
+        }
+        memcpy(prev, sc_branch_point(b), N * sizeof *prev);
+        if ((st = emit_point(T, prev, branch))) goto done;
+        if (T->cs.test(prev, psi_prev, T->cs.user)) {
+          st = end_point(T, prev, "across the border the tests fail");
+          break;
+        }
+        nw = T->fs.nwatch;
+        if (nw) border_values(T, prev, T->bpa);
+        continue;
       }
       if (found) break;
       st = end_point(T, prev, "borders changed sign, none located (rows "
@@ -688,6 +795,7 @@ int sc_curve_trace(sc_map *m, const sc_curve_settings *set, double d0,
   sc_curve_ftol(&acc, floor);
   stats->ftol = acc.newton_ftol;
   T.acc = &acc;
+  memcpy(T.start3, start, sizeof T.start3);
   if (st == SC_OK && sc_map_has_borders(m)) st = watch_setup(&T, start, msg);
   if (st == SC_OK) st = run(&T, +1, 0, msg);
   if (st == SC_OK && !T.closed) st = run(&T, -1, 1, msg);
