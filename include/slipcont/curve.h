@@ -241,9 +241,13 @@ typedef struct {
  * itinerary code of its start (single shooting: evaluated along it past
  * a border, sc_map_iterate_ex()); the borders of the orbit are test
  * functions, and where one changes sign the point {f^m(d) = d, (f^m)' =
- * +-1, m_k = 0} is located by Newton in (d, x, y), reported with the
- * border's kind as label, and the curve ends there (the note says so);
- * what cannot be located is a "KIND?" row with the reason.
+ * +-1, m_k = 0} is located by Newton in (d, x, y) and reported with the
+ * border's kind as label; the curve goes on across it with the orbit's
+ * new itinerary where the fold or flip persists there (single shooting),
+ * and ends there otherwise (the note says which).  What cannot be
+ * located is a "KIND?" row with the reason.  A curve also ends where its
+ * points stop meeting their system (the residual's rounding floor above
+ * 10 tolerances, next to d*).
  *
  * With set->type SC_CURVE_BORDER the curve is that of the orbit on its
  * border of kind set->border nearest to the start: {f^m(d) = d, m_k = 0}
