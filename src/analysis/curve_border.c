@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "analysis/border_list.h"
 #include "analysis/curve_impl.h"
 
 void sc_curve_ftol(sc_accuracy *acc, double floor) {
@@ -72,28 +73,17 @@ int sc_forced_eval(sc_forced_sys *s, const double *u,
   if (sc_map_set_param(s->m, (size_t)s->ix, u[1], &s->emsg) ||
       sc_map_set_param(s->m, (size_t)s->iy, u[2], &s->emsg))
     return 1; /* outside the parameters' range: shrink the step */
-  for (;;) {
-    s->bl.n = 0;
-    int st = sc_map_iterate_ex(s->m, u[0], s->period,
-                               SC_EVAL_DERIV | SC_EVAL_ITINERARY, force,
-                               codes_out, &s->bl, v, &s->emsg);
-    if (st) return 1;
-    if (s->bl.n <= s->bl.cap) return isfinite(v->f) && isfinite(v->dfdd) ? 0
-                                                                         : 1;
-    size_t nc = 2 * s->bl.n;
-    sc_border *q = realloc(s->bl.b, nc * sizeof *q);
-    if (!q) return -1;
-    s->bl.b = q, s->bl.cap = nc;
-  }
+  int st = sc_border_list_iterate(s->m, u[0], s->period,
+                                  SC_EVAL_DERIV | SC_EVAL_ITINERARY, force,
+                                  codes_out, &s->bl, v, &s->emsg);
+  if (st == SC_ENOMEM) return -1;
+  if (st) return 1;
+  return isfinite(v->f) && isfinite(v->dfdd) ? 0 : 1;
 }
 
 const sc_border *sc_forced_find(const sc_border_list *l,
                                 const sc_border *like) {
-  for (size_t i = 0; i < l->n && i < l->cap; i++)
-    if (l->b[i].iterate == like->iterate && l->b[i].kind == like->kind &&
-        strcmp(l->b[i].name, like->name) == 0)
-      return &l->b[i];
-  return NULL;
+  return sc_border_list_find(l, like);
 }
 
 static double sign_of(sc_curve_type t) { return t == SC_CURVE_FOLD ? 1 : -1; }
