@@ -259,34 +259,10 @@ static int end_point(trace *T, const double *u, const char *why) {
  * guess in, and the branch's own corrector then polishes it.  u holds
  * (d, x, y) in and out. */
 static int correct_start(trace *T, double *u, double *floor_out, sc_msg *msg) {
-  double F[2], J[6], Ft[2], ut[3];
-  *floor_out = HUGE_VAL;
-  const sc_cont_problem *pb = &T->ss.pb;
-  if (pb->f(u, F, pb->user))
+  if (sc_curve_correct_fixed_y(&T->ss.pb, u, T->acc, floor_out))
     return sc_fail(msg, SC_ENOCONV,
                    "curve: the map fails at the start (%.200s)",
                    T->mc.emsg.text);
-  for (int it = 0; it < T->acc->newton_maxiter; it++) {
-    double r = fmax(fabs(F[0]), fabs(F[1]));
-    *floor_out = r;
-    if (r <= T->acc->newton_ftol) return SC_OK;
-    if (pb->jac(u, J, pb->user)) break;
-    /* columns d (0) and x (1) of the 2 x 3 Jacobian */
-    double a = J[0], b = J[1], c = J[3], e = J[4], det = a * e - b * c;
-    if (det == 0) break;
-    double dd = -(e * F[0] - b * F[1]) / det;
-    double dx = -(a * F[1] - c * F[0]) / det;
-    double lam = 1;
-    for (int h = 0; h < 30; h++, lam *= 0.5) {
-      ut[0] = u[0] + lam * dd, ut[1] = u[1] + lam * dx, ut[2] = u[2];
-      if (pb->f(ut, Ft, pb->user) == 0 && fmax(fabs(Ft[0]), fabs(Ft[1])) < r)
-        break;
-    }
-    if (!(fmax(fabs(Ft[0]), fabs(Ft[1])) < r))
-      return SC_OK; /* no step decreases the residual: its rounding floor */
-    memcpy(u, ut, sizeof ut);
-    memcpy(F, Ft, sizeof Ft);
-  }
   return SC_OK; /* the branch corrector decides */
 }
 

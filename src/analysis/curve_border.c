@@ -253,6 +253,34 @@ static int blocate(btrace *B, size_t k, const double *a, const double *b,
 
 /* The watched border nearest to u (|m_j| over its gradient's size), or
  * -1; its distance estimate in *dist. */
+int sc_curve_correct_fixed_y(const sc_cont_problem *pb, double *u,
+                             const sc_accuracy *acc, double *floor_out) {
+  double F[2], J[6], Ft[2], ut[3];
+  *floor_out = HUGE_VAL;
+  if (pb->f(u, F, pb->user)) return SC_ECALLBACK;
+  for (int it = 0; it < acc->newton_maxiter; it++) {
+    double r = fmax(fabs(F[0]), fabs(F[1]));
+    *floor_out = r;
+    if (r <= acc->newton_ftol) return SC_OK;
+    if (pb->jac(u, J, pb->user)) break;
+    /* columns d (0) and x (1) of the 2 x 3 Jacobian */
+    double a = J[0], b = J[1], c = J[3], e = J[4], det = a * e - b * c;
+    if (det == 0 || !isfinite(det)) break;
+    double dd = -(e * F[0] - b * F[1]) / det;
+    double dx = -(a * F[1] - c * F[0]) / det;
+    double lam = 1;
+    int ok = 0;
+    for (int h = 0; h < 30 && !ok; h++, lam *= 0.5) {
+      ut[0] = u[0] + lam * dd, ut[1] = u[1] + lam * dx, ut[2] = u[2];
+      ok = pb->f(ut, Ft, pb->user) == 0 && fmax(fabs(Ft[0]), fabs(Ft[1])) < r;
+    }
+    if (!ok) break; /* no step decreases the residual: its rounding floor */
+    memcpy(u, ut, sizeof ut);
+    memcpy(F, Ft, sizeof Ft);
+  }
+  return SC_OK;
+}
+
 long sc_forced_nearest(sc_forced_sys *s, const double *u, double *dist) {
   sc_map_value v;
   long best = -1;
@@ -416,30 +444,12 @@ static void orbit_at(sc_map *m, int period, const sc_accuracy *acc,
   }
 }
 
-/* Damped Newton in (d, x) at fixed y on the border system. */
+/* Damped Newton in (d, x) at fixed y on the border system: converged
+ * when at its rounding floor within the fast preset's reach (2.5e-10,
+ * as sc_curve_ftol()). */
 static int bcorrect(btrace *B, double *u, double *floor_out) {
-  double F[2], J[6], Ft[2], ut[3];
-  *floor_out = HUGE_VAL;
-  if (f_cb(u, F, &B->fs)) return SC_ENOCONV;
-  for (int it = 0; it < B->acc.newton_maxiter; it++) {
-    double r = norm2inf(F);
-    *floor_out = r;
-    if (r <= B->acc.newton_ftol) return SC_OK;
-    if (jac_cb(u, J, &B->fs)) break;
-    double a = J[0], bb = J[1], c = J[3], e = J[4], det = a * e - bb * c;
-    if (det == 0 || !isfinite(det)) break;
-    double dd = -(e * F[0] - bb * F[1]) / det;
-    double dx = -(a * F[1] - c * F[0]) / det;
-    double lam = 1;
-    int ok = 0;
-    for (int h = 0; h < 30 && !ok; h++, lam *= 0.5) {
-      ut[0] = u[0] + lam * dd, ut[1] = u[1] + lam * dx, ut[2] = u[2];
-      ok = f_cb(ut, Ft, &B->fs) == 0 && norm2inf(Ft) < r;
-    }
-    if (!ok) break; /* the rounding floor */
-    memcpy(u, ut, sizeof ut);
-    memcpy(F, Ft, sizeof Ft);
-  }
+  if (sc_curve_correct_fixed_y(&B->cs.pb, u, &B->acc, floor_out))
+    return SC_ENOCONV;
   return *floor_out <= 2.5e-10 ? SC_OK : SC_ENOCONV;
 }
 
@@ -498,6 +508,7 @@ int sc_curve_trace_border(sc_map *m, const sc_curve_settings *set, double d0,
   B.fs.key = *key;
   B.fs.emsg.text[0] = '\0';
   sc_forced_use_alt(&B.fs, key);
+  sc_forced_system(&B.fs, &B.cs); /* again once the watch is known */
   st = bcorrect(&B, u, &floor);
   if (st) {
     st = sc_fail(msg, SC_ENOCONV,

@@ -68,6 +68,14 @@ const sc_border *sc_forced_find(const sc_border_list *l, const sc_border *like);
 /* The watched border nearest to u (|m_j| over the size of its gradient
  * in (d, x, y)), or -1; that distance estimate in *dist. */
 long sc_forced_nearest(sc_forced_sys *s, const double *u, double *dist);
+/* Damped Newton at fixed y (u[2]) in (d, x) on a two-equation system in
+ * (d, x, y): the orbits of f^m can sit close to d*, where f' ~
+ * |d - d*|^(-1/2) (MODEL.md), and a full step from a guess overshoots;
+ * the step is halved until the residual decreases.  Stops at
+ * newton_ftol or at the residual's rounding floor (*floor_out: the last
+ * residual).  SC_OK, or SC_ECALLBACK if F fails at u. */
+int sc_curve_correct_fixed_y(const sc_cont_problem *pb, double *u,
+                             const sc_accuracy *acc, double *floor_out);
 /* Fill cs (n = 2, ntest = nwatch or 2 + nwatch) for s. */
 void sc_forced_system(sc_forced_sys *s, sc_curve_system *cs);
 /* The codes with the border's own code for its iterate substituted. */
