@@ -3,7 +3,8 @@
  *  - the grazing curve of the period-4 orbit: every point satisfies
  *    f^4(d) = d and m_GR = 0 to 1e-10, recomputed here from the map
  *    layer alone (sc_map_iterate_ex), and its flip (PD) has (f^4)' = -1
- *    to 1e-10;
+ *    to 1e-10; the switching curve of that orbit keeps a point at d*
+ *    (recomputed from the map alone) to 1e-10;
  *  - the period-4 flip and fold curves meet BR: the located point agrees
  *    to 1e-9 with the border point the branch task (sc_orbit_branch)
  *    locates at that beta, and with its flip or fold;
@@ -65,8 +66,9 @@ static const sc_curve_special *find(const collect *c, const char *label) {
  * layer: |f^4(d) - d| and the smallest |m| of its grazing borders, on
  * either side of the border (the natural itinerary, and each of its
  * grazing borders' own codes: at the border they are the same orbit). */
-static void residuals(sc_map *m, double alpha, double beta, double d,
-                      double *F, double *mgr, double *mult) {
+static void residuals_kind(sc_map *m, double alpha, double beta, double d,
+                           sc_border_kind kind, double *F, double *mgr,
+                           double *mult) {
   sc_map_set_param_by_name(m, "alpha", alpha, NULL);
   sc_map_set_param_by_name(m, "beta", beta, NULL);
   sc_border bb[256];
@@ -80,7 +82,7 @@ static void residuals(sc_map *m, double alpha, double beta, double d,
   *mult = v.dfdd;
   size_t nb = bl.n < bl.cap ? bl.n : bl.cap;
   for (size_t i = 0; i < nb; i++) {
-    if (bb[i].kind != SC_BORDER_GRAZING) continue;
+    if (bb[i].kind != kind) continue;
     *mgr = fmin(*mgr, fabs(bb[i].value));
     if (bb[i].alt.n == 0) continue;
     /* the same orbit along the border's own code */
@@ -94,6 +96,64 @@ static void residuals(sc_map *m, double alpha, double beta, double d,
       *mult = va.dfdd;
     }
   }
+}
+
+static void residuals(sc_map *m, double alpha, double beta, double d,
+                      double *F, double *mgr, double *mult) {
+  residuals_kind(m, alpha, beta, d, SC_BORDER_GRAZING, F, mgr, mult);
+}
+
+/* The switching curve of the period-4 orbit (SW at alpha
+ * 3.2523727882899287 of examples/branch-fig58.ini): a point of the orbit
+ * at d* = (beta - 1) / (1 + 2 alpha) (MODEL.md), recomputed. */
+static void test_switch4(void) {
+  sc_map *m = fig58(3.2523727882899287, 2.5);
+  sc_curve_settings s;
+  sc_curve_settings_default(&s);
+  s.type = SC_CURVE_BORDER;
+  s.border = SC_BORDER_SWITCHING;
+  s.period = 4;
+  s.ix = sc_map_param_index(m, "alpha");
+  s.iy = sc_map_param_index(m, "beta");
+  s.xlo = 1.5, s.xhi = 7.5, s.ylo = 1, s.yhi = 5;
+  s.hmax = 0.08, s.h0 = 0.008;
+  static collect c;
+  memset(&c, 0, sizeof c);
+  sc_curve_output out = {on_point, on_special, &c};
+  sc_curve_stats st;
+  sc_msg msg = {""};
+  int rc = sc_curve_trace(m, &s, 0.19987353131344873, &out, &st, &msg);
+  tu_int("switch curve: SC_OK", rc, SC_OK);
+  tu_true(c.n > 20, "switch curve: %ld points (more than 20)", c.n);
+  sc_map *m2 = fig58(3, 2.5);
+  double worstF = 0, worstD = 0;
+  for (long i = 0; i < c.n; i++) {
+    double F, mg, mu;
+    residuals_kind(m2, c.x[i], c.y[i], c.d[i], SC_BORDER_SWITCHING, &F, &mg,
+                   &mu);
+    if (F > 1e-10)
+      printf("  switch curve point %ld: alpha %.17g beta %.17g d %.17g: "
+             "|f^4(d) - d| = %.3g\n", i, c.x[i], c.y[i], c.d[i], F);
+    worstF = fmax(worstF, F);
+    /* the orbit point nearest d*, from the orbit iterated here */
+    double x = c.d[i], best = HUGE_VAL, dstar = sc_bk2_dstar(c.x[i], c.y[i]);
+    for (int k = 0; k < 4; k++) {
+      best = fmin(best, fabs(x - dstar));
+      sc_map_value v;
+      if (sc_map_eval(m2, x, SC_EVAL_VALUE, &v, NULL)) break;
+      x = v.f;
+    }
+    worstD = fmax(worstD, best);
+  }
+  tu_true(worstF <= 1e-10, "switch curve: max |f^4(d) - d| %.3g (1e-10)",
+          worstF);
+  tu_true(worstD <= 1e-10, "switch curve: max distance of the orbit to d* "
+          "%.3g (1e-10)", worstD);
+  tu_true(strcmp(st.border, "") != 0 && st.border_iterate >= 0,
+          "switch curve: the border followed is named (%s, iterate %d)",
+          st.border, st.border_iterate + 1);
+  sc_map_free(m2);
+  sc_map_free(m);
 }
 
 static void test_graze4(void) {
@@ -269,6 +329,7 @@ static void test_errors(void) {
 
 int main(void) {
   test_graze4();
+  test_switch4();
   /* the period-4 flip of fig 5.8 (PD at alpha 3.1525 of
    * examples/branch-fig58.ini) meets BR */
   meets_border("flip 4", SC_CURVE_FLIP, 3.1525203451104247, 2.5,

@@ -231,6 +231,9 @@ typedef struct {
                             newton_ftol, or 4 times the rounding floor of
                             the system at the start where that is larger
                             (at most 1e-9) */
+  int border_iterate;  /**< border curve: the iterate of f^m whose border
+                            is followed (from 0); -1 otherwise */
+  char border[64];     /**< border curve: that border's name; "" */
 } sc_curve_stats;
 
 /**

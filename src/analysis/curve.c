@@ -687,6 +687,7 @@ int sc_curve_trace(sc_map *m, const sc_curve_settings *set, double d0,
                    sc_msg *msg) {
   size_t np = sc_map_nparam(m);
   memset(stats, 0, sizeof *stats);
+  stats->border_iterate = -1;
   if (set->period < 1 || set->ix < 0 || set->iy < 0 || (size_t)set->ix >= np ||
       (size_t)set->iy >= np || set->ix == set->iy || !(set->h0 > 0) ||
       !(set->hmax >= set->h0) || set->max_points < 1 ||

@@ -88,10 +88,45 @@ const sc_border *sc_forced_find(const sc_border_list *l,
 
 static double sign_of(sc_curve_type t) { return t == SC_CURVE_FOLD ? 1 : -1; }
 
+/* A border in the state itself (the key, on_state, rotated to iterate
+ * 0: m = +-(d - d_on(p))): the map may be singular next to it (bk2, driver
+ * frozen: f' ~ |d - d*|^(-1/2)), the orbit started on it is not.  So f^m
+ * is evaluated at d_on(p) exactly, and the system is
+ *   F = (f^m(d_on(p)) - d_on(p), d - d_on(p)),
+ * whose first row does not depend on d: its Jacobian is
+ *   (0, g_p + (g_d - 1) d_on_p) for p = x, y; the second (1, -d_on_p).
+ * d_on(p) and its derivatives come from the border of one iterate. */
+static int on_state_eval(sc_forced_sys *s, const double *u, sc_map_value *v,
+                         double *don, double *dx, double *dy) {
+  if (sc_map_set_param(s->m, (size_t)s->ix, u[1], &s->emsg) ||
+      sc_map_set_param(s->m, (size_t)s->iy, u[2], &s->emsg))
+    return 1;
+  sc_map_value v1;
+  int st = sc_border_list_iterate(s->m, u[0], 1, SC_EVAL_DERIV, s->codes,
+                                  NULL, &s->bl, &v1, &s->emsg);
+  if (st) return st == SC_ENOMEM ? -1 : 1;
+  *don = NAN;
+  for (size_t i = 0; i < s->bl.n && i < s->bl.cap; i++)
+    if (s->bl.b[i].on_state && s->bl.b[i].iterate == 0)
+      *don = s->bl.b[i].d_on, *dx = s->bl.b[i].d_on_dp[s->ix],
+      *dy = s->bl.b[i].d_on_dp[s->iy];
+  if (!isfinite(*don)) return 1;
+  double w[3] = {*don, u[1], u[2]};
+  return sc_forced_eval(s, w, s->codes, NULL, v);
+}
+
 static int f_cb(const double *u, double *F, void *user) {
   sc_forced_sys *s = user;
   sc_map_value v;
-  int rc = sc_forced_eval(s, u, s->codes, NULL, &v);
+  int rc;
+  if (s->type == SC_CURVE_BORDER && s->key.on_state) {
+    double don, dx, dy;
+    if ((rc = on_state_eval(s, u, &v, &don, &dx, &dy))) return rc;
+    F[0] = v.f - don;
+    F[1] = u[0] - don;
+    return isfinite(F[0]) && isfinite(F[1]) ? 0 : 1;
+  }
+  rc = sc_forced_eval(s, u, s->codes, NULL, &v);
   if (rc) return rc;
   F[0] = v.f - u[0];
   if (s->type == SC_CURVE_BORDER) {
@@ -107,7 +142,19 @@ static int f_cb(const double *u, double *F, void *user) {
 static int jac_cb(const double *u, double *J, void *user) {
   sc_forced_sys *s = user;
   sc_map_value v;
-  int rc = sc_forced_eval(s, u, s->codes, NULL, &v);
+  int rc;
+  if (s->type == SC_CURVE_BORDER && s->key.on_state) {
+    double don, dx, dy;
+    if ((rc = on_state_eval(s, u, &v, &don, &dx, &dy))) return rc;
+    J[0] = 0;
+    J[1] = v.dfdp[s->ix] + (v.dfdd - 1) * dx;
+    J[2] = v.dfdp[s->iy] + (v.dfdd - 1) * dy;
+    J[3] = 1, J[4] = -dx, J[5] = -dy;
+    for (int i = 0; i < 6; i++)
+      if (!isfinite(J[i])) return 1;
+    return 0;
+  }
+  rc = sc_forced_eval(s, u, s->codes, NULL, &v);
   if (rc) return rc;
   J[0] = v.dfdd - 1, J[1] = v.dfdp[s->ix], J[2] = v.dfdp[s->iy];
   if (s->type == SC_CURVE_BORDER) {
@@ -135,7 +182,13 @@ static int jac_cb(const double *u, double *J, void *user) {
 static int test_cb(const double *u, double *psi, void *user) {
   sc_forced_sys *s = user;
   sc_map_value v;
-  int rc = sc_forced_eval(s, u, s->codes, NULL, &v);
+  int rc;
+  if (s->type == SC_CURVE_BORDER && s->key.on_state) {
+    double don, dx, dy;
+    rc = on_state_eval(s, u, &v, &don, &dx, &dy);
+  } else {
+    rc = sc_forced_eval(s, u, s->codes, NULL, &v);
+  }
   if (rc) return rc;
   size_t off = 0;
   if (s->type == SC_CURVE_BORDER) {
@@ -183,12 +236,23 @@ static double dist3(const double *a, const double *b) {
   return fmax(fabs(a[0] - b[0]), fmax(fabs(a[1] - b[1]), fabs(a[2] - b[2])));
 }
 
+/* The orbit point reported for u: u[0], or for a border in the state the
+ * point on it, d_on(p) exactly (u[0] is within rounding of it, and a
+ * rounding to the wrong side starts another itinerary). */
+static double bpoint_d(btrace *B, const double *u) {
+  double don, dx, dy;
+  sc_map_value v;
+  if (B->fs.key.on_state && on_state_eval(&B->fs, u, &v, &don, &dx, &dy) == 0)
+    return don;
+  return u[0];
+}
+
 static int bemit(btrace *B, const char *label, const double *u, double res,
                  const char *note) {
   sc_curve_special s;
   memset(&s, 0, sizeof s);
   snprintf(s.label, sizeof s.label, "%s", label);
-  s.d = u[0], s.x = u[1], s.y = u[2];
+  s.d = bpoint_d(B, u), s.x = u[1], s.y = u[2];
   double F[2];
   s.coefficient = f_cb(u, F, &B->fs) ? NAN : F[1];
   s.residual = res;
@@ -205,7 +269,11 @@ static int bpoint(btrace *B, const double *u, int branch) {
   if (f_cb(u, F, &B->fs) || sc_forced_eval(&B->fs, u, B->fs.codes, NULL, &v))
     return SC_OK; /* cannot happen at an accepted point */
   B->stats->max_residual = fmax(B->stats->max_residual, norm2inf(F));
-  sc_curve_point pt = {u[1], u[2], u[0], v.dfdd, F[1], branch, v.itinerary};
+  double d = bpoint_d(B, u);
+  if (B->fs.key.on_state && sc_forced_eval(&B->fs, (double[3]){d, u[1], u[2]},
+                                           B->fs.codes, NULL, &v))
+    return SC_OK;
+  sc_curve_point pt = {u[1], u[2], d, v.dfdd, F[1], branch, v.itinerary};
   B->stats->npoints++;
   if (B->out && B->out->point && B->out->point(B->out->ctx, &pt))
     return SC_ECALLBACK;
@@ -506,6 +574,28 @@ int sc_curve_trace_border(sc_map *m, const sc_curve_settings *set, double d0,
     goto done;
   }
   B.fs.key = *key;
+  if (key->on_state && key->iterate > 0) {
+    /* the orbit from the iterate on the border: codes rotated, d its
+     * point there */
+    int k = key->iterate, per = set->period;
+    sc_itin_code *rot = malloc((size_t)per * sizeof *rot);
+    if (!rot) {
+      st = sc_fail(msg, SC_ENOMEM, "curve: out of memory");
+      goto done;
+    }
+    for (int i = 0; i < per; i++)
+      rot[i] = B.fs.codes[(i + k) % per];
+    memcpy(B.fs.codes, rot, (size_t)per * sizeof *rot);
+    free(rot);
+    for (int i = 0; i < k; i++) {
+      sc_map_value vi;
+      if (sc_map_eval(m, u[0], SC_EVAL_VALUE, &vi, NULL)) break;
+      u[0] = vi.f;
+    }
+    B.fs.key.iterate = 0;
+  }
+  stats->border_iterate = key->iterate;
+  snprintf(stats->border, sizeof stats->border, "%s", key->name);
   B.fs.emsg.text[0] = '\0';
   sc_forced_use_alt(&B.fs, key);
   sc_forced_system(&B.fs, &B.cs); /* again once the watch is known */

@@ -419,6 +419,10 @@ static int curve_run(sc_cli_run *r) {
           "%.3g\n",
           stats.max_residual);
   fprintf(f, "  residual tolerance used: %.3g\n", stats.ftol);
+  if (stats.border_iterate >= 0)
+    fprintf(f, "  border followed: %s, %s, iterate %d of %d\n",
+            type_labels[ti], stats.border, stats.border_iterate + 1,
+            set.period);
   fprintf(f, "  shooting: %s\n", set.multiple ? "multiple" : "single");
   fprintf(f, "  codimension-two points: %ld\n", stats.nspecial);
   for (size_t i = 0; i < c.nsp; i++)
