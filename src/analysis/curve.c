@@ -259,7 +259,7 @@ static int end_point(trace *T, const double *u, const char *why) {
  * guess in, and the branch's own corrector then polishes it.  u holds
  * (d, x, y) in and out. */
 static int correct_start(trace *T, double *u, double *floor_out, sc_msg *msg) {
-  if (sc_curve_correct_fixed_y(&T->ss.pb, u, T->acc, floor_out))
+  if (sc_curve_correct_fixed(&T->ss.pb, u, 2, T->acc, floor_out))
     return sc_fail(msg, SC_ENOCONV,
                    "curve: the map fails at the start (%.200s)",
                    T->mc.emsg.text);
@@ -292,13 +292,15 @@ static int cross_border(trace *T, const double *w, const double *dir3,
 static int locate_border_pt(trace *T, size_t j, double *w, double pa,
                             double pb, double reach, int fallback,
                             int *found, const double *dir3, double *next,
-                            int *crossed) {
+                            int *crossed, const double *a3, const double *b3,
+                            int *jump) {
   const sc_border bwc = T->fs.watch[j]; /* the watch may be replaced */
   const sc_border *bw = &bwc;
   *crossed = 0;
+  if (jump) *jump = 0;
   const char *kl = sc_border_label(bw->kind);
   const char *tn = T->set->type == SC_CURVE_FOLD ? "fold" : "flip";
-  char rej[8], note[256];
+  char rej[8], note[512];
   snprintf(rej, sizeof rej, "%s?", kl);
   *found = 0;
   sc_forced_sys L;
@@ -329,6 +331,32 @@ static int locate_border_pt(trace *T, size_t j, double *w, double pa,
              reach, cert.psi);
   }
   double *u = T->u;
+  if (rc == SC_OK) lm.text[0] = '\0';
+  if (rc && a3 && b3) {
+    /* a border that is not smooth at its zero: bisection along the curve
+     * (the point known to the bracket's width); or a border that jumps */
+    double m, width;
+    int bs = sc_curve_bisect(&cs, 0, a3, b3, pa, pb, T->acc, w, &m, &width);
+    if (bs == SC_ENOMEM) {
+      sc_forced_free(&L);
+      return SC_ENOMEM;
+    }
+    if (bs == SC_OK) {
+      rc = SC_OK;
+      cert.psi = m;
+      double F[2];
+      cert.residual = cs.pb.f(w, F, cs.pb.user) ? NAN
+                                                : fmax(fabs(F[0]), fabs(F[1]));
+      snprintf(lm.text, sizeof lm.text, "bisection (Newton fails), width %.2g",
+               width);
+    } else if (bs == SC_EUNDEF) {
+      if (jump) *jump = 1;
+      char nt[SC_MSG_LEN];
+      snprintf(nt, sizeof nt, "%.60s", lm.text);
+      snprintf(lm.text, sizeof lm.text,
+               "the border jumps (not a zero); Newton: %.60s", nt);
+    }
+  }
   if (rc) {
     sc_forced_free(&L);
     u[0] = mid[0], UX(T, u) = mid[1], UY(T, u) = mid[2];
@@ -354,17 +382,22 @@ static int locate_border_pt(trace *T, size_t j, double *w, double pa,
       g_at(T, u, &j2) ? NAN : sc_curve_coefficient(T->set->type, &j2);
   char old[SC_ITIN_LEN];
   snprintf(old, sizeof old, "%s", T->itin0);
+  char how[SC_MSG_LEN];
+  snprintf(how, sizeof how, "%s", lm.text);
   if (dir3 && (st = cross_border(T, w, dir3, next, crossed, &lm))) return st;
   if (*crossed)
     snprintf(note, sizeof note,
-             "%s meets %s at iterate %d: continued across, itinerary %.50s "
-             "-> %.50s; %.50s",
-             tn, kl, bw->iterate + 1, old, T->itin0, bw->name);
+             "%s meets %s at iterate %d%s%.40s: continued across, itinerary "
+             "%.50s -> %.50s; %.50s",
+             tn, kl, bw->iterate + 1, how[0] ? ", " : "", how, old, T->itin0,
+             bw->name);
   else
     snprintf(note, sizeof note,
-             "%s meets %s at iterate %d%s: the curve ends here (%s); %.50s",
+             "%s meets %s at iterate %d%s%s%.40s: the curve ends here (%s); "
+             "%.50s",
              tn, kl, bw->iterate + 1,
              fallback ? ", found after the corrector stopped" : "",
+             how[0] ? ", " : "", how,
              T->set->multiple ? "not continued across with multiple shooting"
                               : "no such point on the other side",
              bw->name);
@@ -383,7 +416,8 @@ static int near_border(trace *T, const double *u, int *found) {
   if (jn < 0 || !(dist <= 4 * T->set->hmax)) return SC_OK;
   int crossed;
   return locate_border_pt(T, (size_t)jn, w, T->bpa[jn], T->bpa[jn],
-                          8 * T->set->hmax, 1, found, NULL, NULL, &crossed);
+                          8 * T->set->hmax, 1, found, NULL, NULL, &crossed,
+                          NULL, NULL, NULL);
 }
 
 /* The start's itinerary code and the orbit's borders, at the corrected
@@ -570,7 +604,7 @@ static int run(trace *T, int dir, int branch, sc_msg *msg) {
        * the orbit moves fast in d) the bracket is short, so at least one
        * largest step */
       double reach = fmax(2 * span, s->hmax);
-      int found = 0, crossed = 0;
+      int found = 0, crossed = 0, njump = 0, ntried = 0;
       double wlast = -1, dir3[3], next[3];
       for (int i = 0; i < 3; i++)
         dir3[i] = b3[i] - a3[i];
@@ -590,12 +624,14 @@ static int run(trace *T, int dir, int branch, sc_msg *msg) {
         double w[3];
         for (int i = 0; i < 3; i++)
           w[i] = a3[i] + wn * (b3[i] - a3[i]);
+        int jump = 0;
         if ((st = locate_border_pt(
                  T, jn, w, T->bpc[jn], T->bpb[jn], reach, 0, &found,
                  ncross < SC_CURVE_MAX_CROSSINGS ? dir3 : NULL, next,
-                 &crossed)))
+                 &crossed, a3, b3, &jump)))
           goto done;
         if (found) break;
+        njump += jump, ntried++;
       }
       if (found && crossed) {
         /* a new branch from the other side, going on the same way in y */
@@ -626,9 +662,13 @@ static int run(trace *T, int dir, int branch, sc_msg *msg) {
         continue;
       }
       if (found) break;
-      st = end_point(T, prev, "borders changed sign, none located (rows "
-                              "above)");
-      break;
+      if (njump < ntried) {
+        st = end_point(T, prev, "borders changed sign, none located (rows "
+                                "above)");
+        break;
+      }
+      /* only borders that jump: no crossing, the curve goes on (the
+       * itinerary check below still watches the orbit) */
     }
     /* A point accepted at the corrector's rounding floor with a residual
      * far above the tolerance: next to d* (f'' unbounded, MODEL.md) the

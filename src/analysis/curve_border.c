@@ -289,12 +289,37 @@ static int blocate(btrace *B, size_t k, const double *a, const double *b,
     mid[i] = u[i] = a[i] + w * (b[i] - a[i]);
   sc_curve_cert cert;
   sc_msg msg;
-  char note[128], rej[8];
+  char note[256], rej[8];
   const char *label = B->cs.labels[k];
   const char *bn = sc_border_label(B->fs.key.kind);
   snprintf(rej, sizeof rej, "%s?", label);
   *ends = k >= 2;
   int st = sc_curve_locate(&B->cs, k, u, &B->acc, &cert, &msg);
+  if (st && k >= 2) {
+    /* a border that is not smooth at its zero: bisection along the
+     * curve, the point known to the bracket's width */
+    double m, width;
+    int bs = sc_curve_bisect(&B->cs, k, a, b, pa, pb, &B->acc, u, &m,
+                             &width);
+    if (bs == SC_ENOMEM) return sc_fail(&msg, SC_ENOMEM, "out of memory");
+    if (bs == SC_OK) {
+      double F[2];
+      double res = f_cb(u, F, &B->fs) ? NAN : norm2inf(F);
+      snprintf(note, sizeof note,
+               "%s curve meets %s (%.40s, it. %d; bisection: Newton fails, "
+               "m = %.2g, width %.2g): ends",
+               bn, label, B->fs.watch[k - 2].name,
+               B->fs.watch[k - 2].iterate + 1, m, width);
+      return bemit(B, label, u, fmax(res, fabs(m)), note);
+    }
+    /* a border that jumps is no crossing: the curve goes on */
+    if (bs == SC_EUNDEF) *ends = 0;
+    snprintf(note, sizeof note, "not located: %.50s; bisection: %s",
+             msg.text,
+             bs == SC_EUNDEF ? "the border jumps (not a zero), the curve goes on"
+                             : "failed");
+    return bemit(B, rej, mid, cert.residual, note);
+  }
   if (st) {
     snprintf(note, sizeof note, "not located: %.100s", msg.text);
     return bemit(B, rej, mid, cert.residual, note);
@@ -319,10 +344,9 @@ static int blocate(btrace *B, size_t k, const double *a, const double *b,
   return bemit(B, label, u, res, note);
 }
 
-/* The watched border nearest to u (|m_j| over its gradient's size), or
- * -1; its distance estimate in *dist. */
-int sc_curve_correct_fixed_y(const sc_cont_problem *pb, double *u,
-                             const sc_accuracy *acc, double *floor_out) {
+int sc_curve_correct_fixed(const sc_cont_problem *pb, double *u, int fix,
+                           const sc_accuracy *acc, double *floor_out) {
+  int c1 = fix == 2 ? 1 : 2; /* the other parameter's column */
   double F[2], J[6], Ft[2], ut[3];
   *floor_out = HUGE_VAL;
   if (pb->f(u, F, pb->user)) return SC_ECALLBACK;
@@ -331,15 +355,15 @@ int sc_curve_correct_fixed_y(const sc_cont_problem *pb, double *u,
     *floor_out = r;
     if (r <= acc->newton_ftol) return SC_OK;
     if (pb->jac(u, J, pb->user)) break;
-    /* columns d (0) and x (1) of the 2 x 3 Jacobian */
-    double a = J[0], b = J[1], c = J[3], e = J[4], det = a * e - b * c;
+    /* columns d (0) and c1 of the 2 x 3 Jacobian */
+    double a = J[0], b = J[c1], c = J[3], e = J[3 + c1], det = a * e - b * c;
     if (det == 0 || !isfinite(det)) break;
     double dd = -(e * F[0] - b * F[1]) / det;
     double dx = -(a * F[1] - c * F[0]) / det;
     double lam = 1;
     int ok = 0;
     for (int h = 0; h < 30 && !ok; h++, lam *= 0.5) {
-      ut[0] = u[0] + lam * dd, ut[1] = u[1] + lam * dx, ut[2] = u[2];
+      ut[0] = u[0] + lam * dd, ut[c1] = u[c1] + lam * dx, ut[fix] = u[fix];
       ok = pb->f(ut, Ft, pb->user) == 0 && fmax(fabs(Ft[0]), fabs(Ft[1])) < r;
     }
     if (!ok) break; /* no step decreases the residual: its rounding floor */
@@ -349,6 +373,53 @@ int sc_curve_correct_fixed_y(const sc_cont_problem *pb, double *u,
   return SC_OK;
 }
 
+/* A border that is not smooth at its zero (a square root: its derivative
+ * grows without bound there) keeps |m| ~ sqrt(bracket) at the end of a
+ * bisection, ~1e-7 of its size for a bracket at rounding; a jump keeps its
+ * size.  Below this fraction of the values at the ends it is a zero. */
+#define SC_BISECT_ZERO 1e-3
+
+int sc_curve_bisect(const sc_curve_system *cs, size_t k, const double *a,
+                    const double *b, double pa, double pb,
+                    const sc_accuracy *acc, double *u, double *m,
+                    double *width) {
+  double lo[3], hi[3], psi_lo = pa;
+  memcpy(lo, a, sizeof lo);
+  memcpy(hi, b, sizeof hi);
+  int fix = fabs(b[1] - a[1]) >= fabs(b[2] - a[2]) ? 1 : 2;
+  double *psi = malloc((cs->ntest ? cs->ntest : 1) * sizeof *psi);
+  if (!psi) return SC_ENOMEM;
+  int st = SC_ENOCONV;
+  *m = pa;
+  memcpy(u, a, 3 * sizeof *u);
+  for (int it = 0; it < 200; it++) {
+    *width = fabs(hi[fix] - lo[fix]);
+    if (sc_test_delta(*width, lo[fix], acc->newton_atol, acc->newton_rtol) ==
+        SC_OK) {
+      st = SC_OK;
+      break;
+    }
+    double w[3], floor;
+    for (int i = 0; i < 3; i++)
+      w[i] = 0.5 * (lo[i] + hi[i]);
+    if (sc_curve_correct_fixed(&cs->pb, w, fix, acc, &floor) ||
+        !(floor <= 10 * acc->newton_ftol) || cs->test(w, psi, cs->user) ||
+        !isfinite(psi[k]))
+      break;
+    if ((psi[k] > 0) == (psi_lo > 0))
+      memcpy(lo, w, sizeof lo), psi_lo = psi[k];
+    else
+      memcpy(hi, w, sizeof hi);
+    if (fabs(psi[k]) < fabs(*m)) *m = psi[k], memcpy(u, w, 3 * sizeof *u);
+  }
+  free(psi);
+  if (st == SC_OK && !(fabs(*m) <= SC_BISECT_ZERO * fmax(fabs(pa), fabs(pb))))
+    st = SC_EUNDEF; /* a jump, not a zero */
+  return st;
+}
+
+/* The watched border nearest to u (|m_j| over its gradient's size), or
+ * -1; its distance estimate in *dist. */
 long sc_forced_nearest(sc_forced_sys *s, const double *u, double *dist) {
   sc_map_value v;
   long best = -1;
@@ -516,7 +587,7 @@ static void orbit_at(sc_map *m, int period, const sc_accuracy *acc,
  * when at its rounding floor within the fast preset's reach (2.5e-10,
  * as sc_curve_ftol()). */
 static int bcorrect(btrace *B, double *u, double *floor_out) {
-  if (sc_curve_correct_fixed_y(&B->cs.pb, u, &B->acc, floor_out))
+  if (sc_curve_correct_fixed(&B->cs.pb, u, 2, &B->acc, floor_out))
     return SC_ENOCONV;
   return *floor_out <= 2.5e-10 ? SC_OK : SC_ENOCONV;
 }

@@ -68,14 +68,24 @@ const sc_border *sc_forced_find(const sc_border_list *l, const sc_border *like);
 /* The watched border nearest to u (|m_j| over the size of its gradient
  * in (d, x, y)), or -1; that distance estimate in *dist. */
 long sc_forced_nearest(sc_forced_sys *s, const double *u, double *dist);
-/* Damped Newton at fixed y (u[2]) in (d, x) on a two-equation system in
- * (d, x, y): the orbits of f^m can sit close to d*, where f' ~
+/* Damped Newton at fixed u[fix] (1: x, 2: y) in d and the other
+ * parameter on a two-equation system in (d, x, y): the orbits of f^m can sit close to d*, where f' ~
  * |d - d*|^(-1/2) (MODEL.md), and a full step from a guess overshoots;
  * the step is halved until the residual decreases.  Stops at
  * newton_ftol or at the residual's rounding floor (*floor_out: the last
  * residual).  SC_OK, or SC_ECALLBACK if F fails at u. */
-int sc_curve_correct_fixed_y(const sc_cont_problem *pb, double *u,
-                             const sc_accuracy *acc, double *floor_out);
+int sc_curve_correct_fixed(const sc_cont_problem *pb, double *u, int fix,
+                           const sc_accuracy *acc, double *floor_out);
+/* Where test k of cs changes sign between the curve points a and b
+ * (values pa, pb): bisection in the parameter that changes more, each
+ * midpoint corrected onto cs at that value.  u receives the point with
+ * the smallest |psi_k| met, m that value, width the final bracket in the
+ * parameter.  SC_OK; SC_EUNDEF if psi_k jumps (its values do not go to
+ * zero); SC_ENOCONV if a correction failed; SC_ENOMEM. */
+int sc_curve_bisect(const sc_curve_system *cs, size_t k, const double *a,
+                    const double *b, double pa, double pb,
+                    const sc_accuracy *acc, double *u, double *m,
+                    double *width);
 /* Fill cs (n = 2, ntest = nwatch or 2 + nwatch) for s. */
 void sc_forced_system(sc_forced_sys *s, sc_curve_system *cs);
 /* The codes with the border's own code for its iterate substituted. */
