@@ -299,6 +299,51 @@ static void meets_border(const char *what, sc_curve_type type, double alpha,
   sc_map_free(m);
 }
 
+/* Fig 5.12 (beta 3.2): the period-3 fold curve meets the grazing of its
+ * orbit, and the grazing curve of that orbit has a fold there: the same
+ * codimension-two point reached from both curves. */
+static void test_fold3_graze3(void) {
+  sc_map *m = fig58(5.6357, 3.2);
+  sc_curve_settings s;
+  sc_curve_settings_default(&s);
+  s.type = SC_CURVE_FOLD;
+  s.period = 3;
+  s.ix = sc_map_param_index(m, "alpha");
+  s.iy = sc_map_param_index(m, "beta");
+  s.xlo = 1.5, s.xhi = 7.5, s.ylo = 1, s.yhi = 5;
+  s.hmax = 0.08, s.h0 = 0.008;
+  static collect c;
+  memset(&c, 0, sizeof c);
+  sc_curve_output out = {on_point, on_special, &c};
+  sc_curve_stats st;
+  sc_msg msg = {""};
+  /* d0 of examples/curve-fig512-period3.ini */
+  sc_map *mf = fig58(5.6357, 3.2);
+  int rc = sc_curve_trace(mf, &s, 0.1355, &out, &st, &msg);
+  tu_int("period-3 fold: SC_OK", rc, SC_OK);
+  const sc_curve_special *gr = find(&c, "GR");
+  tu_true(gr != NULL, "the period-3 fold curve meets GR");
+  static collect g;
+  memset(&g, 0, sizeof g);
+  sc_curve_output gout = {on_point, on_special, &g};
+  sc_map_set_param_by_name(m, "alpha", 5.6956595357770414, NULL);
+  s.type = SC_CURVE_BORDER;
+  s.border = SC_BORDER_GRAZING;
+  rc = sc_curve_trace(m, &s, 0.15235154995488531, &gout, &st, &msg);
+  tu_int("period-3 grazing curve: SC_OK", rc, SC_OK);
+  const sc_curve_special *lp = find(&g, "LP");
+  tu_true(lp != NULL, "the period-3 grazing curve has a fold");
+  if (gr && lp) {
+    /* 1e-9: two computations of one point, each to ~1e-13 */
+    tu_close("fold meets GR = fold on the GR curve: alpha", lp->x, gr->x,
+             1e-9);
+    tu_close("fold meets GR = fold on the GR curve: beta", lp->y, gr->y,
+             1e-9);
+  }
+  sc_map_free(mf);
+  sc_map_free(m);
+}
+
 static void test_errors(void) {
   sc_msg msg = {""};
   sc_map *m;
@@ -337,6 +382,7 @@ int main(void) {
   /* the period-4 fold at alpha 3.9338 meets BR */
   meets_border("fold 4", SC_CURVE_FOLD, 3.9337814025560522, 2.5,
                0.1816583738136692, 4, "BR", SC_PT_BR, SC_PT_LP, +1);
+  test_fold3_graze3();
   test_errors();
   return tu_finish();
 }
