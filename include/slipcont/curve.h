@@ -1,8 +1,10 @@
 /**
  * @file curve.h
  * @brief Two-parameter curves of codimension-one points (folds and flips
- *        of a map iterate), their codimension-two points (CP, GPD, TP),
- *        and the tracing of such curves for a model (docs/curves.md).
+ *        of a map iterate, orbits on a border), their codimension-two
+ *        points (CP, GPD, TP, LP and PD on a border, the borders a curve
+ *        meets), and the tracing of such curves for a model
+ *        (docs/curves.md).
  *
  * Two levels:
  *  - generic (continuation/curve.c, continuation/map1d_curve.c): a curve
@@ -10,11 +12,13 @@
  *    sc_cont_problem), with test functions psi_k(u) whose zeros are its
  *    codimension-two points; sc_curve_locate() solves the extended system
  *    {F = 0, psi_k = 0} by Newton and returns a residual certificate.  Any
- *    defining system can be plugged in (border curves, later).
- *  - for a model (src/analysis/curve.c): sc_curve_trace() corrects a start
- *    onto the fold or flip system of f^m, continues the curve both ways
- *    by pseudo-arclength in (d, x, y), locates every codimension-two
- *    point, and reports points through callbacks.
+ *    defining system can be plugged in (src/analysis/curve_border.c
+ *    plugs in the border systems).
+ *  - for a model (src/analysis/curve.c, curve_border.c): sc_curve_trace()
+ *    corrects a start onto the fold, flip or border system of f^m,
+ *    continues the curve both ways by pseudo-arclength in (d, x, y),
+ *    locates every codimension-two point, and reports points through
+ *    callbacks.
  */
 #ifndef SLIPCONT_CURVE_H
 #define SLIPCONT_CURVE_H
