@@ -399,6 +399,7 @@ static int locate_border_pt(trace *T, size_t j, double *w, double pa,
              fallback ? ", found after the corrector stopped" : "",
              how[0] ? ", " : "", how,
              T->set->multiple ? "not continued across with multiple shooting"
+             : !dir3          ? "not continued across"
                               : "no such point on the other side",
              bw->name);
   return emit_special(T, kl, u, coef, fmax(cert.residual, fabs(cert.psi)),
