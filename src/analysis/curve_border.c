@@ -539,6 +539,21 @@ static int brun(btrace *B, int dir, int branch, sc_msg *msg) {
       memcpy(B->psa, B->psb, nt * sizeof *B->psa);
     }
     if (ends) break;
+    /* accepted at the corrector's rounding floor far above the tolerance
+     * (next to d*, where f' is unbounded): the curve ends where its
+     * points stop meeting their system, as fold and flip curves do */
+    double F[2];
+    if (f_cb(cur, F, &B->fs) == 0 && norm2inf(F) > 10 * B->acc.newton_ftol) {
+      if (bfallback(B, prev, &st)) break;
+      if (st) goto done;
+      char why[128];
+      snprintf(why, sizeof why,
+               "the residual's rounding floor (%.3g) exceeds the tolerance "
+               "(%.3g)",
+               norm2inf(F), B->acc.newton_ftol);
+      st = bemit(B, "EP", prev, NAN, why);
+      break;
+    }
     if (cur[1] < s->xlo || cur[1] > s->xhi) {
       st = bemit(B, "EP", prev, NAN, "the box's edge in x");
       break;
