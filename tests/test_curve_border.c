@@ -105,7 +105,7 @@ static void residuals(sc_map *m, double alpha, double beta, double d,
 
 /* The switching curve of the period-4 orbit (SW at alpha
  * 3.2523727882899287 of examples/branch-fig58.ini): a point of the orbit
- * at d* = (beta - 1) / (1 + 2 alpha) (MODEL.md), recomputed. */
+ * at d* = (beta - 1) / (1 + 2 alpha) (docs/derivations.md), recomputed. */
 static void test_switch4(void) {
   sc_map *m = fig58(3.2523727882899287, 2.5);
   sc_curve_settings s;

@@ -254,7 +254,7 @@ static int end_point(trace *T, const double *u, const char *why) {
 
 /* Damped Newton for the start at fixed y on the single-shooting system,
  * unknowns (d, x): the orbits of f^m can sit close to d*, where
- * f' ~ |d - d*|^(-1/2) (MODEL.md), and a full step from a guess
+ * f' ~ |d - d*|^(-1/2) (docs/derivations.md), and a full step from a guess
  * overshoots; halving the step until the residual decreases brings the
  * guess in, and the branch's own corrector then polishes it.  u holds
  * (d, x, y) in and out. */
@@ -672,7 +672,7 @@ static int run(trace *T, int dir, int branch, sc_msg *msg) {
        * itinerary check below still watches the orbit) */
     }
     /* A point accepted at the corrector's rounding floor with a residual
-     * far above the tolerance: next to d* (f'' unbounded, MODEL.md) the
+     * far above the tolerance: next to d* (f'' unbounded, docs/derivations.md) the
      * multiplier's rounding error grows without bound; the curve ends
      * where its points stop meeting their system (10 tolerances). */
     if (T->cs.pb.f(cur, T->F, T->cs.pb.user) == 0 &&

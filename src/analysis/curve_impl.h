@@ -70,7 +70,7 @@ const sc_border *sc_forced_find(const sc_border_list *l, const sc_border *like);
 long sc_forced_nearest(sc_forced_sys *s, const double *u, double *dist);
 /* Damped Newton at fixed u[fix] (1: x, 2: y) in d and the other
  * parameter on a two-equation system in (d, x, y): the orbits of f^m can sit close to d*, where f' ~
- * |d - d*|^(-1/2) (MODEL.md), and a full step from a guess overshoots;
+ * |d - d*|^(-1/2) (docs/derivations.md), and a full step from a guess overshoots;
  * the step is halved until the residual decreases.  Stops at
  * newton_ftol or at the residual's rounding floor (*floor_out: the last
  * residual).  SC_OK, or SC_ECALLBACK if F fails at u. */
