@@ -35,10 +35,50 @@ expect_err "curve: x-to below x-from" "x-to"
 run_sc check "$SRC/examples/curve-cubic.ini" --set model.mu2=1.8
 expect_rc "curve: start outside the box" 2
 expect_err "curve: start outside the box" "outside"
-run_sc run "$SRC/examples/curve-cubic.ini" --set task.type=graze --out "$TMP/bad"
+run_sc run "$SRC/examples/curve-cubic.ini" --set task.type=saddle --out "$TMP/bad"
 expect_rc "curve: unknown type" 2
-expect_err "curve: unknown type" "fold|flip"
+expect_err "curve: unknown type" "fold|flip|graze"
+run_sc run "$SRC/examples/curve-cubic.ini" --set task.type=graze --out "$TMP/bad"
+expect_rc "curve: border curve of a map without borders" 2
+expect_err "curve: border curve of a map without borders" "declares no borders"
 check "curve: nothing written on bad input" test ! -e "$TMP/bad/curve.csv"
+
+# also: other curves drawn in the same plot; a pattern that matches no
+# folder is refused before any output
+run_sc run "$SRC/examples/curve-gpd.ini" --out "$TMP/gpd-also" --quiet \
+  --set task.also="$TMP/cub*"
+expect_rc "curve: also" 0
+check "curve: also draws the other curve" grep -q "cubic/curve.csv' skip 1 using 1:2 with lines" "$TMP/gpd-also/curve.gp"
+run_sc run "$SRC/examples/curve-gpd.ini" --out "$TMP/bad-also" --set task.also="$TMP/nothing-here*"
+expect_rc "curve: also matches nothing" 2
+expect_err "curve: also matches nothing" "matches no folder"
+check "curve: also: nothing written" test ! -e "$TMP/bad-also/curve.csv"
+
+# a border curve from a GR row of a branch task's points.csv (fig 5.8)
+printf 'label,parameter,value,d,period\nPD,alpha,3.1525203451104331,0.22708407773008357,4\nGR,alpha,3.8613904131033094,0.19577564632151551,4\n' > "$TMP/pts58.csv"
+sed '/^d0 = /d' "$SRC/examples/curve-fig58-graze4.ini" > "$TMP/graze.ini"
+run_sc run "$TMP/graze.ini" --out "$TMP/graze" --quiet \
+  --set task.start="$TMP/pts58.csv:2"
+expect_rc "curve: graze from a GR row" 0
+check "curve: the graze curve's PD (a flip on the border)" grep -q '^PD,3.69577716' "$TMP/graze/points.csv"
+check "curve: graze curve residuals within 1e-10" awk -F, 'NR > 1 && NF > 1 {
+  if ($6 + 0 > 1e-10 || $6 + 0 < -1e-10) exit 1 }' "$TMP/graze/curve.csv"
+run_sc check "$TMP/graze.ini" --set task.start="$TMP/pts58.csv:1"
+expect_rc "curve: graze from a PD row" 2
+expect_err "curve: graze from a PD row" "valid: a GR in x"
+
+# the fig 5.12 border curves and the fig 5.8 switching curve (examples):
+# their points on the border to 1e-10 and the points docs/curves.md names
+for ex in curve-fig512-cross2 curve-fig512-graze3 curve-fig58-switch4; do
+  run_sc run "$SRC/examples/$ex.ini" --out "$TMP/$ex" --quiet --set output.plot=no
+  expect_rc "$ex" 0
+  check "$ex: every point on its border to 1e-10" awk -F, 'NR > 1 && NF > 1 {
+    if ($6 + 0 > 1e-10 || $6 + 0 < -1e-10) exit 1 }' "$TMP/$ex/curve.csv"
+  check "$ex: summary names the border followed" grep -q "border followed" "$TMP/$ex/summary.txt"
+done
+check "curve-fig512-cross2: meets GR at alpha 5.34724171" grep -q '^GR,5.34724171' "$TMP/curve-fig512-cross2/points.csv"
+check "curve-fig512-graze3: LP at alpha 5.61277256366" grep -q '^LP,5.61277256366' "$TMP/curve-fig512-graze3/points.csv"
+check "curve-fig58-switch4: PD at alpha 3.72864894" grep -q '^PD,3.72864894' "$TMP/curve-fig58-switch4/points.csv"
 
 # overlay: a chart of other parameters is refused; a chart of (mu1, mu2)
 # is drawn under the curve

@@ -1,8 +1,10 @@
 /**
  * @file curve.h
  * @brief Two-parameter curves of codimension-one points (folds and flips
- *        of a map iterate), their codimension-two points (CP, GPD, TP),
- *        and the tracing of such curves for a model (docs/curves.md).
+ *        of a map iterate, orbits on a border), their codimension-two
+ *        points (CP, GPD, TP, LP and PD on a border, the borders a curve
+ *        meets), and the tracing of such curves for a model
+ *        (docs/curves.md).
  *
  * Two levels:
  *  - generic (continuation/curve.c, continuation/map1d_curve.c): a curve
@@ -10,11 +12,13 @@
  *    sc_cont_problem), with test functions psi_k(u) whose zeros are its
  *    codimension-two points; sc_curve_locate() solves the extended system
  *    {F = 0, psi_k = 0} by Newton and returns a residual certificate.  Any
- *    defining system can be plugged in (border curves, later).
- *  - for a model (src/analysis/curve.c): sc_curve_trace() corrects a start
- *    onto the fold or flip system of f^m, continues the curve both ways
- *    by pseudo-arclength in (d, x, y), locates every codimension-two
- *    point, and reports points through callbacks.
+ *    defining system can be plugged in (src/analysis/curve_border.c
+ *    plugs in the border systems).
+ *  - for a model (src/analysis/curve.c, curve_border.c): sc_curve_trace()
+ *    corrects a start onto the fold, flip or border system of f^m,
+ *    continues the curve both ways by pseudo-arclength in (d, x, y),
+ *    locates every codimension-two point, and reports points through
+ *    callbacks.
  */
 #ifndef SLIPCONT_CURVE_H
 #define SLIPCONT_CURVE_H
@@ -85,6 +89,8 @@ typedef int (*sc_curve_jet_fn)(double x, const double *p, sc_curve_jet *jet,
 typedef enum {
   SC_CURVE_FOLD = 0, /**< g = x, g_x = +1 */
   SC_CURVE_FLIP = 1, /**< g = x, g_x = -1 */
+  SC_CURVE_BORDER = 2, /**< g = x, m_k = 0: the orbit on one of its
+                            borders (sc_curve_trace() only) */
 } sc_curve_type;
 
 /**
@@ -176,6 +182,9 @@ typedef struct {
   double ylo, yhi;
   double h0, hmax; /**< arclength steps (in (d, x, y)) */
   long max_points; /**< per direction */
+  /** SC_CURVE_BORDER: the kind of border followed; the start's orbit
+   * border of this kind nearest to zero is taken */
+  sc_border_kind border;
 } sc_curve_settings;
 
 /** @brief Defaults: fold, period 1, steps 1e-3 and 2e-2, 2000 points. */
@@ -185,20 +194,26 @@ SC_API void sc_curve_settings_default(sc_curve_settings *s);
 typedef struct {
   double x, y, d;     /**< parameters and the orbit point carried */
   double multiplier;  /**< (f^m)' there: +1 or -1 up to the tolerance */
-  double coefficient; /**< the normal-form coefficient (psi_0) */
+  double coefficient; /**< the normal-form coefficient (psi_0); on a
+                           border curve the border's value m_k (zero up
+                           to the residual) */
   int branch;         /**< 0: the first direction, 1: the other */
   const char *itinerary;
 } sc_curve_point;
 
 /** A codimension-two or end point of a traced curve. */
 typedef struct {
-  char label[8]; /**< "CP", "GPD", "TP", "EP" (end); with a '?'
-                      ("CP?") for a sign change of the test that
-                      was not located or is not a zero (note says
-                      why) */
+  char label[8]; /**< "CP", "GPD", "TP", "EP" (end); on a border
+                      curve "LP", "PD" (the orbit on the border has
+                      (f^m)' = +1, -1); where the curve meets a border
+                      of the orbit, that border's kind (sc_border_label:
+                      "GR", "CS", "SW", "BR", "TT"); with a '?' ("CP?",
+                      "GR?") for a sign change of the test that was not
+                      located or is not a zero (note says why) */
   double x, y, d;
   double coefficient;
-  double residual; /**< sc_curve_cert.residual; NaN for EP */
+  double residual; /**< sc_curve_cert.residual; NaN for EP; for a
+                        border point, the largest of |F| and |m_k| */
   char note[128];  /**< "beta min", "supercritical to subcritical",
                         why the curve ended, ... */
 } sc_curve_special;
@@ -220,18 +235,38 @@ typedef struct {
                             newton_ftol, or 4 times the rounding floor of
                             the system at the start where that is larger
                             (at most 1e-9) */
+  int border_iterate;  /**< border curve: the iterate of f^m whose border
+                            is followed (from 0); -1 otherwise */
+  char border[64];     /**< border curve: that border's name; "" */
 } sc_curve_stats;
 
 /**
  * @brief Trace the fold or flip curve of the period-m orbit through
  * (d0, x, y) of map @p m (its parameters ix, iy hold the start's x, y):
  * correct the start at fixed y, continue both ways, locate CP / GPD /
- * TP, stop at the box, where the curve closes, or where the orbit's
- * itinerary changes (a border: said in the EP note).  The map's
- * parameters are changed during the trace and restored at the end.
- * Needs SC_EVAL_DERIV2 of the model (bk2: exact flows).
- * @return SC_OK; SC_EINVAL for bad settings; SC_ENOCONV if the start
- *         could not be corrected; SC_ECALLBACK if an output callback
+ * TP, stop at the box, or where the curve closes.  The orbit keeps the
+ * itinerary code of its start (single shooting: evaluated along it past
+ * a border, sc_map_iterate_ex()); the borders of the orbit are test
+ * functions, and where one changes sign the point {f^m(d) = d, (f^m)' =
+ * +-1, m_k = 0} is located by Newton in (d, x, y) and reported with the
+ * border's kind as label; the curve goes on across it with the orbit's
+ * new itinerary where the fold or flip persists there (single shooting),
+ * and ends there otherwise (the note says which).  What cannot be
+ * located is a "KIND?" row with the reason.  A curve also ends where its
+ * points stop meeting their system (the residual's rounding floor above
+ * 10 tolerances, next to d*).
+ *
+ * With set->type SC_CURVE_BORDER the curve is that of the orbit on its
+ * border of kind set->border nearest to the start: {f^m(d) = d, m_k = 0}
+ * along the start's itinerary code (the border's own code for its
+ * iterate), with LP and PD ((f^m)' = +-1) and the crossings of the
+ * orbit's other borders located (docs/curves.md).
+ * The map's parameters are changed during the trace and restored at the
+ * end.  Needs SC_EVAL_DERIV2 of the model for fold and flip curves (bk2:
+ * exact flows), and borders (sc_map_has_borders()) for border curves.
+ * @return SC_OK; SC_EINVAL for bad settings, a border curve of a model
+ *         without borders or of an orbit without a border of that kind;
+ *         SC_ENOCONV if the start could not be corrected; SC_ECALLBACK if an output callback
  *         stopped; the map's errors at the start.
  */
 SC_API int sc_curve_trace(sc_map *m, const sc_curve_settings *set, double d0,

@@ -16,6 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "analysis/border_list.h"
 #include "slipcont/branch.h"
 #include "slipcont/continuation.h"
 #include "slipcont/shooting.h"
@@ -483,32 +484,14 @@ static int same_codes(const sc_itin_code *a, const sc_itin_code *c, int q,
   return 1;
 }
 
-/* f^m at (d, p) with every border, the list grown until it holds them
- * all; along `force` (NULL: natural) with the codes into `codes`. */
+/* f^m at (d, p) with every border (border_list.h); along `force` (NULL:
+ * natural) with the codes into `codes`. */
 static int orbit_borders(sc_orbit_branch *b, double d, int period,
                          const sc_itin_code *force, sc_itin_code *codes,
                          sc_border_list *bl, sc_map_value *v, sc_msg *msg) {
-  for (;;) {
-    bl->n = 0;
-    int st = sc_map_iterate_ex(b->m, d, period,
-                               SC_EVAL_DERIV | SC_EVAL_ITINERARY, force,
-                               codes, bl, v, msg);
-    if (st || bl->n <= bl->cap) return st;
-    size_t nc = 2 * bl->n;
-    sc_border *q = realloc(bl->b, nc * sizeof *q);
-    if (!q) return sc_fail(msg, SC_ENOMEM, "branch: no memory for borders");
-    bl->b = q;
-    bl->cap = nc;
-  }
-}
-
-static const sc_border *find_border(const sc_border_list *l,
-                                    const sc_border *x) {
-  for (size_t i = 0; i < l->n && i < l->cap; i++)
-    if (l->b[i].iterate == x->iterate && l->b[i].kind == x->kind &&
-        strcmp(l->b[i].name, x->name) == 0)
-      return &l->b[i];
-  return NULL;
+  return sc_border_list_iterate(b->m, d, period,
+                                SC_EVAL_DERIV | SC_EVAL_ITINERARY, force,
+                                codes, bl, v, msg);
 }
 
 /* ------------------------------------------------------------------ */
@@ -546,7 +529,7 @@ static int border_at(sc_orbit_branch *b, int period, double d, double p,
   if (set_p(b->m, b->sp.param, p)) return SC_EINVAL;
   int st = orbit_borders(b, d, period, codes, NULL, &b->bl_tmp, v, NULL);
   if (st) return st;
-  const sc_border *x = find_border(&b->bl_tmp, like);
+  const sc_border *x = sc_border_list_find(&b->bl_tmp, like);
   if (!x) return SC_EUNDEF;
   *out = *x;
   return SC_OK;
@@ -1186,7 +1169,7 @@ static int border_crossed(sc_orbit_branch *b, segment *S, const double *u) {
   for (size_t i = 0; i < b->bl_cur.n && i < b->bl_cur.cap; i++) {
     const sc_border *c = &b->bl_cur.b[i];
     if (c->value > 0) continue;
-    const sc_border *a = find_border(&b->bl_prev, c);
+    const sc_border *a = sc_border_list_find(&b->bl_prev, c);
     if (!a || !(a->value > 0)) continue;
     nchanged++;
     sc_border like = *c;

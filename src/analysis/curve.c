@@ -9,15 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "slipcont/curve.h"
-
-/* The smallest residual tolerance of a curve's system: its residual
- * g_x -+ 1 is a product of m derivatives, each good to ~1e-13 relative
- * at event-rtol 1e-14 and amplified near d* and grazings, so 1e-13 (the
- * default preset's) is below its rounding floor on period-4 and -6
- * orbits of fig 5.8 (measured: 5e-13 .. 1.2e-12); 1e-11 is a factor 10
- * inside the 1e-10 the curves must meet (docs/curves.md). */
-#define SC_CURVE_FTOL 1e-11
+#include "analysis/curve_impl.h"
 
 void sc_curve_settings_default(sc_curve_settings *s) {
   memset(s, 0, sizeof *s);
@@ -35,9 +27,56 @@ void sc_curve_settings_default(sc_curve_settings *s) {
 typedef struct {
   sc_map *m;
   int period, ix, iy;
-  char itin[SC_ITIN_LEN]; /* of the last evaluation */
+  char itin[SC_ITIN_LEN]; /* of the last evaluation (natural) */
   sc_msg emsg;            /* of the last failed evaluation */
+  /* single shooting along the start's code: where the natural itinerary
+   * is not itin0 (past a border), the orbit is evaluated along fs's codes
+   * instead; NULL: natural only */
+  sc_forced_sys *fs;
+  const char *itin0;
 } map_ctx;
+
+/* g's jet along c->fs's codes: g, g_x, g_p exact (first derivatives of
+ * the forced evaluation), the second and third ones by central
+ * differences of the exact g_x with step fd_step (1 + |u|): they enter
+ * only the continuation's Jacobian and tests past a border, where the
+ * curve ends at the located border point. */
+static int forced_jet(map_ctx *c, double x, const double *p, sc_curve_jet *j) {
+  sc_forced_sys *fs = c->fs;
+  sc_map_value v;
+  double u[3] = {x, p[c->ix], p[c->iy]};
+  int rc = sc_forced_eval(fs, u, fs->codes, NULL, &v);
+  if (rc) {
+    c->emsg = fs->emsg;
+    return rc;
+  }
+  size_t np = sc_map_nparam(c->m);
+  j->g = v.f, j->gx = v.dfdd;
+  for (size_t i = 0; i < np; i++)
+    j->gp[i] = v.dfdp[i], j->gxp[i] = j->gxxp[i] = 0;
+  double gx0 = v.dfdd;
+  for (int k = 0; k < 3; k++) {
+    double w[3] = {u[0], u[1], u[2]}, h = fs->fd_step * (1 + fabs(u[k]));
+    double gd[2];
+    for (int e = 0; e < 2; e++) {
+      w[k] = u[k] + (e ? -h : h);
+      if ((rc = sc_forced_eval(fs, w, fs->codes, NULL, &v))) return rc;
+      gd[e] = v.dfdd;
+    }
+    double dk = (gd[0] - gd[1]) / (2 * h);
+    if (k == 0) {
+      j->gxx = dk;
+      j->gxxx = (gd[0] - 2 * gx0 + gd[1]) / (h * h);
+    } else {
+      j->gxp[k == 1 ? c->ix : c->iy] = dk;
+    }
+  }
+  /* the parameters back at p (the differences moved them) */
+  if (sc_map_set_param(c->m, (size_t)c->ix, p[c->ix], &c->emsg) ||
+      sc_map_set_param(c->m, (size_t)c->iy, p[c->iy], &c->emsg))
+    return 1;
+  return isfinite(j->gxx) && isfinite(j->gxxx) ? 0 : 1;
+}
 
 static int jet_fn(double x, const double *p, sc_curve_jet *j, void *user) {
   map_ctx *c = user;
@@ -46,9 +85,12 @@ static int jet_fn(double x, const double *p, sc_curve_jet *j, void *user) {
     return 1; /* outside the parameters' range: shrink the step */
   sc_map_value v;
   if (sc_map_iterate(c->m, x, c->period, SC_EVAL_DERIV2 | SC_EVAL_ITINERARY, &v,
-                     &c->emsg))
-    return 1;
+                     &c->emsg)) {
+    c->itin[0] = '\0';
+    return c->fs ? forced_jet(c, x, p, j) : 1;
+  }
   snprintf(c->itin, sizeof c->itin, "%s", v.itinerary);
+  if (c->fs && strcmp(c->itin, c->itin0)) return forced_jet(c, x, p, j);
   j->g = v.f;
   j->gx = v.dfdd;
   j->gxx = v.d2fdd2;
@@ -75,6 +117,11 @@ typedef struct {
   map_ctx mc1; /* f, for multiple shooting */
   const sc_accuracy *acc;
   char itin0[SC_ITIN_LEN];
+  /* the start's itinerary code and the orbit's borders there, watched
+   * along the curve (fs.nwatch = 0: none, a model without borders) */
+  sc_forced_sys fs;
+  double *bpa, *bpb, *bpc; /* border values at prev, cur; prev's copy */
+  double start3[3];         /* the corrected start (d, x, y) */
   size_t N;   /* unknowns: 3, or m + 2 with multiple shooting */
   double *u0; /* N: the corrected start */
   double *prev, *cur, *u, *mid, *F; /* N each: work */
@@ -139,9 +186,6 @@ static double dist_inf(const trace *T, const double *a, const double *b) {
     m = fmax(m, fabs(a[i] - b[i]));
   return m;
 }
-
-/* sqrt(DBL_EPSILON) */
-#define SC_SQRT_EPS 1.4901161193847656e-08
 
 /* Locate the zero of test k between the points a and b (psi values pa,
  * pb of opposite signs) and report it. */
@@ -210,40 +254,248 @@ static int end_point(trace *T, const double *u, const char *why) {
 
 /* Damped Newton for the start at fixed y on the single-shooting system,
  * unknowns (d, x): the orbits of f^m can sit close to d*, where
- * f' ~ |d - d*|^(-1/2) (MODEL.md), and a full step from a guess
+ * f' ~ |d - d*|^(-1/2) (docs/derivations.md), and a full step from a guess
  * overshoots; halving the step until the residual decreases brings the
  * guess in, and the branch's own corrector then polishes it.  u holds
  * (d, x, y) in and out. */
 static int correct_start(trace *T, double *u, double *floor_out, sc_msg *msg) {
-  double F[2], J[6], Ft[2], ut[3];
-  *floor_out = HUGE_VAL;
-  const sc_cont_problem *pb = &T->ss.pb;
-  if (pb->f(u, F, pb->user))
+  if (sc_curve_correct_fixed(&T->ss.pb, u, 2, T->acc, floor_out))
     return sc_fail(msg, SC_ENOCONV,
                    "curve: the map fails at the start (%.200s)",
                    T->mc.emsg.text);
-  for (int it = 0; it < T->acc->newton_maxiter; it++) {
-    double r = fmax(fabs(F[0]), fabs(F[1]));
-    *floor_out = r;
-    if (r <= T->acc->newton_ftol) return SC_OK;
-    if (pb->jac(u, J, pb->user)) break;
-    /* columns d (0) and x (1) of the 2 x 3 Jacobian */
-    double a = J[0], b = J[1], c = J[3], e = J[4], det = a * e - b * c;
-    if (det == 0) break;
-    double dd = -(e * F[0] - b * F[1]) / det;
-    double dx = -(a * F[1] - c * F[0]) / det;
-    double lam = 1;
-    for (int h = 0; h < 30; h++, lam *= 0.5) {
-      ut[0] = u[0] + lam * dd, ut[1] = u[1] + lam * dx, ut[2] = u[2];
-      if (pb->f(ut, Ft, pb->user) == 0 && fmax(fabs(Ft[0]), fabs(Ft[1])) < r)
-        break;
-    }
-    if (!(fmax(fabs(Ft[0]), fabs(Ft[1])) < r))
-      return SC_OK; /* no step decreases the residual: its rounding floor */
-    memcpy(u, ut, sizeof ut);
-    memcpy(F, Ft, sizeof Ft);
-  }
   return SC_OK; /* the branch corrector decides */
+}
+
+/* ---- the borders of the orbit along the curve ------------------------ */
+
+/* The watched borders' values at the point u (trace layout), along the
+ * start's code; NaN where one cannot be evaluated. */
+static void border_values(trace *T, const double *u, double *bv) {
+  double w[3] = {u[0], UX(T, u), UY(T, u)};
+  sc_map_value v;
+  int rc = sc_forced_eval(&T->fs, w, T->fs.codes, NULL, &v);
+  for (size_t j = 0; j < T->fs.nwatch; j++) {
+    const sc_border *b = rc ? NULL : sc_forced_find(&T->fs.bl, &T->fs.watch[j]);
+    bv[j] = b ? b->value : NAN;
+  }
+}
+
+/* Locate where the curve meets watched border j: Newton on {f^m(d) = d,
+ * (f^m)' = +-1, m_j = 0} in (d, x, y) from w (overwritten), along the
+ * start's code with the border's own code for its iterate.  Reported
+ * with the border's kind as label, or as "KIND?" with the reason; *found
+ * says whether it was.  `pa`, `pb`: m_j at
+ * the bracket's ends; `reach`: how far from w the point may lie. */
+static int cross_border(trace *T, const double *w, const double *dir3,
+                        double *v, int *ok, sc_msg *msg);
+
+static int locate_border_pt(trace *T, size_t j, double *w, double pa,
+                            double pb, double reach, int fallback,
+                            int *found, const double *dir3, double *next,
+                            int *crossed, const double *a3, const double *b3,
+                            int *jump) {
+  const sc_border bwc = T->fs.watch[j]; /* the watch may be replaced */
+  const sc_border *bw = &bwc;
+  *crossed = 0;
+  if (jump) *jump = 0;
+  const char *kl = sc_border_label(bw->kind);
+  const char *tn = T->set->type == SC_CURVE_FOLD ? "fold" : "flip";
+  char rej[8], note[512];
+  snprintf(rej, sizeof rej, "%s?", kl);
+  *found = 0;
+  sc_forced_sys L;
+  sc_msg lm;
+  int st = sc_forced_init(&L, T->mc.m, T->set->period, T->set->ix,
+                          T->set->iy, T->set->type, T->acc->fd_step, &lm);
+  if (st) return st;
+  memcpy(L.codes, T->fs.codes, (size_t)T->set->period * sizeof *L.codes);
+  sc_forced_use_alt(&L, bw);
+  if ((st = sc_forced_watch(&L, bw, 1, &lm))) {
+    sc_forced_free(&L);
+    return st;
+  }
+  sc_curve_system cs;
+  sc_forced_system(&L, &cs);
+  double mid[3] = {w[0], w[1], w[2]};
+  sc_curve_cert cert;
+  int rc = sc_curve_locate(&cs, 0, w, T->acc, &cert, &lm);
+  double dist = fmax(fabs(w[0] - mid[0]),
+                     fmax(fabs(w[1] - mid[1]), fabs(w[2] - mid[2])));
+  if (rc == SC_OK &&
+      !(fabs(cert.psi) <= fmax(SC_SQRT_EPS * fmax(fabs(pa), fabs(pb)),
+                               T->acc->newton_ftol) &&
+        dist <= reach)) {
+    rc = SC_ENOCONV;
+    snprintf(lm.text, sizeof lm.text,
+             "converged to a point %.3g away (reach %.3g), m = %.3g", dist,
+             reach, cert.psi);
+  }
+  double *u = T->u;
+  if (rc == SC_OK) lm.text[0] = '\0';
+  if (rc && a3 && b3) {
+    /* a border that is not smooth at its zero: bisection along the curve
+     * (the point known to the bracket's width); or a border that jumps */
+    double m, width;
+    int bs = sc_curve_bisect(&cs, 0, a3, b3, pa, pb, T->acc, w, &m, &width);
+    if (bs == SC_ENOMEM) {
+      sc_forced_free(&L);
+      return SC_ENOMEM;
+    }
+    if (bs == SC_OK) {
+      rc = SC_OK;
+      cert.psi = m;
+      double F[2];
+      cert.residual = cs.pb.f(w, F, cs.pb.user) ? NAN
+                                                : fmax(fabs(F[0]), fabs(F[1]));
+      snprintf(lm.text, sizeof lm.text, "bisection (Newton fails), width %.2g",
+               width);
+    } else if (bs == SC_EUNDEF) {
+      if (jump) *jump = 1;
+      char nt[SC_MSG_LEN];
+      snprintf(nt, sizeof nt, "%.60s", lm.text);
+      snprintf(lm.text, sizeof lm.text,
+               "the border jumps (not a zero); Newton: %.60s", nt);
+    }
+  }
+  if (rc) {
+    sc_forced_free(&L);
+    u[0] = mid[0], UX(T, u) = mid[1], UY(T, u) = mid[2];
+    if (bw->on_state)
+      /* f' may be unbounded on a border in the state (bk2, driver
+       * frozen: |d - d*|^(-1/2)), so (f^m)' = +-1 cannot hold there */
+      snprintf(note, sizeof note,
+               "%s ends next to %s: not located (the multiplier is singular "
+               "on this border: %.40s); %.40s",
+               tn, kl, lm.text, bw->name);
+    else
+      snprintf(note, sizeof note, "%s meets %s%s: not located: %.90s; %.40s",
+               tn, kl,
+               fallback ? " (the nearest when the corrector stopped)" : "",
+               lm.text, bw->name);
+    return emit_special(T, rej, u, NAN, cert.residual, note);
+  }
+  *found = 1;
+  sc_forced_free(&L);
+  u[0] = w[0], UX(T, u) = w[1], UY(T, u) = w[2];
+  sc_curve_jet j2;
+  double coef =
+      g_at(T, u, &j2) ? NAN : sc_curve_coefficient(T->set->type, &j2);
+  char old[SC_ITIN_LEN];
+  snprintf(old, sizeof old, "%s", T->itin0);
+  char how[SC_MSG_LEN];
+  snprintf(how, sizeof how, "%s", lm.text);
+  if (dir3 && (st = cross_border(T, w, dir3, next, crossed, &lm))) return st;
+  if (*crossed)
+    snprintf(note, sizeof note,
+             "%s meets %s at iterate %d%s%.40s: continued across, itinerary "
+             "%.50s -> %.50s; %.50s",
+             tn, kl, bw->iterate + 1, how[0] ? ", " : "", how, old, T->itin0,
+             bw->name);
+  else
+    snprintf(note, sizeof note,
+             "%s meets %s at iterate %d%s%s%.40s: the curve ends here (%s); "
+             "%.50s",
+             tn, kl, bw->iterate + 1,
+             fallback ? ", found after the corrector stopped" : "",
+             how[0] ? ", " : "", how,
+             T->set->multiple ? "not continued across with multiple shooting"
+             : !dir3          ? "not continued across"
+                              : "no such point on the other side",
+             bw->name);
+  return emit_special(T, kl, u, coef, fmax(cert.residual, fabs(cert.psi)),
+                      note);
+}
+
+/* Where the curve cannot go on from u (the corrector stopped, or the
+ * residual's floor rose above the tolerance): a border past which the
+ * orbit cannot be followed (a forced event that does not occur) shows no
+ * sign change, so the nearest watched border is located from u. */
+static int near_border(trace *T, const double *u, int *found) {
+  double dist, w[3] = {u[0], UX(T, u), UY(T, u)};
+  long jn = sc_forced_nearest(&T->fs, w, &dist);
+  *found = 0;
+  if (jn < 0 || !(dist <= 4 * T->set->hmax)) return SC_OK;
+  int crossed;
+  return locate_border_pt(T, (size_t)jn, w, T->bpa[jn], T->bpa[jn],
+                          8 * T->set->hmax, 1, found, NULL, NULL, &crossed,
+                          NULL, NULL, NULL);
+}
+
+/* The start's itinerary code and the orbit's borders, at the corrected
+ * start (d, x, y): the borders are watched along the curve, and single
+ * shooting follows the code past a border. */
+static int watch_setup(trace *T, const double *start, sc_msg *msg) {
+  int st = sc_forced_init(&T->fs, T->mc.m, T->set->period, T->set->ix,
+                          T->set->iy, T->set->type, T->acc->fd_step, msg);
+  if (st) return st;
+  sc_map_value v;
+  double w[3] = {start[0], start[1], start[2]};
+  if (sc_forced_eval(&T->fs, w, NULL, T->fs.codes, &v)) return SC_OK;
+  for (int k = 0; k < T->set->period; k++)
+    if (T->fs.codes[k].n == 0) return SC_OK; /* no code to follow */
+  size_t nb = T->fs.bl.n;
+  if ((st = sc_forced_watch(&T->fs, T->fs.bl.b, nb, msg))) return st;
+  T->bpa = calloc(3 * (nb ? nb : 1), sizeof *T->bpa);
+  if (!T->bpa) return sc_fail(msg, SC_ENOMEM, "curve: out of memory");
+  T->bpb = T->bpa + nb, T->bpc = T->bpb + nb;
+  snprintf(T->itin0, sizeof T->itin0, "%s", v.itinerary);
+  if (!T->set->multiple) {
+    T->mc.fs = &T->fs;
+    T->mc.itin0 = T->itin0;
+  }
+  return SC_OK;
+}
+
+/* Most border crossings per direction of a curve: a guard against
+ * crossing the same border back and forth. */
+#define SC_CURVE_MAX_CROSSINGS 16
+
+/* The watch of the start again (a direction that crossed borders
+ * replaced it). */
+static int watch_reset(trace *T, const double *start, sc_msg *msg) {
+  sc_forced_free(&T->fs);
+  free(T->bpa);
+  T->bpa = T->bpb = T->bpc = NULL;
+  T->mc.fs = NULL;
+  T->mc.itin0 = NULL;
+  return watch_setup(T, start, msg);
+}
+
+/* After the border point w (d, x, y), met going along dir3: does the
+ * fold or flip persist on the other side with the orbit's new itinerary?
+ * From w one small step (h0) along dir3, the new itinerary's code is
+ * taken and the point corrected onto the curve's system at fixed y along
+ * it; it persists when that converges within one largest step of w with
+ * the natural itinerary the new one (*ok = 1, the start in v).  The watch
+ * is then the new itinerary's borders.  Single shooting only. */
+static int cross_border(trace *T, const double *w, const double *dir3,
+                        double *v, int *ok, sc_msg *msg) {
+  *ok = 0;
+  if (T->set->multiple) return SC_OK;
+  double nt = fmax(fabs(dir3[0]), fmax(fabs(dir3[1]), fabs(dir3[2])));
+  if (!(nt > 0)) return SC_OK;
+  for (int i = 0; i < 3; i++)
+    v[i] = w[i] + T->set->h0 * dir3[i] / nt;
+  char old[SC_ITIN_LEN];
+  snprintf(old, sizeof old, "%s", T->itin0);
+  int st = watch_reset(T, v, msg);
+  if (st) return st;
+  if (!T->mc.fs || strcmp(old, T->itin0) == 0) return SC_OK;
+  double floor;
+  if (correct_start(T, v, &floor, msg) != SC_OK ||
+      !(floor <= 10 * T->acc->newton_ftol))
+    return SC_OK;
+  sc_map_value val;
+  if (sc_forced_eval(&T->fs, v, NULL, NULL, &val) ||
+      strcmp(val.itinerary, T->itin0) != 0)
+    return SC_OK;
+  double dist = fmax(fabs(v[0] - w[0]),
+                     fmax(fabs(v[1] - w[1]), fabs(v[2] - w[2])));
+  /* the new side's curve must start at the border point: within a few
+   * of the small steps taken across (a multiplier that jumps across the
+   * border leaves the new itinerary's fold or flip elsewhere) */
+  *ok = dist <= 4 * T->set->h0;
+  return SC_OK;
 }
 
 /* One direction from the corrected start. */
@@ -268,7 +520,10 @@ static int run(trace *T, int dir, int branch, sc_msg *msg) {
     cset.linsolve = sc_linsolve_klu;
   }
   sc_branch *b;
-  int st = sc_branch_alloc(&pb, &cset, T->acc, &b, msg);
+  int st;
+  if (branch == 1 && T->bpa && (st = watch_reset(T, T->start3, msg)))
+    return st;
+  st = sc_branch_alloc(&pb, &cset, T->acc, &b, msg);
   if (st) return st;
   st = sc_branch_set(b, T->u0, msg);
   if (st) {
@@ -281,7 +536,10 @@ static int run(trace *T, int dir, int branch, sc_msg *msg) {
   if (branch == 0) {
     memcpy(T->u0, prev, N * sizeof *prev);
     /* the start's itinerary: the curve follows this one */
+    sc_forced_sys *keep = T->mc.fs;
+    T->mc.fs = NULL;
     g_at(T, prev, &j);
+    T->mc.fs = keep;
     snprintf(T->itin0, sizeof T->itin0, "%s", T->mc.itin);
     if ((st = emit_point(T, prev, 0))) goto done;
   } else if ((st = emit_point(T, prev, 1))) {
@@ -292,10 +550,18 @@ static int run(trace *T, int dir, int branch, sc_msg *msg) {
     st = sc_fail(msg, SC_ENOCONV, "curve: test functions fail at the start");
     goto done;
   }
+  size_t nw = T->fs.nwatch;
+  if (nw) border_values(T, prev, T->bpa);
   double far = 0;
+  int ncross = 0;
   for (;;) {
     sc_msg bm;
     int bs = sc_branch_step(b, &bm);
+    if (bs < 0 && nw) {
+      int found = 0;
+      if ((st = near_border(T, prev, &found))) goto done;
+      if (found) break;
+    }
     if (bs < 0) {
       char why[128];
       snprintf(why, sizeof why, "stopped: %.110s", bm.text);
@@ -303,19 +569,132 @@ static int run(trace *T, int dir, int branch, sc_msg *msg) {
       break;
     }
     memcpy(cur, sc_branch_point(b), N * sizeof *cur);
-    /* the orbit must keep its itinerary: a change is a border */
-    if (g_at(T, cur, &j) == 0 && strcmp(T->mc.itin, T->itin0)) {
+    /* the borders of the orbit: the first to change sign along the step
+     * is located, and the curve ends there */
+    size_t jb = nw;
+    double wb = 2;
+    if (nw) {
+      border_values(T, cur, T->bpb);
+      for (size_t k = 0; k < nw; k++) {
+        double ba = T->bpa[k], bb = T->bpb[k];
+        if (((ba > 0 && bb < 0) || (ba < 0 && bb > 0)) && ba / (ba - bb) < wb)
+          wb = ba / (ba - bb), jb = k;
+      }
+      memcpy(T->bpc, T->bpa, nw * sizeof *T->bpa);
+      memcpy(T->bpa, T->bpb, nw * sizeof *T->bpa);
+    }
+    if (T->cs.test(cur, psi, T->cs.user) == 0) {
+      for (size_t k = 0; k < 3; k++)
+        if (((psi_prev[k] > 0 && psi[k] < 0) ||
+             (psi_prev[k] < 0 && psi[k] > 0)) &&
+            psi_prev[k] / (psi_prev[k] - psi[k]) < wb)
+          if ((st = locate(T, k, prev, cur, psi_prev[k], psi[k]))) goto done;
+      memcpy(psi_prev, psi, sizeof psi);
+    }
+    if (jb < nw) {
+      /* every border that changed sign, in the order met along the step
+       * (a border may jump rather than cross: its location fails and is
+       * reported, and the next one is tried); the first located ends the
+       * curve */
+      double a3[3], b3[3];
+      a3[0] = prev[0], a3[1] = UX(T, prev), a3[2] = UY(T, prev);
+      b3[0] = cur[0], b3[1] = UX(T, cur), b3[2] = UY(T, cur);
+      double span = fmax(fabs(b3[0] - a3[0]),
+                         fmax(fabs(b3[1] - a3[1]), fabs(b3[2] - a3[2])));
+      /* the point may lie off the chord: where the steps shrank (near d*,
+       * the orbit moves fast in d) the bracket is short, so at least one
+       * largest step */
+      double reach = fmax(2 * span, s->hmax);
+      int found = 0, crossed = 0, njump = 0, ntried = 0;
+      double wlast = -1, dir3[3], next[3];
+      for (int i = 0; i < 3; i++)
+        dir3[i] = b3[i] - a3[i];
+      for (;;) {
+        size_t jn = nw;
+        double wn = 2;
+        for (size_t k = 0; k < nw; k++) {
+          double ba = T->bpc[k], bb = T->bpb[k];
+          if (((ba > 0 && bb < 0) || (ba < 0 && bb > 0))) {
+            double wk = ba / (ba - bb);
+            if ((wk > wlast || (wk == wlast && k > jb)) && wk < wn)
+              wn = wk, jn = k;
+          }
+        }
+        if (jn == nw) break;
+        jb = jn, wlast = wn;
+        double w[3];
+        for (int i = 0; i < 3; i++)
+          w[i] = a3[i] + wn * (b3[i] - a3[i]);
+        int jump = 0;
+        if ((st = locate_border_pt(
+                 T, jn, w, T->bpc[jn], T->bpb[jn], reach, 0, &found,
+                 ncross < SC_CURVE_MAX_CROSSINGS ? dir3 : NULL, next,
+                 &crossed, a3, b3, &jump)))
+          goto done;
+        if (found) break;
+        njump += jump, ntried++;
+      }
+      if (found && crossed) {
+        /* a new branch from the other side, going on the same way in y */
+        ncross++;
+        sc_branch_free(b);
+        b = NULL;
+        cset.direction = dir3[2] >= 0 ? 1 : -1;
+        double *u = T->mid;
+        u[0] = next[0], UX(T, u) = next[1], UY(T, u) = next[2];
+        for (size_t k = 1; k + 2 < N; k++) /* multiple: not crossed */
+          u[k] = next[0];
+        if ((st = sc_branch_alloc(&pb, &cset, T->acc, &b, msg))) goto done;
+        if (sc_branch_set(b, u, &bm)) {
+          char why[128];
+          snprintf(why, sizeof why, "across the border the start fails: %.90s",
+                   bm.text);
+          st = end_point(T, u, why);
+          break;
+        }
+        memcpy(prev, sc_branch_point(b), N * sizeof *prev);
+        if ((st = emit_point(T, prev, branch))) goto done;
+        if (T->cs.test(prev, psi_prev, T->cs.user)) {
+          st = end_point(T, prev, "across the border the tests fail");
+          break;
+        }
+        nw = T->fs.nwatch;
+        if (nw) border_values(T, prev, T->bpa);
+        continue;
+      }
+      if (found) break;
+      if (njump < ntried) {
+        st = end_point(T, prev, "borders changed sign, none located (rows "
+                                "above)");
+        break;
+      }
+      /* only borders that jump: no crossing, the curve goes on (the
+       * itinerary check below still watches the orbit) */
+    }
+    /* A point accepted at the corrector's rounding floor with a residual
+     * far above the tolerance: next to d* (f'' unbounded, docs/derivations.md) the
+     * multiplier's rounding error grows without bound; the curve ends
+     * where its points stop meeting their system (10 tolerances). */
+    if (T->cs.pb.f(cur, T->F, T->cs.pb.user) == 0 &&
+        norm_inf(T->F, T->cs.pb.n) > 10 * T->acc->newton_ftol) {
+      char why[128];
+      snprintf(why, sizeof why,
+               "the residual's rounding floor (%.3g) exceeds the tolerance "
+               "(%.3g): f'' grows without bound here",
+               norm_inf(T->F, T->cs.pb.n), T->acc->newton_ftol);
+      int found = 0;
+      if (nw && (st = near_border(T, prev, &found))) goto done;
+      if (!found) st = end_point(T, prev, why);
+      break;
+    }
+    /* the orbit must keep its itinerary: a change without a border of
+     * the orbit changing sign is reported as such */
+    if (g_at(T, cur, &j) == 0 && T->mc.itin[0] && strcmp(T->mc.itin, T->itin0)) {
       char why[128];
       snprintf(why, sizeof why, "border: itinerary %.40s -> %.40s", T->itin0,
                T->mc.itin);
       st = end_point(T, prev, why);
       break;
-    }
-    if (T->cs.test(cur, psi, T->cs.user) == 0) {
-      for (size_t k = 0; k < 3; k++)
-        if ((psi_prev[k] > 0 && psi[k] < 0) || (psi_prev[k] < 0 && psi[k] > 0))
-          if ((st = locate(T, k, prev, cur, psi_prev[k], psi[k]))) goto done;
-      memcpy(psi_prev, psi, sizeof psi);
     }
     if (UX(T, cur) < s->xlo || UX(T, cur) > s->xhi) {
       st = end_point(T, prev, "the box's edge in x");
@@ -349,6 +728,7 @@ int sc_curve_trace(sc_map *m, const sc_curve_settings *set, double d0,
                    sc_msg *msg) {
   size_t np = sc_map_nparam(m);
   memset(stats, 0, sizeof *stats);
+  stats->border_iterate = -1;
   if (set->period < 1 || set->ix < 0 || set->iy < 0 || (size_t)set->ix >= np ||
       (size_t)set->iy >= np || set->ix == set->iy || !(set->h0 > 0) ||
       !(set->hmax >= set->h0) || set->max_points < 1 ||
@@ -357,6 +737,8 @@ int sc_curve_trace(sc_map *m, const sc_curve_settings *set, double d0,
                    "sc_curve_trace: bad settings (period %d >= 1, x, y "
                    "distinct parameters, 0 < h0 <= hmax, lo < hi)",
                    set->period);
+  if (set->type == SC_CURVE_BORDER)
+    return sc_curve_trace_border(m, set, d0, out, stats, msg);
   trace T;
   memset(&T, 0, sizeof T);
   T.set = set;
@@ -428,19 +810,19 @@ int sc_curve_trace(sc_map *m, const sc_curve_settings *set, double d0,
    * start where that is larger (reported), never beyond 1e-9 (the fast
    * preset's). */
   sc_accuracy acc = *T.acc;
-  acc.newton_ftol = fmax(acc.newton_ftol, SC_CURVE_FTOL);
-  if (floor > acc.newton_ftol && floor <= 2.5e-10) {
-    acc.newton_ftol = 4 * floor;
-    acc.newton_atol = fmax(acc.newton_atol, 4 * floor);
-  }
+  sc_curve_ftol(&acc, floor);
   stats->ftol = acc.newton_ftol;
   T.acc = &acc;
+  memcpy(T.start3, start, sizeof T.start3);
+  if (st == SC_OK && sc_map_has_borders(m)) st = watch_setup(&T, start, msg);
   if (st == SC_OK) st = run(&T, +1, 0, msg);
   if (st == SC_OK && !T.closed) st = run(&T, -1, 1, msg);
   stats->closed = T.closed;
   sc_map_set_param(m, (size_t)set->ix, x0, NULL);
   sc_map_set_param(m, (size_t)set->iy, y0, NULL);
   sc_curve_ms_work_free(T.msys.work);
+  sc_forced_free(&T.fs);
+  free(T.bpa);
   free(mem);
   return st;
 }

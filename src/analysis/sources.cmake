@@ -2,4 +2,6 @@
 list(APPEND SC_SOURCES src/analysis/period.c src/analysis/chart.c)
 list(APPEND SC_SOURCES src/analysis/sweep.c)
 list(APPEND SC_SOURCES src/analysis/fixed_points.c src/analysis/branch_orbit.c)
-list(APPEND SC_SOURCES src/analysis/curve.c)
+list(APPEND SC_SOURCES src/analysis/curve.c
+  src/analysis/curve_border.c
+  src/analysis/border_list.c)

@@ -3,6 +3,7 @@
  * (sc_curve_trace, curve.h; docs/curves.md). */
 #define _XOPEN_SOURCE 700 /* realpath */
 
+#include <glob.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -13,8 +14,11 @@
 #include "slipcont/curve.h"
 
 static const sc_key_info curve_keys[] = {
-    {"type", SC_KEY_CHOICE, 1, NULL, 0, 0, 0, 0, "fold|flip",
-     "fold: multiplier +1 (f^m(d) = d, (f^m)' = 1); flip: (f^m)' = -1"},
+    {"type", SC_KEY_CHOICE, 1, NULL, 0, 0, 0, 0,
+     "fold|flip|graze|cross|switch|both|touch",
+     "fold: multiplier +1 (f^m(d) = d, (f^m)' = 1); flip: (f^m)' = -1; "
+     "graze, cross, switch, both, touch: the orbit on its nearest border of "
+     "that kind (GR, CS, SW, BR, TT), f^m(d) = d and m_k = 0"},
     {"x", SC_KEY_PARAM, 1, NULL, 0, 0, 0, 0, NULL,
      "the parameter the start was located in (horizontal axis)"},
     {"y", SC_KEY_PARAM, 1, NULL, 0, 0, 0, 0, NULL,
@@ -34,7 +38,8 @@ static const sc_key_info curve_keys[] = {
      "guess of an orbit point at the start (or give start)"},
     {"start", SC_KEY_TEXT, 0, NULL, 0, 0, 0, 0, NULL,
      "FILE:N, row N (1 = first after the header) of a branch task's "
-     "points.csv: an LP (type = fold) or PD (type = flip) located in x; "
+     "points.csv: an LP (type = fold), PD (type = flip) or border point "
+     "(GR for graze, CS cross, SW switch, BR both, TT touch) located in x; "
      "x, d0 and period are taken from it (instead of d0)"},
     {"shooting", SC_KEY_CHOICE, 0, "single", 0, 0, 0, 0, "single|multiple",
      "single: on f^m in (d, x, y); multiple: one equation per iterate in "
@@ -48,7 +53,37 @@ static const sc_key_info curve_keys[] = {
     {"overlay", SC_KEY_TEXT, 0, NULL, 0, 0, 0, 0, NULL,
      "a chart.csv of the chart task over the same x and y, drawn under "
      "the curve (path relative to the working folder)"},
+    {"also", SC_KEY_TEXT, 0, NULL, 0, 0, 0, 0, NULL,
+     "output folders of other curve tasks (separated by spaces; shell "
+     "patterns such as out/curve-fig58-* allowed), whose curves and "
+     "labelled points are drawn in the same plot"},
 };
+
+/* The folders of `also`, one at a time: copies the next word of *p into
+ * buf and advances; 0 at the end. */
+static int next_word(const char **p, char *buf, size_t len) {
+  const char *s = *p + strspn(*p, " \t");
+  size_t n = strcspn(s, " \t");
+  if (n == 0) return 0;
+  snprintf(buf, len, "%.*s", (int)n, s);
+  *p = s + n;
+  return 1;
+}
+
+/* The curve types in key order; border kinds of the border types. */
+static const char *const type_names[] = {"fold",  "flip", "graze", "cross",
+                                         "switch", "both", "touch"};
+static const char *const type_labels[] = {"LP", "PD", "GR", "CS",
+                                          "SW", "BR", "TT"};
+static const sc_border_kind type_kinds[] = {
+    0, 0, SC_BORDER_GRAZING, SC_BORDER_CROSSING, SC_BORDER_SWITCHING,
+    SC_BORDER_BOTH, SC_BORDER_TOUCH};
+
+static int type_index(const char *t) {
+  for (int i = 0; i < 7; i++)
+    if (strcmp(t, type_names[i]) == 0) return i;
+  return 0; /* the key's choices are checked by the scene */
+}
 
 /* The overlay's header must start with "<x>,<y>,period": a chart of
  * these two parameters.  Returns 0 or a status with the reason. */
@@ -164,6 +199,11 @@ static int curve_check(const sc_scene *s, sc_msg *msg) {
                              "y = %s is the same parameter as x (valid: "
                              "another parameter of the model)",
                              yn);
+  if (type_index(sc_scene_text(s, "type")) >= 2 && !sc_map_has_borders(m))
+    return sc_scene_fail_key(s, "task", "type", msg,
+                             "type = %s: model %s declares no borders "
+                             "(valid: fold or flip)",
+                             sc_scene_text(s, "type"), sc_map_type(m)->name);
   const char *spec = sc_scene_text(s, "start");
   int has_d0 = !isnan(sc_scene_real(s, "d0"));
   if (!spec == !has_d0)
@@ -178,7 +218,7 @@ static int curve_check(const sc_scene *s, sc_msg *msg) {
                                "start = %s: %s (valid: FILE:N, a row of a "
                                "branch task's points.csv)",
                                spec, why);
-    const char *want = strcmp(sc_scene_text(s, "type"), "flip") ? "LP" : "PD";
+    const char *want = type_labels[type_index(sc_scene_text(s, "type"))];
     if (strcmp(row.param, xn) || strcmp(row.label, want))
       return sc_scene_fail_key(s, "task", "start", msg,
                                "start = %s is a %s in %s (valid: a %s in x "
@@ -202,6 +242,37 @@ static int curve_check(const sc_scene *s, sc_msg *msg) {
           "the start's %s = %.17g (the [model] value) lies outside [%s, %s] "
           "(valid: inside the box)",
           nm[k], v, sc_scene_text(s, lo[k]), sc_scene_text(s, hi[k]));
+  }
+  const char *also = sc_scene_text(s, "also");
+  char dir[2048], path[2100];
+  for (const char *p = also; p && next_word(&p, dir, sizeof dir);) {
+    glob_t g;
+    int gr = glob(dir, 0, NULL, &g);
+    size_t ng = gr == 0 ? g.gl_pathc : 0;
+    if (ng == 0) {
+      if (gr == 0) globfree(&g);
+      return sc_scene_fail_key(s, "task", "also", msg,
+                               "also: %s matches no folder (valid: output "
+                               "folders of curve tasks; run them first)",
+                               dir);
+    }
+    for (size_t i = 0; i < ng; i++) {
+    snprintf(path, sizeof path, "%s/curve.csv", g.gl_pathv[i]);
+    FILE *f = fopen(path, "r");
+    char line[256] = "", want[256];
+    char *ok = f ? fgets(line, sizeof line, f) : NULL;
+    if (f) fclose(f);
+    snprintf(want, sizeof want, "%s,%s,", xn, yn);
+    if (!ok || strncmp(line, want, strlen(want)) != 0) {
+      globfree(&g);
+      return sc_scene_fail_key(s, "task", "also", msg,
+                               "also: %s is not a readable curve.csv in (%s, "
+                               "%s) (valid: output folders of curve tasks in "
+                               "x = %s, y = %s; run them first)",
+                               path, xn, yn, xn, yn);
+    }
+    }
+    globfree(&g);
   }
   const char *ov = sc_scene_text(s, "overlay");
   if (ov) return overlay_check(s, ov, xn, yn, msg);
@@ -277,8 +348,9 @@ static int curve_run(sc_cli_run *r) {
   const char *xn = sc_scene_text(s, "x"), *yn = sc_scene_text(s, "y");
   sc_curve_settings set;
   sc_curve_settings_default(&set);
-  set.type = strcmp(sc_scene_text(s, "type"), "flip") == 0 ? SC_CURVE_FLIP
-                                                           : SC_CURVE_FOLD;
+  int ti = type_index(sc_scene_text(s, "type"));
+  set.type = ti == 0 ? SC_CURVE_FOLD : ti == 1 ? SC_CURVE_FLIP : SC_CURVE_BORDER;
+  set.border = type_kinds[ti];
   set.period = (int)sc_scene_int(s, "period");
   set.multiple = strcmp(sc_scene_text(s, "shooting"), "multiple") == 0;
   set.ix = sc_map_param_index(m, xn);
@@ -340,13 +412,17 @@ static int curve_run(sc_cli_run *r) {
   if ((st = sc_cli_summary_begin(r, &sum))) goto done;
   FILE *f = sc_file_stream(sum);
   fprintf(f, "  %s curve of the period-%d orbit in (%s, %s): %ld points%s\n",
-          set.type == SC_CURVE_FOLD ? "fold" : "flip", set.period, xn, yn,
+          type_names[ti], set.period, xn, yn,
           stats.npoints, stats.closed ? ", closed" : "");
   fprintf(f,
           "  largest residual of the defining system over the points: "
           "%.3g\n",
           stats.max_residual);
   fprintf(f, "  residual tolerance used: %.3g\n", stats.ftol);
+  if (stats.border_iterate >= 0)
+    fprintf(f, "  border followed: %s, %s, iterate %d of %d\n",
+            type_labels[ti], stats.border, stats.border_iterate + 1,
+            set.period);
   fprintf(f, "  shooting: %s\n", set.multiple ? "multiple" : "single");
   fprintf(f, "  codimension-two points: %ld\n", stats.nspecial);
   for (size_t i = 0; i < c.nsp; i++)
@@ -366,13 +442,17 @@ static int curve_run(sc_cli_run *r) {
   f = sc_file_stream(gp);
   char title[512], full[640];
   sc_plot_title(m, NULL, title, sizeof title);
-  snprintf(full, sizeof full, "%s curve, period %d (%s)",
-           set.type == SC_CURVE_FOLD ? "fold" : "flip", set.period, title);
+  snprintf(full, sizeof full, "%s curve, period %d (%s)", type_names[ti],
+           set.period, title);
   sc_plot_head(f, "curve.png", full, sc_plot_label(m, xn),
                sc_plot_label(m, yn));
   fprintf(f, "set xrange [%.17g:%.17g]\nset yrange [%.17g:%.17g]\n", set.xlo,
           set.xhi, set.ylo, set.yhi);
-  fputs("set datafile separator ','\nset key inside right top box opaque\n", f);
+  fputs("set datafile separator ','\n", f);
+  /* with other curves drawn the key goes under the plot */
+  fputs(sc_scene_text(s, "also") ? "set key below horizontal font ',9'\n"
+                                 : "set key inside right top box opaque\n",
+        f);
   fputs("lab(l) = strcol(1) eq l ? column(3) : NaN\n", f);
   const char *ov = sc_scene_text(s, "overlay");
   char ovpath[4096];
@@ -391,18 +471,60 @@ static int curve_run(sc_cli_run *r) {
           "     ",
           f);
   }
+  /* the other curves (also): thin lines, their points labelled */
+  const char *also = sc_scene_text(s, "also");
+  const char *acol[6] = {"#b2182b", "#2166ac", "#1b7837", "#762a83",
+                         "#e08214", "#4d4d4d"};
+  char dir[2048], apath[4096];
+  int ia = 0;
+  for (const char *p = also; p && next_word(&p, dir, sizeof dir);) {
+    glob_t g;
+    if (glob(dir, 0, NULL, &g) != 0) continue; /* checked before the run */
+    for (size_t gi = 0; gi < g.gl_pathc; gi++) {
+      if (!realpath(g.gl_pathv[gi], apath)) continue;
+      const char *base = strrchr(apath, '/');
+      base = base ? base + 1 : apath;
+      char q[4200];
+      snprintf(q, sizeof q, "%s/curve.csv", apath);
+      sc_plot_quote(f, q);
+      fprintf(f,
+              " skip 1 using 1:2 with lines lw 1.5 lc rgb '%s' title '%s', "
+              "\\\n     ",
+              acol[ia % 6], base);
+      snprintf(q, sizeof q, "%s/points.csv", apath);
+      sc_plot_quote(f, q);
+      fprintf(f,
+              " skip 1 using 2:(strcol(1) eq 'EP' ? NaN : column(3)):1 with "
+              "labels point pt 7 ps 0.8 lc rgb '%s' offset 0.6,0.6 font ',8' "
+              "tc rgb '%s' notitle, \\\n     ",
+              acol[ia % 6], acol[ia % 6]);
+      ia++;
+    }
+    globfree(&g);
+  }
   fprintf(f,
           "'curve.csv' skip 1 using 1:2 with lines lw 2 lc rgb "
           "'#1f4e9e' title '%s curve', \\\n",
-          set.type == SC_CURVE_FOLD ? "fold" : "flip");
-  const char *labels[4] = {"CP", "GPD", "TP", "EP"};
-  const char *colors[4] = {"#d62728", "#9467bd", "#2ca02c", "#777777"};
-  int pts[4] = {7, 5, 9, 6};
-  for (int k = 0; k < 4; k++)
-    fprintf(f,
-            "     'points.csv' skip 1 using 2:(lab('%s')) with points pt "
-            "%d ps 2 lc rgb '%s' title '%s'%s\n",
-            labels[k], pts[k], colors[k], labels[k], k < 3 ? ", \\" : "");
+          type_names[ti]);
+  /* the labels present, each once in the key */
+  const char *labels[11] = {"CP", "GPD", "TP", "LP", "PD", "GR", "CS",
+                            "SW", "BR", "TT", "EP"};
+  const char *colors[11] = {"#d62728", "#9467bd", "#2ca02c", "#ff7f0e",
+                            "#8c564b", "#e377c2", "#17becf", "#bcbd22",
+                            "#1f77b4", "#7f7f7f", "#777777"};
+  int pts[11] = {7, 5, 9, 11, 13, 4, 8, 10, 12, 3, 6}, nk = 0, shown[11];
+  for (int k = 0; k < 11; k++) {
+    shown[k] = k == 10;
+    for (size_t i = 0; i < c.nsp && !shown[k]; i++)
+      shown[k] = strcmp(c.sp[i].label, labels[k]) == 0;
+    nk += shown[k];
+  }
+  for (int k = 0; k < 11; k++)
+    if (shown[k])
+      fprintf(f,
+              "     'points.csv' skip 1 using 2:(lab('%s')) with points pt "
+              "%d ps 2 lc rgb '%s' title '%s'%s\n",
+              labels[k], pts[k], colors[k], labels[k], --nk ? ", \\" : "");
   st = sc_cli_commit(r, "curve.gp", gp);
   gp = NULL;
   if (st) goto done;
@@ -420,9 +542,11 @@ done:
 
 const sc_cli_task sc_cli_task_curve = {
     .type = {.kind = "curve",
-             .doc = "fold or flip curve of a period-m orbit in two "
-                    "parameters, with its cusps (CP), generalized flips "
-                    "(GPD) and turning points (TP)",
+             .doc = "fold, flip or border curve of a period-m orbit in "
+                    "two parameters, with its cusps (CP), generalized flips "
+                    "(GPD), turning points (TP), the borders it meets (GR, "
+                    "CS, SW, BR, TT) and, on a border curve, folds (LP) and "
+                    "flips (PD)",
              .keys = curve_keys,
              .nkeys = sizeof curve_keys / sizeof curve_keys[0],
              .check = curve_check},
