@@ -1025,16 +1025,10 @@ _Static_assert(1 + 4 <= SC_NDIR, "bk2 needs d and four parameters");
  * resolves): say so rather than return NaN with SC_OK. */
 static int nonfinite_derivative(const bk2_inst *b, double d, int st,
                                 const sc_map_value *out, sc_msg *msg) {
-  if (st) return st;
-  /* At d* itself with V_s = 0, f' is unbounded from both sides: the
-   * both-start-together branch's derivative is not f'. */
-  if (d == b->dstar && b->vs == 0)
-    return sc_fail(msg, SC_ENONFINITE,
-                   "bk2: f' does not exist at d = d* = %.17g with the "
-                   "driver frozen or V = 0 (it grows like |d - d*|^(-1/2) "
-                   "on both sides)",
-                   d);
-  if (isfinite(out->dfdd)) return st;
+  /* (At d* itself the derivative is that of the start of both blocks:
+   * the switching's own system, which the curve and branch tasks solve;
+   * f' of the map is unbounded on both sides there, docs/accuracy.md D4.) */
+  if (st || isfinite(out->dfdd)) return st;
   return sc_fail(msg, SC_ENONFINITE,
                  "bk2: f'(%.17g) is not finite: an event with zero slope "
                  "(d - d* = %.3g; next to d* f' grows like |d - d*|^(-1/2))",
