@@ -257,7 +257,7 @@ static double guard_horizon(const sc_guard *g) {
   double amp = 0, wmin = HUGE_VAL;
   for (int k = 0; k < g->n; k++) {
     amp += fabs(g->a[k]) + fabs(g->b[k]); /* >= the amplitude: enough here */
-    wmin = fmin(wmin, g->w[k]);
+    if (g->w[k] < wmin) wmin = g->w[k]; /* fmin without the libm call */
   }
   double period = 2 * SC_PI / wmin;
   if (g->c1 != 0) return (fabs(g->c0) + amp) / fabs(g->c1) + period;
@@ -1121,7 +1121,10 @@ static int value_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
   }
   sc_root r[2];
   double tmax = 0;
-  for (int i = 0; i < ng; i++) tmax = fmax(tmax, guard_horizon(&g[i]));
+  for (int i = 0; i < ng; i++) {
+    double hz = guard_horizon(&g[i]); /* fmax without the libm call */
+    if (hz > tmax) tmax = hz;
+  }
   int first = -1, both = 0;
   for (int i = 0; i < ng; i++) {
     int skip = kind[i] < 3 && (fresh & kind[i]);
