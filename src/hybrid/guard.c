@@ -206,15 +206,15 @@ static inline void refine_n(const sc_guard *g, int n, const guard_size *z,
                             double rtol, sc_root *out) {
   double t0, c0[SC_GUARD_MAXFREQ], s0[SC_GUARD_MAXFREQ];
   /* Start from the root of the cubic Hermite interpolant of g and g' at
-   * both ends (a Newton step on the cubic, no trigonometry), which is far
-   * closer than the secant point: one or two Halley steps on g then
-   * suffice.  The cubic's coefficients by one reciprocal of h. */
+   * both ends (a few Newton steps on the cubic, no trigonometry), which
+   * is far closer than the secant point: one or two Newton steps on g
+   * then suffice. */
   double h = hi - lo, t = lo - glo * h / (ghi - glo);
   if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);
   {
-    double ih = 1 / h, c1 = dlo, sl = (ghi - glo) * ih;
-    double c2 = (3 * sl - 2 * dlo - dhi) * ih;
-    double c3 = (dlo + dhi - 2 * sl) * ih * ih;
+    double c1 = dlo, dg = ghi - glo;
+    double c2 = (3 * dg / h - 2 * dlo - dhi) / h;
+    double c3 = (dlo + dhi - 2 * dg / h) / (h * h);
     double s = t - lo;
     for (int it = 0; it < GUARD_HERMITE_NEWTON; it++) {
       double p = glo + s * (c1 + s * (c2 + s * c3));
