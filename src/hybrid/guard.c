@@ -186,14 +186,6 @@ static inline void eval_near(const sc_guard *g, int n, double t0,
   *v = g0, *d = g1, *d2 = g2;
 }
 
-/* Newton steps on the Hermite cubic for the refinement's start.  The
- * cubic's root is itself only within its error against g (M4 h^4/384
- * over the slope) of the true root, and Halley's steps on g converge
- * cubically from there: more steps on the cubic only add divisions, a
- * serial chain (callgrind, fig 5.6: 4 steps 167.2M instructions, 2 steps
- * 164.9M, 1 step 163.7M; docs/performance.md). */
-#define GUARD_HERMITE_NEWTON 1
-
 /* Bracketed Halley/Newton on [lo, hi] where g(lo), g(hi) differ in sign
  * and g is monotone: start from the root of the Hermite cubic; stop when g
  * is within rounding of zero, when a step inside the bracket is below the
@@ -216,7 +208,7 @@ static inline void refine_n(const sc_guard *g, int n, const guard_size *z,
     double c2 = (3 * dg / h - 2 * dlo - dhi) / h;
     double c3 = (dlo + dhi - 2 * dg / h) / (h * h);
     double s = t - lo;
-    for (int it = 0; it < GUARD_HERMITE_NEWTON; it++) {
+    for (int it = 0; it < 4; it++) {
       double p = glo + s * (c1 + s * (c2 + s * c3));
       double dp = c1 + s * (2 * c2 + 3 * s * c3);
       double sn = dp != 0 ? s - p / dp : s;
@@ -239,13 +231,9 @@ static inline void refine_n(const sc_guard *g, int n, const guard_size *z,
     }
     if ((v > 0) == (glo > 0)) lo = t, glo = v;
     else hi = t;
-    /* Halley's step t - 2 v d / (2 d^2 - v d2), Newton's t - v / d
-     * where Halley's correction factor (2 d^2 - v d2) / (2 d^2) is not
-     * within (1/2, 2): one division either way (the division chain is
-     * what the refinement's time goes to). */
-    double dd = 2 * d * d, den = dd - v * d2;
-    double tn = t - (den > 0.5 * dd && den < 2 * dd ? 2 * v * d / den
-                                                   : v / d);
+    /* Halley's step (Newton's where its correction is not small) */
+    double nt = v / d, corr = 1 - 0.5 * nt * d2 / d;
+    double tn = t - (corr > 0.5 && corr < 2 ? nt / corr : nt);
     if (d != 0 && tn > lo && tn < hi) {
       double dl = fabs(tn - t);
       if (dl <= tol_at(tn, atol, rtol)) {
@@ -258,10 +246,9 @@ static inline void refine_n(const sc_guard *g, int n, const guard_size *z,
        * with |r - t| <= 2 dl once that bound is below dl, and Halley's
        * within as much again: if the bound is below the tolerance, stop
        * without evaluating g again (slope moved to tn to first order). */
-      double est_d = 4 * (fabs(d2) + 2 * M3 * dl) * dl * dl; /* est |d| */
-      if (est_d <= tol_at(tn, atol, rtol) * fabs(d) &&
-          est_d < 0.25 * dl * fabs(d)) {
-        bracket = est_d / fabs(d);
+      double est = 2 * (fabs(d2) + 2 * M3 * dl) * dl * dl / fabs(d) * 2;
+      if (est <= tol_at(tn, atol, rtol) && est < 0.25 * dl) {
+        bracket = est;
         d += d2 * (tn - t);
         t = tn;
         break;
