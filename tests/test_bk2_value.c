@@ -53,8 +53,8 @@ static int same(const char *what, int sa, const sc_map_value *a,
   int ok = sa == sb;
   if (ok && sa) ok = strcmp(ma->text, mb->text) == 0;
   if (ok && !sa)
-    ok = memcmp(&a->f, &b->f, sizeof a->f) == 0 &&
-         a->nphases == b->nphases && a->neutral == b->neutral &&
+    ok = memcmp(&a->f, &b->f, sizeof a->f) == 0 && a->nphases == b->nphases &&
+         a->neutral == b->neutral &&
          (!cmp_itin || strcmp(a->itinerary, b->itinerary) == 0);
   if (!ok && s->differ++ < 5)
     printf("  %s: status %d vs %d, f %.17g vs %.17g, itinerary %s vs %s "
@@ -77,11 +77,11 @@ static double check(bk2_inst *b, const double p[4], double d, stats *s,
   /* eval_ex: no code (the value path) and with the code (the dual one) */
   memset(&vx, 0, sizeof vx), memset(&vc, 0, sizeof vc);
   mx.text[0] = mc.text[0] = '\0';
-  int sx = sc_model_bk2.eval_ex(b, d, SC_EVAL_ITINERARY, NULL, NULL, NULL,
-                                &vx, &mx);
+  int sx =
+      sc_model_bk2.eval_ex(b, d, SC_EVAL_ITINERARY, NULL, NULL, NULL, &vx, &mx);
   sc_itin_code code;
-  int sc = sc_model_bk2.eval_ex(b, d, SC_EVAL_ITINERARY, NULL, &code, NULL,
-                                &vc, &mc);
+  int sc = sc_model_bk2.eval_ex(b, d, SC_EVAL_ITINERARY, NULL, &code, NULL, &vc,
+                                &mc);
   s->n++;
   if (sv) s->undef++;
   /* f' not finite (an event with zero slope next to d*): the derivative
@@ -100,12 +100,13 @@ static void border(bk2_inst *b, const double p[4], double da, double db,
                    const char *ia, stats *s) {
   sc_map_value v;
   sc_msg msg;
-  for (int it = 0; it < 60 && fabs(db - da) > 1e-15 * fmax(1, fabs(da));
-       it++) {
+  for (int it = 0; it < 60 && fabs(db - da) > 1e-15 * fmax(1, fabs(da)); it++) {
     double m = 0.5 * (da + db);
     int st = eval(b, 0, m, SC_EVAL_ITINERARY, &v, &msg);
-    if (!st && strcmp(v.itinerary, ia) == 0) da = m;
-    else db = m;
+    if (!st && strcmp(v.itinerary, ia) == 0)
+      da = m;
+    else
+      db = m;
   }
   for (int k = 6; k <= 14; k++) {
     double h = pow(10, -k);
@@ -171,15 +172,16 @@ int main(int argc, char **argv) {
   const double pc[4] = {8, 1, 1.25, 0.025};
   if (!tu_true(setup(&b, pc, 0) == SC_OK, "setup of the slip-cycle case"))
     return tu_finish();
-  for (int k = 0; k < 20; k++) check(&b, pc, -0.0240 + 1e-4 * k, &s, NULL);
+  for (int k = 0; k < 20; k++)
+    check(&b, pc, -0.0240 + 1e-4 * k, &s, NULL);
   tu_true(s.undef > 0, "undefined points near d = -0.0235 (alpha 8): %ld",
           s.undef);
-  while (s.n < want) one_set(&b, &s, 500);
+  while (s.n < want)
+    one_set(&b, &s, 500);
   printf("checked %ld points (5 evaluations each beside the value path; "
          "%ld undefined, %ld next to itinerary borders)\n",
          s.n, s.undef, s.border_pts);
-  tu_int("points where a path differs from the value-only path", s.differ,
-         0);
+  tu_int("points where a path differs from the value-only path", s.differ, 0);
   tu_true(s.border_pts > 0, "points next to itinerary borders: %ld",
           s.border_pts);
   return tu_finish();
