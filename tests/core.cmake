@@ -9,3 +9,5 @@ sc_add_test(test_jet)
 # The map with the current root search against the frozen earlier one.
 sc_add_test(test_map_equiv)
 target_sources(test_map_equiv PRIVATE ref/guard_v0.c)
+# bk2's value-only path against its dual path, bit for bit.
+sc_add_test(test_bk2_value)

@@ -267,7 +267,7 @@ static double guard_horizon(const sc_guard *g) {
   double amp = 0, wmin = HUGE_VAL;
   for (int k = 0; k < g->n; k++) {
     amp += fabs(g->a[k]) + fabs(g->b[k]); /* >= the amplitude: enough here */
-    wmin = fmin(wmin, g->w[k]);
+    if (g->w[k] < wmin) wmin = g->w[k]; /* fmin without the libm call */
   }
   double period = 2 * SC_PI / wmin;
   if (g->c1 != 0) return (fabs(g->c0) + amp) / fabs(g->c1) + period;
@@ -1017,6 +1017,248 @@ int sc_bk2_iterate_ex(const bk2_inst *b, const bk2_dpar *P, sc_dual d,
                  b->acc.max_events);
 }
 
+/* ---- the value-only path -------------------------------------------------
+ * Plain evaluations (SC_EVAL_VALUE, with or without the itinerary: sweeps,
+ * charts, shooting residuals) with exact flows, no forced code and no
+ * borders, on plain doubles.  The dual path with nd = 0 computes the same
+ * numbers (its loops over directions are empty) but passes 48-byte duals
+ * by value through every flow operation.  Every value here is computed by
+ * the same operations in the same order as the dual path's .v parts, so
+ * the two give bit-identical f and itineraries (tests/test_bk2_value.c
+ * checks it); the events, ties and messages are those of exact_phase(). */
+
+/* q(t) = s0 + s1 t + A cos(w t) + B sin(w t), as osc on values. */
+typedef struct {
+  double s0, s1, A, B, w;
+} vosc;
+
+static inline vosc vosc_make(double q0, double p0, double F0, double F1,
+                             double w) {
+  vosc o;
+  double w2 = w * w;
+  o.s0 = F0 / w2;
+  o.s1 = F1 / w2;
+  o.A = q0 - o.s0;
+  o.B = (p0 - o.s1) / w;
+  o.w = w;
+  return o;
+}
+
+static inline void vosc_at(const vosc *o, double t, double *q, double *p) {
+  double wt = o->w * t, s = sin(wt), c = cos(wt);
+  double Ac = o->A * c, Bs = o->B * s;
+  *q = (o->s0 + t * o->s1) + (Ac + Bs);
+  *p = o->s1 + o->w * (o->B * c - o->A * s);
+}
+
+/* Positions and velocities on values. */
+typedef struct {
+  double y1, y2, u1, u2;
+} vstate;
+
+typedef struct {
+  int mode;
+  vosc o1, o2;
+  vstate x0;
+} vflow;
+
+static inline vflow vflow_make(const bk2_dpar *P, int mode, const vstate *x0) {
+  vflow f;
+  f.mode = mode;
+  f.x0 = *x0;
+  double al = P->alpha.v;
+  if (mode == SC_BK2_SLIP1) {
+    f.o1 = vosc_make(x0->y1, x0->u1, P->k1.v + al * x0->y2, al * P->vs.v,
+                     P->w1.v);
+  } else if (mode == SC_BK2_SLIP2) {
+    f.o1 = vosc_make(x0->y2, x0->u2, P->k2.v + al * x0->y1, al * P->vs.v,
+                     P->w1.v);
+  } else {
+    f.o1 = vosc_make(x0->y1 + x0->y2, x0->u1 + x0->u2, P->k1.v + P->k2.v, 0,
+                     1);
+    f.o2 = vosc_make(x0->y1 - x0->y2, x0->u1 - x0->u2, P->k1.v - P->k2.v, 0,
+                     P->w2.v);
+  }
+  return f;
+}
+
+static inline void vflow_at(const bk2_dpar *P, const vflow *f, double t,
+                            vstate *x) {
+  double q, p;
+  vosc_at(&f->o1, t, &q, &p);
+  if (f->mode == SC_BK2_SLIP1) {
+    x->y1 = q, x->u1 = p;
+    x->y2 = f->x0.y2 + t * P->vs.v;
+    x->u2 = P->vs.v;
+  } else if (f->mode == SC_BK2_SLIP2) {
+    x->y2 = q, x->u2 = p;
+    x->y1 = f->x0.y1 + t * P->vs.v;
+    x->u1 = P->vs.v;
+  } else {
+    double q2, p2;
+    vosc_at(&f->o2, t, &q2, &p2);
+    x->y1 = (q + q2) * 0.5;
+    x->y2 = (q - q2) * 0.5;
+    x->u1 = (p + p2) * 0.5;
+    x->u2 = (p - p2) * 0.5;
+  }
+}
+
+static inline void vguard_add_q(sc_guard *g, const vosc *o, double scale) {
+  g->c0 += scale * o->s0;
+  g->c1 += scale * o->s1;
+  g->w[g->n] = o->w;
+  g->a[g->n] = scale * o->A;
+  g->b[g->n] = scale * o->B;
+  g->n++;
+}
+
+static inline void vguard_add_qdot(sc_guard *g, const vosc *o, double scale) {
+  double w = o->w;
+  g->c0 += scale * o->s1;
+  g->w[g->n] = w;
+  g->a[g->n] = scale * w * o->B;
+  g->b[g->n] = -scale * w * o->A;
+  g->n++;
+}
+
+static inline sc_guard vguard_restick(const bk2_dpar *P, const vflow *f,
+                                      int i) {
+  sc_guard g = {0};
+  g.c0 = -P->vs.v;
+  if (f->mode != SC_BK2_SLIP12) {
+    vguard_add_qdot(&g, &f->o1, 1);
+  } else {
+    vguard_add_qdot(&g, &f->o1, 0.5);
+    vguard_add_qdot(&g, &f->o2, i == 1 ? 0.5 : -0.5);
+  }
+  return g;
+}
+
+static inline sc_guard vguard_threshold(const bk2_dpar *P, const vflow *f) {
+  sc_guard g = {0};
+  double a = P->alpha.v;
+  int j = f->mode == SC_BK2_SLIP1 ? 2 : 1;
+  double yj0 = j == 2 ? f->x0.y2 : f->x0.y1;
+  double tj = j == 2 ? P->t2.v : 1;
+  g.c0 = (1 + a) * yj0 - tj;
+  g.c1 = (1 + a) * P->vs.v;
+  vguard_add_q(&g, &f->o1, -a);
+  return g;
+}
+
+/* exact_phase() without a forced code, code bytes or borders, on values. */
+static int value_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
+                       int fresh, vstate *x, sc_msg *msg) {
+  vflow f = vflow_make(P, mode, x);
+  double atol = b->acc.event_atol, rtol = b->acc.event_rtol;
+  sc_guard g[2];
+  int kind[2], ng = 0;
+  int order[2] = {1, 2};
+  if (mode == SC_BK2_SLIP12 && (fresh & 1) && !(fresh & 2))
+    order[0] = 2, order[1] = 1;
+  for (int k = 0; k < 2; k++) {
+    int i = order[k];
+    if (mode == i || mode == SC_BK2_SLIP12) {
+      g[ng] = vguard_restick(P, &f, i);
+      kind[ng++] = i;
+    }
+  }
+  if (mode != SC_BK2_SLIP12) {
+    g[ng] = vguard_threshold(P, &f);
+    kind[ng++] = BK2_EV_THRESHOLD;
+  }
+  sc_root r[2];
+  double tmax = 0;
+  for (int i = 0; i < ng; i++) {
+    double hz = guard_horizon(&g[i]); /* fmax without the libm call */
+    if (hz > tmax) tmax = hz;
+  }
+  int first = -1, both = 0;
+  for (int i = 0; i < ng; i++) {
+    int skip = kind[i] < 3 && (fresh & kind[i]);
+    double lim = first < 0 ? tmax : r[first].t + atol + rtol * r[first].t;
+    int st = SC_OK;
+    if (skip && mode != SC_BK2_SLIP12 && b->first_ok[kind[i] - 1] &&
+        b->first_r[kind[i] - 1].t <= lim &&
+        same_guard(&g[i], &b->first_g[kind[i] - 1]))
+      r[i] = b->first_r[kind[i] - 1];
+    else
+      st = b->search(&g[i], lim, skip, atol, rtol, &r[i]);
+    if (st)
+      return sc_fail(msg, SC_EINTERNAL,
+                     "bk2: malformed guard in mode %d (parameters out of "
+                     "range?)",
+                     mode);
+    if (r[i].found && (first < 0 || r[i].t < r[first].t)) first = i;
+  }
+  if (first < 0)
+    return sc_fail(msg, SC_EUNDEF,
+                   "no event within %.6g time units of slip mode %s: the "
+                   "slip does not end",
+                   tmax, mode_name(mode));
+  for (int i = 0; i < ng; i++) {
+    if (i == first || !r[i].found) continue;
+    double tol = atol + rtol * r[first].t;
+    if (fabs(r[i].t - r[first].t) <= tol) {
+      if (kind[first] == BK2_EV_THRESHOLD) first = i;
+      else if (kind[i] < 3) both = 1;
+    }
+  }
+  vflow_at(P, &f, r[first].t, x);
+  if (both) {
+    x->u1 = x->u2 = P->vs.v;
+    return SC_BK2_STICK;
+  }
+  switch (kind[first]) {
+  case 1:
+    x->u1 = P->vs.v;
+    return mode == SC_BK2_SLIP1 ? SC_BK2_STICK : SC_BK2_SLIP2;
+  case 2:
+    x->u2 = P->vs.v;
+    return mode == SC_BK2_SLIP2 ? SC_BK2_STICK : SC_BK2_SLIP1;
+  default:
+    return SC_BK2_SLIP12;
+  }
+}
+
+/* sc_bk2_iterate() on values (exact flows, no force, no code, no
+ * borders, no phase callback). */
+static int value_iterate(const bk2_inst *b, double d, unsigned flags,
+                         sc_map_value *out, sc_msg *msg) {
+  const bk2_dpar *P = &b->p0;
+  vstate x;
+  int mode = onset_mode(b, d);
+  if (mode == SC_BK2_SLIP1) {
+    x.y1 = P->alpha.v * d + 1;
+    x.y2 = x.y1 + d;
+  } else {
+    x.y2 = P->beta.v - P->alpha.v * d;
+    x.y1 = x.y2 - d;
+  }
+  x.u1 = x.u2 = P->vs.v;
+  int fresh = fresh_blocks(SC_BK2_STICK, mode), first_mode = mode;
+  size_t ilen = 0;
+  out->itinerary[0] = '\0';
+  for (int n = 0; n < b->acc.max_events; n++) {
+    itin_add(out->itinerary, &ilen, mode, flags);
+    int next = value_phase(b, P, mode, fresh, &x, msg);
+    if (next < 0) return next;
+    out->nphases++;
+    if (next == SC_BK2_STICK) {
+      out->f = x.y2 - x.y1;
+      out->neutral = out->nphases == 1 && first_mode != SC_BK2_SLIP12;
+      return SC_OK;
+    }
+    fresh = fresh_blocks(mode, next);
+    mode = next;
+  }
+  return sc_fail(msg, SC_EUNDEF,
+                 "no return to a global stick phase after %d slip phases "
+                 "(max-events): the motion settles on a slip cycle",
+                 b->acc.max_events);
+}
+
 _Static_assert(1 + 4 <= SC_NDIR, "bk2 needs d and four parameters");
 
 /* f' is not finite: an event with zero slope.  Next to d* with the
@@ -1065,6 +1307,8 @@ static int bk2_eval(void *vinst, double d, unsigned flags, sc_map_value *out,
     return sc_bk2_eval_jet(b, d, flags, out, NULL, msg);
   bk2_dpar P;
   int nd = (flags & SC_EVAL_DERIV) ? 5 : 0;
+  if (!nd && !b->numerical && !b->dual_only)
+    return value_iterate(b, d, flags, out, msg);
   if (nd) sc_bk2_dparams(b, nd, &P);
   else P = b->p0;
   bk2_state x;
@@ -1094,6 +1338,9 @@ static int bk2_eval_ex(void *vinst, double d, unsigned flags,
                               msg);
   bk2_dpar P;
   int nd = (flags & SC_EVAL_DERIV) || borders ? 5 : 0;
+  if (!nd && !b->numerical && !b->dual_only && !(force && force->n > 0) &&
+      !code)
+    return value_iterate(b, d, flags, out, msg);
   if (nd) sc_bk2_dparams(b, nd, &P);
   else P = b->p0;
   bk2_state x;

@@ -33,6 +33,10 @@ typedef struct {
    * not depend on d (its amplitude is (1 - mu) T_i / (1 + alpha)): its
    * guard and first root, found once by sc_bk2_first_restick() (exact
    * flows), and whether they are there. */
+  /* Plain evaluations go through the dual path (nd = 0) instead of the
+   * value-only path: set by tests that compare the two (they must give
+   * bit-identical results); 0 after bk2_setup. */
+  int dual_only;
   sc_guard first_g[2];
   sc_root first_r[2];
   int first_ok[2];
