@@ -1149,7 +1149,7 @@ static inline sc_guard vguard_threshold(const bk2_dpar *P, const vflow *f) {
 
 /* exact_phase() without a forced code, code bytes or borders, on values. */
 static int value_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
-                       int fresh, vstate *x, sc_msg *msg) {
+                       int fresh, double onset_gap, vstate *x, sc_msg *msg) {
   vflow f = vflow_make(P, mode, x);
   double atol = b->acc.event_atol, rtol = b->acc.event_rtol;
   sc_guard g[2];
@@ -1166,6 +1166,11 @@ static int value_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
   }
   if (mode != SC_BK2_SLIP12) {
     g[ng] = vguard_threshold(P, &f);
+    if (!isnan(onset_gap)) { /* as exact_phase(): the onset's own gap */
+      double g0;
+      sc_guard_eval(&g[ng], 0, &g0, NULL, NULL);
+      g[ng].c0 += onset_gap - g0;
+    }
     kind[ng++] = BK2_EV_THRESHOLD;
   }
   sc_root r[2];
@@ -1177,7 +1182,9 @@ static int value_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
   int first = -1, both = 0;
   for (int i = 0; i < ng; i++) {
     int skip = kind[i] < 3 && (fresh & kind[i]);
-    double lim = first < 0 ? tmax : r[first].t + atol + rtol * r[first].t;
+    double lim = first < 0 ? tmax
+                           : r[first].t + 2 * (atol + rtol * r[first].t +
+                                               root_window(&g[first], &r[first]));
     int st = SC_OK;
     if (skip && mode != SC_BK2_SLIP12 && b->first_ok[kind[i] - 1] &&
         b->first_r[kind[i] - 1].t <= lim &&
@@ -1199,7 +1206,8 @@ static int value_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
                    tmax, mode_name(mode));
   for (int i = 0; i < ng; i++) {
     if (i == first || !r[i].found) continue;
-    double tol = atol + rtol * r[first].t;
+    double tol = atol + rtol * r[first].t + root_window(&g[first], &r[first]) +
+                 root_window(&g[i], &r[i]);
     if (fabs(r[i].t - r[first].t) <= tol) {
       if (kind[first] == BK2_EV_THRESHOLD) first = i;
       else if (kind[i] < 3) both = 1;
@@ -1242,7 +1250,11 @@ static int value_iterate(const bk2_inst *b, double d, unsigned flags,
   out->itinerary[0] = '\0';
   for (int n = 0; n < b->acc.max_events; n++) {
     itin_add(out->itinerary, &ilen, mode, flags);
-    int next = value_phase(b, P, mode, fresh, &x, msg);
+    double gap = n == 0 && mode != SC_BK2_SLIP12
+                     ? (1 + 2 * b->alpha) *
+                           (mode == SC_BK2_SLIP1 ? d - b->dstar : b->dstar - d)
+                     : NAN;
+    int next = value_phase(b, P, mode, fresh, gap, &x, msg);
     if (next < 0) return next;
     out->nphases++;
     if (next == SC_BK2_STICK) {
