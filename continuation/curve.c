@@ -1,7 +1,7 @@
 /* Codimension-two points of a curve: Newton on the extended system
  * {F(u) = 0, psi_k(u) = 0}, and the fold / flip curve systems of a 1-D
  * map iterate g = f^m(x, p) with their normal-form tests.  Generic: only
- * vectors, Jacobians and callbacks (DESIGN.md). */
+ * vectors, Jacobians and callbacks (docs/continuation.md). */
 #include <float.h>
 #include <math.h>
 #include <stdlib.h>

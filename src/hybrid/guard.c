@@ -712,7 +712,7 @@ int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
     if (g->w[k] > wmax) wmax = g->w[k]; /* (no libm call: none is NaN) */
   }
   /* A guard that starts within rounding of zero: a root at 0 if it moves
-   * up through zero there (the events of MODEL.md are all upward
+   * up through zero there (the events of docs/model.md are all upward
    * crossings), otherwise the start root is skipped. */
   guard_ctx c;
   c.g = g;

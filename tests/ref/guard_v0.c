@@ -261,7 +261,7 @@ int sc_guard_first_root_v0(const sc_guard *g, double tmax, int skip_start,
     wmax = fmax(wmax, g->w[k]);
   }
   /* A guard that starts within rounding of zero: a root at 0 if it moves
-   * up through zero there (the events of MODEL.md are all upward
+   * up through zero there (the events of docs/model.md are all upward
    * crossings), otherwise the start root is skipped. */
   double amp[SC_GUARD_MAXFREQ];
   guard_size z = guard_sizes(g, amp); /* once per search */
