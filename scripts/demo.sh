@@ -2,7 +2,9 @@
 # The main job: install, build, and run the symmetric-chaos analysis (the
 # chapter's fig 5.6: a period-doubling cascade to chaos as V decreases)
 # with its plot, then the asymmetric flip cascade of fig 5.8, brute force
-# and continued with its unstable orbits and special points.
+# and continued with its unstable orbits and special points (each located
+# by Newton with its certificate), and the fold curve of its period-6
+# window in (alpha, beta).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/deps.sh
@@ -11,4 +13,5 @@ cmake --build build -j"$(nproc)" --target slipcont_cli >/dev/null
 build/slipcont run examples/symmetric-chaos.ini --out out/symmetric-chaos
 build/slipcont run examples/fig58-sweep.ini --out out/fig58-sweep
 build/slipcont run examples/branch-fig58.ini --out out/branch-fig58
-echo "plots: out/symmetric-chaos/*.png out/fig58-sweep/*.png out/branch-fig58/*.png"
+build/slipcont run examples/curve-fig58-period6.ini --out out/curve-fig58-period6
+echo "plots: out/symmetric-chaos/*.png out/fig58-sweep/*.png out/branch-fig58/*.png out/curve-fig58-period6/*.png"
