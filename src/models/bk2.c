@@ -657,6 +657,62 @@ static double root_window(const sc_guard *g, const sc_root *r) {
   return r->bracket + (r->slope != 0 ? E / fabs(r->slope) : 0);
 }
 
+/* The first event of a phase among its guards g (kinds kind), searched
+ * up to tmax: later guards only up to the earliest root so far (plus its
+ * tie tolerance), the first re-stick after a GSP from the per-parameter
+ * cache; ties within the event tolerance, or within the intervals the two
+ * roots are known to lie in (a root can be known no better than the
+ * rounding of its guard over its slope): re-sticks go first
+ * (docs/model.md), two re-sticks at once end the slip of both blocks (at
+ * V = 100 and alpha = 1000 the synchronous re-sticks of beta = 1 are
+ * ~1e-12 apart by rounding alone).  The dual and the value-only paths
+ * share it, so they take the same events. */
+static int first_event(const bk2_inst *b, int mode, int fresh,
+                       const sc_guard *g, const int *kind, int ng, double tmax,
+                       sc_root *r, int *firstp, int *bothp, long *steps,
+                       sc_msg *msg) {
+  double atol = b->acc.event_atol, rtol = b->acc.event_rtol;
+  int first = -1;
+  for (int i = 0; i < ng; i++) {
+    int skip = kind[i] < 3 && (fresh & kind[i]);
+    double lim = first < 0 ? tmax
+                           : r[first].t + 2 * (atol + rtol * r[first].t +
+                                               root_window(&g[first], &r[first]));
+    int st = SC_OK;
+    if (skip && mode != SC_BK2_SLIP12 && b->first_ok[kind[i] - 1] &&
+        b->first_r[kind[i] - 1].t <= lim &&
+        same_guard(&g[i], &b->first_g[kind[i] - 1]))
+      r[i] = b->first_r[kind[i] - 1]; /* the slip from a GSP: d-free */
+    else
+      st = b->search(&g[i], lim, skip, atol, rtol, &r[i]);
+    if (st)
+      return sc_fail(msg, SC_EINTERNAL,
+                     "bk2: malformed guard in mode %d (parameters out of "
+                     "range?)",
+                     mode);
+    *steps += r[i].steps;
+    if (r[i].found && (first < 0 || r[i].t < r[first].t)) first = i;
+  }
+  if (first < 0)
+    return sc_fail(msg, SC_EUNDEF,
+                   "no event within %.6g time units of slip mode %s: the "
+                   "slip does not end",
+                   tmax, mode_name(mode));
+  int both = 0;
+  for (int i = 0; i < ng; i++) {
+    if (i == first || !r[i].found) continue;
+    double tol = atol + rtol * r[first].t + root_window(&g[first], &r[first]) +
+                 root_window(&g[i], &r[i]);
+    if (fabs(r[i].t - r[first].t) <= tol) {
+      if (kind[first] == BK2_EV_THRESHOLD) first = i;
+      else if (kind[i] < 3) both = 1;
+    }
+  }
+  *firstp = first;
+  *bothp = both;
+  return SC_OK;
+}
+
 /* One slip phase with exact flows: find its end (the first event, or the
  * event the code forces), the next mode, and the state there.  `fresh`
  * bit i-1: block i started slipping at this phase's start (U_i = Vs by
@@ -702,48 +758,9 @@ static int exact_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
   for (int i = 0; i < ng; i++) tmax = fmax(tmax, guard_horizon(&g[i]));
   int first = -1, both = 0, atmax = 0;
   if (!ev->force) {
-    for (int i = 0; i < ng; i++) {
-      int skip = kind[i] < 3 && (fresh & kind[i]);
-      /* (past the earliest root by its tie tolerance, so that a tie is
-       * seen from either guard) */
-      double lim = first < 0 ? tmax
-                             : r[first].t + 2 * (atol + rtol * r[first].t +
-                                                 root_window(&g[first], &r[first]));
-      int st = SC_OK;
-      if (skip && mode != SC_BK2_SLIP12 && b->first_ok[kind[i] - 1] &&
-          b->first_r[kind[i] - 1].t <= lim &&
-          same_guard(&g[i], &b->first_g[kind[i] - 1]))
-        r[i] = b->first_r[kind[i] - 1]; /* the slip from a GSP: d-free */
-      else
-        st = b->search(&g[i], lim, skip, atol, rtol, &r[i]);
-      if (st)
-        return sc_fail(msg, SC_EINTERNAL,
-                       "bk2: malformed guard in mode %d (parameters out of "
-                       "range?)",
-                       mode);
-      ev->steps += r[i].steps;
-      if (r[i].found && (first < 0 || r[i].t < r[first].t)) first = i;
-    }
-    if (first < 0)
-      return sc_fail(msg, SC_EUNDEF,
-                     "no event within %.6g time units of slip mode %s: the "
-                     "slip does not end",
-                     tmax, mode_name(mode));
-    /* Ties within the event tolerance, or within the intervals the two
-     * roots are known to lie in (a root can be known no better than the
-     * rounding of its guard over its slope): re-sticks go first
-     * (docs/model.md); two re-sticks at once end the slip of both blocks
-     * (at V = 100 and alpha = 1000 the synchronous re-sticks of beta = 1
-     * are ~1e-12 apart by rounding alone). */
-    for (int i = 0; i < ng; i++) {
-      if (i == first || !r[i].found) continue;
-      double tol = atol + rtol * r[first].t + root_window(&g[first], &r[first]) +
-                   root_window(&g[i], &r[i]);
-      if (fabs(r[i].t - r[first].t) <= tol) {
-        if (kind[first] == BK2_EV_THRESHOLD) first = i;
-        else if (kind[i] < 3) both = 1;
-      }
-    }
+    int st = first_event(b, mode, fresh, g, kind, ng, tmax, r, &first, &both,
+                         &ev->steps, msg);
+    if (st) return st;
   } else {
     /* Follow the code: the forced guard's first rise through zero after
      * its first `skip` local maxima; the other guards are not taken. */
@@ -1151,7 +1168,6 @@ static inline sc_guard vguard_threshold(const bk2_dpar *P, const vflow *f) {
 static int value_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
                        int fresh, double onset_gap, vstate *x, sc_msg *msg) {
   vflow f = vflow_make(P, mode, x);
-  double atol = b->acc.event_atol, rtol = b->acc.event_rtol;
   sc_guard g[2];
   int kind[2], ng = 0;
   int order[2] = {1, 2};
@@ -1180,39 +1196,10 @@ static int value_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
     if (hz > tmax) tmax = hz;
   }
   int first = -1, both = 0;
-  for (int i = 0; i < ng; i++) {
-    int skip = kind[i] < 3 && (fresh & kind[i]);
-    double lim = first < 0 ? tmax
-                           : r[first].t + 2 * (atol + rtol * r[first].t +
-                                               root_window(&g[first], &r[first]));
-    int st = SC_OK;
-    if (skip && mode != SC_BK2_SLIP12 && b->first_ok[kind[i] - 1] &&
-        b->first_r[kind[i] - 1].t <= lim &&
-        same_guard(&g[i], &b->first_g[kind[i] - 1]))
-      r[i] = b->first_r[kind[i] - 1];
-    else
-      st = b->search(&g[i], lim, skip, atol, rtol, &r[i]);
-    if (st)
-      return sc_fail(msg, SC_EINTERNAL,
-                     "bk2: malformed guard in mode %d (parameters out of "
-                     "range?)",
-                     mode);
-    if (r[i].found && (first < 0 || r[i].t < r[first].t)) first = i;
-  }
-  if (first < 0)
-    return sc_fail(msg, SC_EUNDEF,
-                   "no event within %.6g time units of slip mode %s: the "
-                   "slip does not end",
-                   tmax, mode_name(mode));
-  for (int i = 0; i < ng; i++) {
-    if (i == first || !r[i].found) continue;
-    double tol = atol + rtol * r[first].t + root_window(&g[first], &r[first]) +
-                 root_window(&g[i], &r[i]);
-    if (fabs(r[i].t - r[first].t) <= tol) {
-      if (kind[first] == BK2_EV_THRESHOLD) first = i;
-      else if (kind[i] < 3) both = 1;
-    }
-  }
+  long steps = 0;
+  int st = first_event(b, mode, fresh, g, kind, ng, tmax, r, &first, &both,
+                       &steps, msg);
+  if (st) return st;
   vflow_at(P, &f, r[first].t, x);
   if (both) {
     x->u1 = x->u2 = P->vs.v;
