@@ -14,6 +14,7 @@
  * then refined by safeguarded Newton.  No sample spacing is assumed. */
 #include <float.h>
 #include <math.h>
+#if SC_HAVE_QUAD
 #include <quadmath.h>
 #include <string.h>
 
@@ -681,3 +682,29 @@ int sc_bk2_quad_eval(double alpha, double beta, double phi, double v,
     out->itinerary[0] = '\0';
   return SC_OK;
 }
+
+#else /* no __float128 arithmetic in this build (libquadmath not found) */
+
+#include "models/bk2_quad.h"
+
+static int no_quad(sc_msg *msg) {
+  return sc_fail(msg, SC_EINVAL,
+                 "precision = quad: this build has no quad precision (it "
+                 "needs GCC's libquadmath; valid here: precision = double)");
+}
+
+int sc_bk2q_eval(const sc_bk2q_params *p, sc_quad d, int nd,
+                 sc_bk2q_value *out, sc_msg *msg) {
+  (void)p, (void)d, (void)nd, (void)out;
+  return no_quad(msg);
+}
+
+int sc_bk2_quad_eval(double alpha, double beta, double phi, double v,
+                     int frozen, int max_events, double d, unsigned flags,
+                     sc_map_value *out, sc_msg *msg) {
+  (void)alpha, (void)beta, (void)phi, (void)v, (void)frozen;
+  (void)max_events, (void)d, (void)flags, (void)out;
+  return no_quad(msg);
+}
+
+#endif
