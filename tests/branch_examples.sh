@@ -171,4 +171,10 @@ br=$(awk -F, 'NR > 1 && $6 == 3 { r = $0 } NR > 1 && $6 != 3 && r != "" { split(
 check "border-br: both velocities 0 at the end of the two-block slip (got $br)" \
   awk -v m="$br" 'BEGIN { exit !(m != "" && m <= 1e-9) }'
 
+# Velocity-weakening friction (numerical flows): the fig 5.6 sweep has no
+# period up to 16 anywhere in V = 0.025 .. 0.015.
+example vw-symmetric
+has vw-symmetric summary.txt 'down v from 0\.025 to 0\.015 \(100 values\): period 0$'
+png vw-symmetric sweep.png
+
 finish

@@ -180,7 +180,7 @@ bad() { # bad NEEDLE --set ...
 bad "x-steps" --set task.x-steps=0
 bad "y-steps" --set task.y-steps=-4
 bad "x and y are both 'alpha'" --set task.y=alpha
-bad "gamma" --set task.x=gamma
+bad "delta" --set task.x=delta
 bad "grid points" --set task.x-steps=20000 --set task.y-steps=20000
 bad "alpha" --set task.x-from=-1
 bad "seed" --set task.seed=random

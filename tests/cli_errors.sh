@@ -64,7 +64,7 @@ bad out-of-range 's/^alpha = 2.9/alpha = -1/' \
 bad from-out-of-range 's/^from = 0.025/from = -0.1/' \
   "$TMP/from-out-of-range.ini:12: [task] from = -0.1 out of range of v (valid: [0, 1000])"
 bad missing-key '/^parameter = v/d' \
-  "$TMP/missing-key.ini:9: [task] missing required key 'parameter' (valid: alpha|beta|phi|v)"
+  "$TMP/missing-key.ini:9: [task] missing required key 'parameter' (valid: alpha|beta|phi|v|gamma)"
 bad missing-kind '/^kind = sweep/d' \
   "$TMP/missing-kind.ini:9: [task] missing required key 'kind'" "sweep"
 bad steps-zero 's/^steps = 4/steps = 0/' \

@@ -368,7 +368,7 @@ static void test_bad_input(void) {
   tu_int("v = NaN refused", sc_map_set_param_by_name(m, "v", NAN, &msg),
          SC_EINVAL);
   tu_close("alpha unchanged after a refusal", sc_map_get_param(m, 0), 3, 0);
-  tu_int("unknown parameter", sc_map_set_param_by_name(m, "gamma", 1, &msg),
+  tu_int("unknown parameter", sc_map_set_param_by_name(m, "delta", 1, &msg),
          SC_EINVAL);
   tu_int("unknown driver", sc_map_set_option(m, "driver", "fast", &msg),
          SC_EINVAL);
@@ -378,11 +378,10 @@ static void test_bad_input(void) {
          SC_EINVAL);
   tu_true(strstr(msg.text, "frozen") != NULL, "message: %s", msg.text);
   sc_map_set_option(m, "driver", "moving", NULL);
-  tu_int("velocity weakening refused until validated",
+  tu_int("velocity weakening with the driver moving accepted",
          sc_map_set_option(m, "friction", "velocity-weakening", &msg),
-         SC_EINVAL);
-  tu_true(strcmp(sc_map_get_option(m, "friction"), "coulomb") == 0,
-          "friction unchanged after the refusal");
+         SC_OK);
+  sc_map_set_option(m, "friction", "coulomb", NULL);
   sc_map_value r;
   tu_int("d = NaN refused", sc_map_eval(m, NAN, 0, &r, &msg), SC_EINVAL);
   long n = 0;
@@ -581,6 +580,90 @@ static void test_borders_numerical(void) {
   printf("(largest difference %.3g)\n", worst);
 }
 
+/* Velocity-weakening friction, K_i = T_i / (1 + gamma |U_i - V_s|), by
+ * numerical flows (driver moving): convergence in the ODE tolerance, the
+ * beta = 1 symmetry, f' = 1 on a lone slip, and the derivatives in d and
+ * every parameter (gamma included) against central differences. */
+static sc_map *vw_map(double beta, double tol) {
+  sc_map *m = make(2.9, beta, 0.02, "moving");
+  sc_accuracy acc;
+  sc_accuracy_preset(&acc, "default", NULL);
+  acc.ode_atol = acc.ode_rtol = tol;
+  sc_map_set_accuracy(m, &acc, NULL);
+  sc_map_set_param_by_name(m, "gamma", 2.385, NULL);
+  sc_map_set_option(m, "friction", "velocity-weakening", NULL);
+  return m;
+}
+
+static void test_velocity_weakening(void) {
+  sc_map *m6 = vw_map(1.7, 1e-6), *m9 = vw_map(1.7, 1e-9),
+         *m12 = vw_map(1.7, 1e-12);
+  double e6 = 0, e9 = 0;
+  int n = 0;
+  for (int i = 0; i <= 40; i++) {
+    double d = -0.3 + 0.6 * i / 40 + 1e-4;
+    char i6[SC_ITIN_LEN], i9[SC_ITIN_LEN], i12[SC_ITIN_LEN];
+    double f6 = feval(m6, d, i6), f9 = feval(m9, d, i9), f12 = feval(m12, d, i12);
+    if (isnan(f12) || strcmp(i6, i12) || strcmp(i9, i12)) continue;
+    n++;
+    e6 = fmax(e6, fabs(f6 - f12));
+    e9 = fmax(e9, fabs(f9 - f12));
+  }
+  printf("velocity weakening, error against tol 1e-12: 1e-6: %.3g  1e-9: "
+         "%.3g (%d points)\n", e6, e9, n);
+  tu_true(n >= 30, "velocity weakening: %d of 41 points compared", n);
+  tu_true(e9 < 1e-7 && e9 <= e6,
+          "velocity weakening converges in the ODE tolerance (%.3g, %.3g)",
+          e6, e9);
+  /* beta = 1: swapping the blocks maps d to -d */
+  sc_map *ms = vw_map(1, 1e-12);
+  double sym = 0;
+  for (int i = 1; i <= 10; i++) {
+    double d = 0.03 * i, a = feval(ms, d, NULL), b = feval(ms, -d, NULL);
+    if (!isnan(a) && !isnan(b)) sym = fmax(sym, fabs(a + b));
+  }
+  tu_close("velocity weakening, beta = 1: max |f(d) + f(-d)|", sym, 0, 1e-9);
+  /* derivatives against central differences (smooth points only) */
+  int checked = 0, bad = 0;
+  for (int i = 0; i < 12; i++) {
+    double d = -0.25 + 0.5 * i / 11 + 2e-4;
+    sc_map_value v;
+    char it0[SC_ITIN_LEN], ia[SC_ITIN_LEN], ib[SC_ITIN_LEN];
+    if (sc_map_eval(m12, d, SC_EVAL_DERIV | SC_EVAL_ITINERARY, &v, NULL))
+      continue;
+    snprintf(it0, sizeof it0, "%s", v.itinerary);
+    for (int k = -1; k < 5; k++) {
+      double h = 1e-6, fp, fm;
+      if (k < 0) {
+        fp = feval(m12, d + h, ia), fm = feval(m12, d - h, ib);
+      } else {
+        double p0 = sc_map_get_param(m12, (size_t)k);
+        h = 1e-6 * (1 + fabs(p0));
+        sc_map_set_param(m12, (size_t)k, p0 + h, NULL);
+        fp = feval(m12, d, ia);
+        sc_map_set_param(m12, (size_t)k, p0 - h, NULL);
+        fm = feval(m12, d, ib);
+        sc_map_set_param(m12, (size_t)k, p0, NULL);
+      }
+      if (strcmp(ia, it0) || strcmp(ib, it0)) continue;
+      double fd = (fp - fm) / (2 * h), ex = k < 0 ? v.dfdd : v.dfdp[k];
+      checked++;
+      if (fabs(ex - fd) > 1e-4 * (1 + fabs(fd))) {
+        bad++;
+        printf("  d = %g, direction %d: exact %.10g, difference %.10g\n", d,
+               k, ex, fd);
+      }
+    }
+  }
+  tu_true(checked >= 40, "velocity weakening: %d derivatives checked",
+          checked);
+  tu_int("velocity weakening: derivatives off their differences", bad, 0);
+  sc_map_free(m6);
+  sc_map_free(m9);
+  sc_map_free(m12);
+  sc_map_free(ms);
+}
+
 /* Within a few ulps of d* with the driver frozen, f' is beyond what
  * double resolves: each evaluation with derivatives gives a finite f' or
  * SC_ENONFINITE with a message, never NaN with SC_OK. */
@@ -607,6 +690,7 @@ int main(void) {
   test_border_derivatives();
   test_near_dstar();
   test_borders_numerical();
+  test_velocity_weakening();
   test_properties();
   test_reference();
   test_bad_input();

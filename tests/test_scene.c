@@ -182,9 +182,9 @@ static void test_overrides(void) {
 static void test_bad(void) {
   refused("unknown section", edit("[accuracy]", "[accuracy]\n[extra]"),
           "x.ini:14: unknown section [extra]", "valid: model, task");
-  refused("unknown model key", edit("beta = 1.5", "gamma = 1.5"),
-          "x.ini:6: [model] unknown key 'gamma' for model bk2",
-          "alpha, beta, phi, v, driver");
+  refused("unknown model key", edit("beta = 1.5", "delta = 1.5"),
+          "x.ini:6: [model] unknown key 'delta' for model bk2",
+          "alpha, beta, phi, v, gamma, driver");
   refused("unknown task key", edit("from = 0.025", "form = 0.025"),
           "x.ini:11: [task] unknown key 'form' for kind demo", "from");
   refused("unknown accuracy key", edit("event-rtol", "event_tol"),

@@ -231,7 +231,8 @@ static int branch_check(const sc_scene *s, sc_msg *msg) {
                                "at = %s outside [from, to]",
                                sc_scene_text(s, "at"));
   }
-  if (sc_scene_int(s, "auto-period") > sc_scene_int(s, "max-period"))
+  if (has_auto(s) &&
+      sc_scene_int(s, "auto-period") > sc_scene_int(s, "max-period"))
     return sc_scene_fail_key(s, "task", "auto-period", msg,
                              "auto-period = %ld is above max-period = %ld "
                              "(valid: [1, max-period])",

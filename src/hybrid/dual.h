@@ -13,7 +13,7 @@
 /* Directions carried: the map's argument and the parameters of the one
  * model that uses duals (bk2: d, alpha, beta, phi, v).  Kept small because
  * duals are passed by value in the flows' inner loops. */
-#define SC_NDIR 5
+#define SC_NDIR 6
 
 typedef struct {
   double v;

@@ -23,6 +23,10 @@ static const sc_param_info bk2_params[] = {
     {"beta", 1, 0, 1e6, 1, 0, "static friction of block 2 / block 1", NULL},
     {"phi", 1.25, 1, 1e6, 1, 0, "static / kinetic friction ratio, 1/mu", NULL},
     {"v", 0.025, 0, 1e3, 0, 0, "driver velocity V (dimensionless)", "V"},
+    {"gamma", 1, 0, 1e6, 0, 0,
+     "velocity weakening: K_i = T_i / (1 + gamma |U_i - V_s|) (friction = "
+     "velocity-weakening only)",
+     NULL},
 };
 
 static const sc_option_info bk2_options[] = {
@@ -53,6 +57,7 @@ static int bk2_setup(void *vinst, const double *p, const int *opt,
   b->beta = p[1];
   b->phi = p[2];
   b->v = p[3];
+  b->gamma = p[4];
   b->frozen = opt[0] == 1;
   b->vw = opt[1] == 1;
   b->numerical = opt[2] == 1 || b->vw;
@@ -74,13 +79,6 @@ static int bk2_setup(void *vinst, const double *p, const int *opt,
                    "bk2: friction = velocity-weakening with driver = frozen "
                    "is ill posed (a slip cannot start): use "
                    "driver = moving");
-  if (b->vw)
-    /* The numerical path integrates it, but its start (K = T at zero
-     * relative velocity, so the re-stick guard has a double root at the
-     * onset) is not yet handled or validated: refuse rather than guess. */
-    return sc_fail(msg, SC_EINVAL,
-                   "bk2: friction = velocity-weakening is not available yet "
-                   "(valid: coulomb)");
   if (b->numerical && acc->precision == SC_PRECISION_QUAD)
     return sc_fail(msg, SC_EINVAL,
                    "bk2: precision = quad needs flows = exact (the numerical "
@@ -488,7 +486,7 @@ void sc_bk2_border_add(sc_border_list *l, sc_border_kind kind,
   bd->kind = kind;
   bd->value = m->v;
   bd->dd = m->d[0];
-  for (int k = 0; k < 4; k++) bd->dp[k] = m->d[k + 1];
+  for (int k = 0; k < BK2_NPARAM; k++) bd->dp[k] = m->d[k + 1];
   size_t len = strlen(name);
   if (len >= sizeof bd->name) len = sizeof bd->name - 1; /* cut */
   memcpy(bd->name, name, len);
@@ -882,7 +880,7 @@ static void switch_border(const bk2_inst *b, const bk2_dpar *P, sc_dual d,
     sc_border *bd = &l->b[l->n - 1];
     bd->on_state = 1;
     bd->d_on = b->dstar;
-    for (int k = 0; k < 4; k++) bd->d_on_dp[k] = ds.d[k + 1];
+    for (int k = 0; k < BK2_NPARAM; k++) bd->d_on_dp[k] = ds.d[k + 1];
   }
 }
 
@@ -1015,7 +1013,7 @@ int sc_bk2_iterate_ex(const bk2_inst *b, const bk2_dpar *P, sc_dual d,
       out->f = dn.v;
       if (nd) {
         out->dfdd = dn.d[0];
-        for (int k = 0; k < 4; k++) out->dfdp[k] = dn.d[k + 1];
+        for (int k = 0; k + 1 < nd; k++) out->dfdp[k] = dn.d[k + 1];
       }
       /* One block slipping alone from a GSP: f(d) = d + c (docs/model.md),
        * f' = 1 exactly, whatever rounding says. */
@@ -1305,7 +1303,7 @@ static int bk2_eval(void *vinst, double d, unsigned flags, sc_map_value *out,
   if (flags & SC_EVAL_DERIV2)
     return sc_bk2_eval_jet(b, d, flags, out, NULL, msg);
   bk2_dpar P;
-  int nd = (flags & SC_EVAL_DERIV) ? 5 : 0;
+  int nd = (flags & SC_EVAL_DERIV) ? bk2_nd(b) : 0;
   if (!nd && !b->numerical && !b->dual_only)
     return value_iterate(b, d, flags, out, msg);
   if (nd) sc_bk2_dparams(b, nd, &P);
@@ -1336,7 +1334,7 @@ static int bk2_eval_ex(void *vinst, double d, unsigned flags,
     return sc_bk2_eval_jet_ex(b, d, flags, force, code, borders, out, NULL,
                               msg);
   bk2_dpar P;
-  int nd = (flags & SC_EVAL_DERIV) || borders ? 5 : 0;
+  int nd = (flags & SC_EVAL_DERIV) || borders ? bk2_nd(b) : 0;
   if (!nd && !b->numerical && !b->dual_only && !(force && force->n > 0) &&
       !code)
     return value_iterate(b, d, flags, out, msg);
@@ -1441,7 +1439,7 @@ const sc_model_type sc_model_bk2 = {
     .doc = "two-block Burridge-Knopoff stick-slip model (docs/model.md)",
     .state_name = "d",
     .state_label = "Y_2 - Y_1",
-    .nparam = 4,
+    .nparam = BK2_NPARAM,
     .params = bk2_params,
     .noption = 3,
     .options = bk2_options,

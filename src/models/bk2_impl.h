@@ -9,6 +9,9 @@
 
 typedef struct bk2_num bk2_num; /* numerical-flow workspace (GSL) */
 
+/* Parameters: alpha, beta, phi, v, gamma (velocity weakening only). */
+#define BK2_NPARAM 5
+
 /* Parameters as duals: direction 0 is d, 1..4 are alpha, beta, phi, v. */
 typedef struct {
   int nd;
@@ -16,7 +19,7 @@ typedef struct {
 } bk2_dpar;
 
 typedef struct {
-  double alpha, beta, phi, v;
+  double alpha, beta, phi, v, gamma;
   int frozen;    /* driver = frozen: Vs = 0 during slips */
   int vw;        /* friction = velocity-weakening */
   int numerical; /* flows = numerical (always with velocity weakening) */
@@ -41,6 +44,12 @@ typedef struct {
   sc_root first_r[2];
   int first_ok[2];
 } bk2_inst;
+
+/* Directions of the forward-mode derivatives: d and the parameters that
+ * act (gamma only with velocity weakening). */
+static inline int bk2_nd(const bk2_inst *b) {
+  return b->vw ? 1 + BK2_NPARAM : BK2_NPARAM;
+}
 
 
 /* Positions and velocities of the two blocks. */

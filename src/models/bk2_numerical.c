@@ -24,7 +24,7 @@
 #include "models/bk2_impl.h"
 
 #define NSTATE 4
-#define NDIR_BK2 5
+#define NDIR_BK2 6
 #define DIM_MAX (NSTATE * (1 + NDIR_BK2))
 /* Fraction of the fastest free period allowed as one step. */
 #define STEP_FRACTION 0.1
@@ -52,7 +52,7 @@ static int slipping(int mode, int i) {
 }
 
 /* Kinetic force of block i at velocity u and its derivative in u and in
- * the parameters (directions 1..4 = alpha, beta, phi, v). */
+ * the parameters (directions 1..5 = alpha, beta, phi, v, gamma). */
 static double kinetic(const bk2_inst *b, int i, double u, double *dk_du,
                       double dk_dp[NDIR_BK2]) {
   double t = i == 1 ? 1 : b->beta;
@@ -63,11 +63,13 @@ static double kinetic(const bk2_inst *b, int i, double u, double *dk_du,
     if (i == 2) dk_dp[2] = b->mu;
     return t * b->mu;
   }
-  double rel = u - b->vs, den = 1 + fabs(rel);
+  /* K = T / (1 + gamma |u - Vs|) */
+  double g = b->gamma, rel = u - b->vs, den = 1 + g * fabs(rel);
   double sgn = rel > 0 ? 1 : rel < 0 ? -1 : 0;
-  *dk_du = -t * sgn / (den * den);
+  *dk_du = -t * g * sgn / (den * den);
   if (i == 2) dk_dp[2] = 1 / den;
-  if (!b->frozen) dk_dp[4] = t * sgn / (den * den); /* through Vs = v */
+  if (!b->frozen) dk_dp[4] = t * g * sgn / (den * den); /* through Vs = v */
+  dk_dp[5] = -t * fabs(rel) / (den * den);
   return t / den;
 }
 
@@ -85,6 +87,10 @@ static int rhs(double t, const double y[], double dy[], void *vp) {
     if (slipping(c->mode, i + 1))
       dy[2 + i] = kinetic(b, i + 1, y[2 + i], &dk_du[i], dk_dp[i]) - s[i];
   }
+  /* Directions not carried (gamma with Coulomb friction) stay zero: the
+   * system has room for all of them. */
+  for (int k = c->nd; c->nd > 0 && k < NDIR_BK2; k++)
+    for (int q = 0; q < NSTATE; q++) dy[NSTATE * (k + 1) + q] = 0;
   /* Variational equations s_k' = J s_k + df/dtheta_k. */
   for (int k = 0; k < c->nd; k++) {
     const double *z = y + NSTATE * (k + 1);
@@ -178,9 +184,10 @@ static double guard(const bk2_inst *b, int mode, int kind, const double *y,
 }
 
 /* First root in (0, h] of the cubic Hermite interpolant of (g0, d0) at 0
- * and (g1, d1) at h; skip a root at 0 if `skip0`.  Returns -1 if none. */
+ * and (g1, d1) at h where it crosses zero in direction dir (+1 rising,
+ * -1 falling); skip a root at 0 if `skip0`.  Returns -1 if none. */
 static double hermite_root(double g0, double d0, double g1, double d1,
-                           double h, int skip0) {
+                           double h, int skip0, int dir) {
   /* H(s) = c0 + c1 s + c2 s^2 + c3 s^3 */
   double c0 = g0, c1 = d0;
   double c2 = (3 * (g1 - g0) / h - 2 * d0 - d1) / h;
@@ -212,8 +219,13 @@ static double hermite_root(double g0, double d0, double g1, double d1,
     if (p == 0 && skip0) continue;
     double flo = c0 + lo * (c1 + lo * (c2 + lo * c3));
     double fhi = c0 + hi * (c1 + hi * (c2 + hi * c3));
+    /* Events are guards rising through zero (docs/model.md), maxima are
+     * g' falling through it: a piece crossing the other way is passed.
+     * With velocity weakening a slip starts with U' = K - T = 0, so
+     * rounding may make the guard rise first and then fall back through
+     * zero: not a re-stick. */
+    if (dir > 0 ? !(flo < 0 && fhi >= 0) : !(flo > 0 && fhi <= 0)) continue;
     if (fhi == 0) return hi;
-    if ((flo > 0) == (fhi > 0) || flo == 0) continue;
     for (int it = 0; it < 200 && hi - lo > 4 * DBL_EPSILON * hi; it++) {
       double m = 0.5 * (lo + hi);
       double fm = c0 + m * (c1 + m * (c2 + m * c3));
@@ -281,7 +293,11 @@ static double guard_prime(const bk2_inst *b, int mode, int kind,
   double a = b->alpha;
   if (kind < 3) {
     int i = kind - 1, j = 1 - i;
-    *g2 = -((1 + a) * y[2 + i] - a * y[2 + j]);
+    /* U_i'' = dK_i/dU_i U_i' - S_i' (velocity weakening: K_i depends on
+     * U_i; Coulomb: dK/dU = 0) */
+    double dk_du, dk_dp[NDIR_BK2];
+    kinetic(b, kind, y[2 + i], &dk_du, dk_dp);
+    *g2 = dk_du * dy[2 + i] - ((1 + a) * y[2 + i] - a * y[2 + j]);
     return dy[2 + i];
   }
   int j = mode == SC_BK2_SLIP1 ? 1 : 0, i = 1 - j;
@@ -385,7 +401,7 @@ static int num_scan(const bk2_inst *b, const bk2_dpar *P, int mode,
       /* a maximum: g' falls through zero in this step */
       double a0, a1, p0 = guard_prime(b, mode, q->kind, y0, dy0, &a0);
       double p1 = guard_prime(b, mode, q->kind, y, dy1, &a1);
-      double r = hermite_root(p0, a0, p1, a1, t - t0, t0 == 0);
+      double r = hermite_root(p0, a0, p1, a1, t - t0, t0 == 0, -1);
       if (r >= 0 && p0 > 0 && !(p1 > 0)) {
         double tm = t0 + r;
         refine(b, w, &sys, mode, q->kind, 1, t0, y0, t, hmax, &tm, yt, dyt);
@@ -409,7 +425,7 @@ static int num_scan(const bk2_inst *b, const bk2_dpar *P, int mode,
         double s0, s1, g0 = guard(b, mode, q->kind, y0, dy0, &s0);
         double g1 = guard(b, mode, q->kind, y, dy1, &s1);
         int skip = t0 == 0 && (fresh & q->kind);
-        double rr = hermite_root(g0, s0, g1, s1, t - t0, skip);
+        double rr = hermite_root(g0, s0, g1, s1, t - t0, skip, 1);
         if (rr >= 0 && g1 > g0) {
           double tr = t0 + rr;
           refine(b, w, &sys, mode, q->kind, 0, t0, y0, t, hmax, &tr, yt, dyt);
@@ -626,7 +642,7 @@ int sc_bk2_num_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
        * the start root of a slip: skip it (see sc_guard_first_root) */
       int skip = t0 == 0 && ((kinds[i] < 3 && (fresh & kinds[i])) ||
                              fabs(g0) <= round_guard(b, y0));
-      double r = hermite_root(g0, s0, g1, s1, step, skip);
+      double r = hermite_root(g0, s0, g1, s1, step, skip, 1);
       /* A guard that rises and falls back inside the step, negative at
        * both ends: its maximum, refined on the true solution, decides
        * whether it touched zero (a grazing the interpolant may hide when
@@ -635,7 +651,7 @@ int sc_bk2_num_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
         double a0, a1, ym[DIM_MAX], dym[DIM_MAX];
         guard_prime(b, mode, kinds[i], y0, dy0, &a0);
         guard_prime(b, mode, kinds[i], y, dy1, &a1);
-        double rm = hermite_root(s0, a0, s1, a1, step, 0);
+        double rm = hermite_root(s0, a0, s1, a1, step, 0, -1);
         if (rm >= 0) {
           double tm = t0 + rm, sm;
           refine(b, w, &sys, mode, kinds[i], 1, t0, y0, t, hmax, &tm, ym,
@@ -643,7 +659,7 @@ int sc_bk2_num_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
           double gm = guard(b, mode, kinds[i], ym, dym, &sm);
           if (gm >= -round_guard(b, ym)) {
             /* the root: on [t0, tm], where g rises from g0 < 0 */
-            double rr = hermite_root(g0, s0, gm, 0, tm - t0, 0);
+            double rr = hermite_root(g0, s0, gm, 0, tm - t0, 0, 1);
             r = rr >= 0 ? rr : tm - t0;
           }
         }
