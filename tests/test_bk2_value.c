@@ -122,7 +122,8 @@ static int setup(bk2_inst *b, const double p[4], int frozen) {
   sc_accuracy_preset(&acc, "default", NULL);
   int opt[3] = {frozen, 0, 0};
   memset(b, 0, sizeof *b);
-  return sc_model_bk2.setup(b, p, opt, &acc, &msg);
+  const double q[5] = {p[0], p[1], p[2], p[3], 1}; /* gamma: unused */
+  return sc_model_bk2.setup(b, q, opt, &acc, &msg);
 }
 
 static void one_set(bk2_inst *b, stats *s, long budget) {

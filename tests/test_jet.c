@@ -253,7 +253,7 @@ static void test_bk2_grad(void) {
   for (size_t s = 0; s < NSETS; s++) {
     bk2_inst b;
     memset(&b, 0, sizeof b);
-    double p[4] = {sets[s].alpha, sets[s].beta, 1.25, sets[s].v};
+    double p[5] = {sets[s].alpha, sets[s].beta, 1.25, sets[s].v, 1};
     int opt[3] = {strcmp(sets[s].driver, "frozen") == 0, 0, 0};
     sc_accuracy acc;
     sc_accuracy_preset(&acc, "default", NULL);

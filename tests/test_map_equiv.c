@@ -184,7 +184,8 @@ static int setup(bk2_inst *b, const double p[4], int frozen,
   sc_accuracy_preset(&acc, "default", NULL);
   int opt[3] = {frozen, 0, 0};
   memset(b, 0, sizeof *b);
-  int st = sc_model_bk2.setup(b, p, opt, &acc, &msg);
+  const double q[5] = {p[0], p[1], p[2], p[3], 1}; /* gamma: unused */
+  int st = sc_model_bk2.setup(b, q, opt, &acc, &msg);
   b->search = search;
   if (!st) sc_bk2_first_restick(b); /* with this search */
   return st;
