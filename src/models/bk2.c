@@ -655,6 +655,16 @@ static double root_window(const sc_guard *g, const sc_root *r) {
   return r->bracket + (r->slope != 0 ? E / fabs(r->slope) : 0);
 }
 
+/* The stuck block's threshold guard at the onset of a slip from a GSP:
+ * its value at 0 as the onset formula gives it, (1 + 2 alpha)(d - d*) up
+ * to sign, not as rounding builds it from the state (next to d* the sign
+ * can flip, and the other block's trigger be missed). */
+static void set_onset_gap(sc_guard *g, double gap) {
+  double g0;
+  sc_guard_eval(g, 0, &g0, NULL, NULL);
+  g->c0 += gap - g0;
+}
+
 /* The first event of a phase among its guards g (kinds kind), searched
  * up to tmax: later guards only up to the earliest root so far (plus its
  * tie tolerance), the first re-stick after a GSP from the per-parameter
@@ -741,14 +751,7 @@ static int exact_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
   }
   if (mode != SC_BK2_SLIP12) {
     g[ng] = guard_threshold(P, &f);
-    if (ev->onset) {
-      /* its value at 0 as the onset formula gives it, not as rounding
-       * builds it from the state (next to d* the sign can flip, and the
-       * other block's trigger be missed) */
-      double g0;
-      sc_guard_eval(&g[ng], 0, &g0, NULL, NULL);
-      g[ng].c0 += ev->onset_gap - g0;
-    }
+    if (ev->onset) set_onset_gap(&g[ng], ev->onset_gap);
     kind[ng++] = BK2_EV_THRESHOLD;
   }
   sc_root r[2];
@@ -1180,11 +1183,7 @@ static int value_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
   }
   if (mode != SC_BK2_SLIP12) {
     g[ng] = vguard_threshold(P, &f);
-    if (!isnan(onset_gap)) { /* as exact_phase(): the onset's own gap */
-      double g0;
-      sc_guard_eval(&g[ng], 0, &g0, NULL, NULL);
-      g[ng].c0 += onset_gap - g0;
-    }
+    if (!isnan(onset_gap)) set_onset_gap(&g[ng], onset_gap);
     kind[ng++] = BK2_EV_THRESHOLD;
   }
   sc_root r[2];
