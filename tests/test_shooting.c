@@ -370,8 +370,54 @@ static void test_errors(void) {
   sc_map_free(m);
 }
 
+/* Long periods: the logistic map at r = 3.569945659, between the 12th and
+ * 13th flips of its cascade (r_inf = 3.5699456718...), where the attractor
+ * is a stable orbit of period 2^12 = 4096.  Multiple shooting (KLU, chosen
+ * automatically above SC_SHOOT_DENSE_MAX) from the attractor's points
+ * polishes it: minimal period 4096, every d_(i+1) = f(d_i) to rounding,
+ * and a stable multiplier. */
+static void test_period4096(void) {
+  printf("--- logistic: a period-4096 orbit by multiple shooting\n");
+  enum { P = 4096 };
+  sc_map *m;
+  sc_msg msg = {""};
+  sc_map_alloc("logistic", NULL, &m, &msg);
+  sc_map_set_param(m, 0, 3.569945659, &msg);
+  static double o[P];
+  double x = 0.5;
+  sc_map_value v;
+  for (long k = 0; k < 2000000; k++) {
+    sc_map_eval(m, x, SC_EVAL_VALUE, &v, NULL);
+    x = v.f;
+  }
+  o[0] = x;
+  for (int k = 1; k < P; k++) {
+    sc_map_eval(m, o[k - 1], SC_EVAL_VALUE, &v, NULL);
+    o[k] = v.f;
+  }
+  sc_shoot *sh = NULL;
+  sc_shoot_result res;
+  int st = sc_shoot_alloc(m, P, SC_SHOOT_MULTIPLE, NULL, &sh, &msg);
+  if (!st) st = sc_shoot_solve_orbit(sh, o, &res, &msg);
+  tu_int("period 4096: multiple shooting converged", st, SC_OK);
+  if (!st) {
+    const double *q = sc_shoot_orbit(sh);
+    printf("  backend %s, multiplier %.6g\n",
+           sc_linsolve_type_name(sc_shoot_linsolve_type(sh)), res.multiplier);
+    tu_int("period 4096: minimal period", min_period(q, P), P);
+    /* |d| < 1: rounding of f is a few 1e-16 per evaluation */
+    tu_close("period 4096: worst defect max |d_(i+1) - f(d_i)|",
+             orbit_defect(m, q, P), 0, 1e-14);
+    tu_true(fabs(res.multiplier) < 1, "period 4096: stable (multiplier %.6g)",
+            res.multiplier);
+  }
+  sc_shoot_free(sh);
+  sc_map_free(m);
+}
+
 int main(void) {
   setvbuf(stdout, NULL, _IOLBF, 0);
+  test_period4096();
   test_logistic();
   const int p019[] = {2, 4, 8, 16, 24, 32};
   test_chaotic(0.019, p019, 6, 400, 100, 1);
