@@ -655,6 +655,23 @@ static double root_window(const sc_guard *g, const sc_root *r) {
   return r->bracket + (r->slope != 0 ? E / fabs(r->slope) : 0);
 }
 
+/* The candidate events of a phase of `mode`, in the order they are
+ * searched (kinds: 1, 2 re-stick of block i; 3 threshold of the stuck
+ * block): later guards are searched only up to the earliest root so far,
+ * so the likelier first event goes first: in SLIP12, the block that has
+ * slipped longer (not fresh) usually re-sticks first.  Returns their
+ * number.  The dual and the value-only phases share it. */
+static int phase_kinds(int mode, int fresh, int kind[2]) {
+  int ng = 0;
+  int order[2] = {1, 2};
+  if (mode == SC_BK2_SLIP12 && (fresh & 1) && !(fresh & 2))
+    order[0] = 2, order[1] = 1;
+  for (int k = 0; k < 2; k++)
+    if (mode == order[k] || mode == SC_BK2_SLIP12) kind[ng++] = order[k];
+  if (mode != SC_BK2_SLIP12) kind[ng++] = BK2_EV_THRESHOLD;
+  return ng;
+}
+
 /* The stuck block's threshold guard at the onset of a slip from a GSP:
  * its value at 0 as the onset formula gives it, (1 + 2 alpha)(d - d*) up
  * to sign, not as rounding builds it from the state (next to d* the sign
@@ -735,24 +752,12 @@ static int exact_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
   /* Candidate events: re-stick of each slipping block, threshold of the
    * stuck one. */
   sc_guard g[2];
-  int kind[2], ng = 0;
-  /* Later guards are searched only up to the earliest root so far, so
-   * the likelier first event goes first: in SLIP12, the block that has
-   * slipped longer (not fresh) usually re-sticks first. */
-  int order[2] = {1, 2};
-  if (mode == SC_BK2_SLIP12 && (fresh & 1) && !(fresh & 2))
-    order[0] = 2, order[1] = 1;
-  for (int k = 0; k < 2; k++) {
-    int i = order[k];
-    if (mode == i || mode == SC_BK2_SLIP12) {
-      g[ng] = guard_restick(P, &f, i);
-      kind[ng++] = i;
-    }
-  }
-  if (mode != SC_BK2_SLIP12) {
-    g[ng] = guard_threshold(P, &f);
-    if (ev->onset) set_onset_gap(&g[ng], ev->onset_gap);
-    kind[ng++] = BK2_EV_THRESHOLD;
+  int kind[2], ng = phase_kinds(mode, fresh, kind);
+  for (int i = 0; i < ng; i++) {
+    g[i] = kind[i] < 3 ? guard_restick(P, &f, kind[i])
+                       : guard_threshold(P, &f);
+    if (kind[i] == BK2_EV_THRESHOLD && ev->onset)
+      set_onset_gap(&g[i], ev->onset_gap);
   }
   sc_root r[2];
   double tmax = 0;
@@ -1170,21 +1175,12 @@ static int value_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
                        int fresh, double onset_gap, vstate *x, sc_msg *msg) {
   vflow f = vflow_make(P, mode, x);
   sc_guard g[2];
-  int kind[2], ng = 0;
-  int order[2] = {1, 2};
-  if (mode == SC_BK2_SLIP12 && (fresh & 1) && !(fresh & 2))
-    order[0] = 2, order[1] = 1;
-  for (int k = 0; k < 2; k++) {
-    int i = order[k];
-    if (mode == i || mode == SC_BK2_SLIP12) {
-      g[ng] = vguard_restick(P, &f, i);
-      kind[ng++] = i;
-    }
-  }
-  if (mode != SC_BK2_SLIP12) {
-    g[ng] = vguard_threshold(P, &f);
-    if (!isnan(onset_gap)) set_onset_gap(&g[ng], onset_gap);
-    kind[ng++] = BK2_EV_THRESHOLD;
+  int kind[2], ng = phase_kinds(mode, fresh, kind);
+  for (int i = 0; i < ng; i++) {
+    g[i] = kind[i] < 3 ? vguard_restick(P, &f, kind[i])
+                       : vguard_threshold(P, &f);
+    if (kind[i] == BK2_EV_THRESHOLD && !isnan(onset_gap))
+      set_onset_gap(&g[i], onset_gap);
   }
   sc_root r[2];
   double tmax = 0;
