@@ -1,10 +1,10 @@
-/* The two-block Burridge-Knopoff model (docs/model.md): exact closed-form
- * flows in every mode, certified event location (src/hybrid/guard.c),
- * the event map f(d) with derivatives propagated through the flows and
- * across events in forward mode (src/hybrid/dual.h), and trajectories.
- * Numerical flows (GSL odeiv2) for the same model live in
- * bk2_numerical.c and share the event logic here.  The derivation of
- * every formula is in docs/derivations.md. */
+/* The closed-form flows of the bk2 model (`flows = exact`, bk2_impl.h):
+ * in every slip mode the motion is a sum of sinusoids and a linear drift,
+ * so the guards are known in closed form and their first roots are
+ * located by the certified search of src/hybrid/guard.c.  A phase on
+ * duals (derivatives in d and the parameters) and a value-only fast path
+ * for plain evaluations that computes the same numbers.  The derivation
+ * of every formula is in docs/derivations.md. */
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
@@ -18,100 +18,11 @@
 #include "hybrid/hybrid_impl.h"
 #include "slipcont/hybrid.h"
 
-static const sc_param_info bk2_params[] = {
-    {"alpha", 3, 0, 1e6, 1, 0, "coupling spring / driver spring, k_c/k", NULL},
-    {"beta", 1, 0, 1e6, 1, 0, "static friction of block 2 / block 1", NULL},
-    {"phi", 1.25, 1, 1e6, 1, 0, "static / kinetic friction ratio, 1/mu", NULL},
-    {"v", 0.025, 0, 1e3, 0, 0, "driver velocity V (dimensionless)", "V"},
-    {"gamma", 1, 0, 1e6, 0, 0,
-     "velocity weakening: K_i = T_i / (1 + gamma |U_i - V_s|) (friction = "
-     "velocity-weakening only)",
-     NULL},
-};
-
-static const sc_option_info bk2_options[] = {
-    {"driver",
-     {"moving", "frozen", NULL},
-     "the driver keeps moving during slips, or stops (assumption 1)"},
-    {"friction",
-     {"coulomb", "velocity-weakening", NULL},
-     "kinetic friction: constant mu T_i, or T_i / (1 + |U_i - V_s|)"},
-    {"flows",
-     {"exact", "numerical", NULL},
-     "closed-form flows, or GSL odeiv2 integration"},
-};
-
-double sc_bk2_dstar(double alpha, double beta) {
-  return (beta - 1) / (1 + 2 * alpha);
-}
-
 /* Slip phases of one block alone last less than one period; a phase of
  * both blocks is quasi-periodic, so a horizon is needed: this many periods
  * of its slow mode (frequency 1) without a re-stick make f undefined. */
 #define SLIP12_PERIODS 16
 
-static int bk2_setup(void *vinst, const double *p, const int *opt,
-                     const sc_accuracy *acc, sc_msg *msg) {
-  bk2_inst *b = vinst;
-  b->alpha = p[0];
-  b->beta = p[1];
-  b->phi = p[2];
-  b->v = p[3];
-  b->gamma = p[4];
-  b->frozen = opt[0] == 1;
-  b->vw = opt[1] == 1;
-  b->numerical = opt[2] == 1 || b->vw;
-  b->acc = *acc;
-  b->mu = 1 / b->phi;
-  b->w1 = sqrt(1 + b->alpha);
-  b->w2 = sqrt(1 + 2 * b->alpha);
-  b->vs = b->frozen ? 0 : b->v;
-  b->dstar = sc_bk2_dstar(b->alpha, b->beta);
-  sc_bk2_dparams(b, 0, &b->p0); /* value-only evaluations start from it */
-  b->search = sc_guard_first_root;
-  if (b->v > 0 && b->v < DBL_MIN)
-    return sc_fail(msg, SC_EINVAL,
-                   "bk2: v = %g is subnormal: the event horizons divide by "
-                   "it (valid: 0, or v >= %g)",
-                   b->v, DBL_MIN);
-  if (b->vw && b->frozen)
-    return sc_fail(msg, SC_EINVAL,
-                   "bk2: friction = velocity-weakening with driver = frozen "
-                   "is ill posed (a slip cannot start): use "
-                   "driver = moving");
-  if (b->numerical && acc->precision == SC_PRECISION_QUAD)
-    return sc_fail(msg, SC_EINVAL,
-                   "bk2: precision = quad needs flows = exact (the numerical "
-                   "flows are double only)");
-  if (b->numerical) return sc_bk2_num_setup(b, msg);
-  sc_bk2_first_restick(b);
-  return SC_OK;
-}
-
-static void bk2_release(void *vinst) { sc_bk2_num_release(vinst); }
-
-/* ---- parameters as duals ------------------------------------------- */
-
-void sc_bk2_dparams(const bk2_inst *b, int nd, bk2_dpar *P) {
-  P->nd = nd;
-  P->alpha = sc_dvar(b->alpha, 1, nd);
-  P->beta = sc_dvar(b->beta, 2, nd);
-  sc_dual phi = sc_dvar(b->phi, 3, nd);
-  P->mu = sc_ddiv(sc_dconst(1, nd), phi, nd);
-  P->k1 = P->mu;
-  P->k2 = sc_dmul(P->beta, P->mu, nd);
-  P->t2 = P->beta;
-  P->v = sc_dvar(b->v, 4, nd);
-  P->vs = b->frozen ? sc_dconst(0, nd) : P->v;
-  P->w1 = sc_dsqrt(sc_daddc(P->alpha, 1), nd);
-  P->w2 = sc_dsqrt(sc_daddc(sc_dscale(P->alpha, 2, nd), 1), nd);
-}
-
-/* Spring forces S1 = (1+alpha) Y1 - alpha Y2, S2 = (1+alpha) Y2 - alpha Y1. */
-static sc_dual spring(const bk2_dpar *P, sc_dual ya, sc_dual yb) {
-  int nd = P->nd;
-  return sc_dadd(ya, sc_dmul(P->alpha, sc_dsub(ya, yb, nd), nd), nd);
-}
 
 /* ---- the forced oscillator q'' + w^2 q = F0 + F1 t ------------------- */
 
@@ -273,120 +184,6 @@ static double guard_horizon(const sc_guard *g) {
   return SLIP12_PERIODS * period;
 }
 
-/* ---- the event logic, shared with numerical flows --------------------- */
-
-/* Apply the event-time sensitivity: the guard gval (a dual evaluated at
- * fixed time) vanishes at the event, so dt = -dg / g' and the state moves
- * along its velocity: x += xdot dt. */
-void sc_bk2_event_shift(const bk2_dpar *P, sc_dual gval, double slope,
-                        const double acc[2], bk2_state *x) {
-  int nd = P->nd;
-  if (nd == 0) return;
-  double dt[SC_NDIR];
-  /* g' = 0: the event time is not differentiable (f' is infinite there,
-   * docs/model.md: |d - d*|^(-1/2) at d* with V_s = 0): say so with NaN. */
-  for (int k = 0; k < nd; k++) dt[k] = slope != 0 ? -gval.d[k] / slope : NAN;
-  double xdot[4] = {x->u1.v, x->u2.v, acc[0], acc[1]};
-  sc_dual *xs[4] = {&x->y1, &x->y2, &x->u1, &x->u2};
-  for (int i = 0; i < 4; i++)
-    for (int k = 0; k < nd; k++) xs[i]->d[k] += xdot[i] * dt[k];
-}
-
-int sc_bk2_take_event(const bk2_dpar *P, int mode, int kind, double slope,
-                      const double acc[2], bk2_state *x) {
-  int nd = P->nd;
-  if (nd) {
-    /* the guard on duals at fixed time: its sensitivity moves the event */
-    sc_dual gv;
-    if (kind == 1) gv = sc_dsub(x->u1, P->vs, nd);
-    else if (kind == 2) gv = sc_dsub(x->u2, P->vs, nd);
-    else if (mode == SC_BK2_SLIP1)
-      gv = sc_dsub(spring(P, x->y2, x->y1), P->t2, nd);
-    else
-      gv = sc_daddc(spring(P, x->y1, x->y2), -1);
-    sc_bk2_event_shift(P, gv, slope, acc, x);
-  }
-  switch (kind) {
-  case 1:
-    x->u1 = P->vs;
-    return mode == SC_BK2_SLIP1 ? SC_BK2_STICK : SC_BK2_SLIP2;
-  case 2:
-    x->u2 = P->vs;
-    return mode == SC_BK2_SLIP2 ? SC_BK2_STICK : SC_BK2_SLIP1;
-  default:
-    return SC_BK2_SLIP12;
-  }
-}
-
-int sc_bk2_take_event_at_max(const bk2_dpar *P, int mode, int kind,
-                             double g2, const double acc[2], bk2_state *x) {
-  /* the event time solves g' = 0: dt = -dg'/g'' at fixed time, with
-   * g' = U_i' = K_i - S_i of the slipping block */
-  int nd = P->nd;
-  sc_dual gp = kind == BK2_EV_RESTICK1
-                   ? sc_dsub(P->k1, spring(P, x->y1, x->y2), nd)
-                   : sc_dsub(P->k2, spring(P, x->y2, x->y1), nd);
-  sc_bk2_event_shift(P, gp, g2, acc, x);
-  bk2_dpar P0 = *P;
-  P0.nd = 0; /* shifted already */
-  return sc_bk2_take_event(&P0, mode, kind, g2, acc, x);
-}
-
-void sc_bk2_patch(bk2_events *ev, int c0, int c1, int drop_next) {
-  if (ev->borders->n > ev->borders->cap || ev->npatch >= 8) return;
-  ev->patch[ev->npatch].idx = ev->borders->n - 1;
-  ev->patch[ev->npatch].phase = ev->phase;
-  ev->patch[ev->npatch].c0 = (unsigned char)c0;
-  ev->patch[ev->npatch].c1 = (unsigned char)c1;
-  ev->patch[ev->npatch].drop_next = drop_next;
-  ev->npatch++;
-}
-
-static void itin_add(char *itin, size_t *len, int mode, unsigned flags) {
-  if (!(flags & SC_EVAL_ITINERARY)) return;
-  const char *tok = mode == SC_BK2_SLIP1 ? "1" : mode == SC_BK2_SLIP2 ? "2"
-                                                                        : "12";
-  size_t need = strlen(tok) + (*len ? 1 : 0);
-  if (*len + need + 4 >= SC_ITIN_LEN) {
-    if (*len + 4 < SC_ITIN_LEN && strcmp(itin + *len - 3, "...") != 0) {
-      strcpy(itin + *len, "...");
-      *len += 3;
-    }
-    return;
-  }
-  if (*len) itin[(*len)++] = '-';
-  strcpy(itin + *len, tok);
-  *len += strlen(tok);
-}
-
-/* Onset modes and states of the slip that ends a GSP of displacement d:
- * block 1 is at its threshold first iff d < d* (docs/model.md, "The event
- * map"); at d* both are, and both start (the tie rule). */
-static int onset_mode(const bk2_inst *b, double d) {
-  return d < b->dstar ? SC_BK2_SLIP1 : d > b->dstar ? SC_BK2_SLIP2
-                                                    : SC_BK2_SLIP12;
-}
-
-static void onset_state(const bk2_dpar *P, sc_dual d, int mode,
-                        bk2_state *x) {
-  int nd = P->nd;
-  if (mode == SC_BK2_SLIP1) {
-    x->y1 = sc_daddc(sc_dmul(P->alpha, d, nd), 1);
-    x->y2 = sc_dadd(x->y1, d, nd);
-  } else {
-    x->y2 = sc_dsub(P->beta, sc_dmul(P->alpha, d, nd), nd);
-    x->y1 = sc_dsub(x->y2, d, nd);
-  }
-  x->u1 = x->u2 = P->vs;
-}
-
-int sc_bk2_onset(const bk2_inst *b, const bk2_dpar *P, sc_dual d,
-                 bk2_state *x) {
-  int mode = onset_mode(b, d.v);
-  onset_state(P, d, mode, x);
-  return mode;
-}
-
 /* ---- guards beyond their first root ------------------------------------ */
 
 /* Most roots of a guard's derivative walked through in one phase: a slip
@@ -476,27 +273,6 @@ static int guard_maxima(const sc_guard *g, double tend, double atol,
   return -2;
 }
 
-/* ---- borders ------------------------------------------------------------ */
-
-void sc_bk2_border_add(sc_border_list *l, sc_border_kind kind,
-                       const sc_dual *m, const char *name) {
-  if (l->n++ >= l->cap) return; /* counted: the caller grows and repeats */
-  sc_border *bd = &l->b[l->n - 1];
-  memset(bd, 0, sizeof *bd);
-  bd->kind = kind;
-  bd->value = m->v;
-  bd->dd = m->d[0];
-  for (int k = 0; k < BK2_NPARAM; k++) bd->dp[k] = m->d[k + 1];
-  size_t len = strlen(name);
-  if (len >= sizeof bd->name) len = sizeof bd->name - 1; /* cut */
-  memcpy(bd->name, name, len);
-  bd->name[len] = '\0';
-}
-
-static const char *mode_name(int mode) {
-  return mode == SC_BK2_SLIP1 ? "1" : mode == SC_BK2_SLIP2 ? "2" : "12";
-}
-
 /* The guard of event kind k on duals at fixed time t: its sensitivity to
  * d and the parameters there. */
 static sc_dual guard_dual(const bk2_dpar *P, const mode_flow *f, int kind,
@@ -509,8 +285,8 @@ static sc_dual guard_dual(const bk2_dpar *P, const mode_flow *f, int kind,
   if (kind == BK2_EV_RESTICK1) return sc_dsub(xs.u1, P->vs, nd);
   if (kind == BK2_EV_RESTICK2) return sc_dsub(xs.u2, P->vs, nd);
   if (f->mode == SC_BK2_SLIP1)
-    return sc_dsub(spring(P, xs.y2, xs.y1), P->t2, nd);
-  return sc_daddc(spring(P, xs.y1, xs.y2), -1);
+    return sc_dsub(bk2_spring(P, xs.y2, xs.y1), P->t2, nd);
+  return sc_daddc(bk2_spring(P, xs.y1, xs.y2), -1);
 }
 
 /* An event time t (root of the guard of kind k, slope g') as a dual:
@@ -522,11 +298,6 @@ static sc_dual event_time(const bk2_dpar *P, const mode_flow *f, int kind,
   return r;
 }
 
-static const char *guard_text(int kind) {
-  return kind == BK2_EV_RESTICK1   ? "U1-Vs"
-         : kind == BK2_EV_RESTICK2 ? "U2-Vs"
-                                   : "S-T of stuck block";
-}
 
 /* The borders of one exact slip phase that ends at T by guard `first`:
  * the highest local maximum of every guard before T (grazing of a
@@ -543,7 +314,7 @@ static void phase_borders(const bk2_dpar *P, const mode_flow *f, int fresh,
   int nd = P->nd;
   double T = re->t, tol = atol + rtol * T;
   char name[2 * SC_BORDER_NAME];
-  const char *mn = mode_name(f->mode);
+  const char *mn = bk2_mode_name(f->mode);
   sc_dual Td = event_time(P, f, ekind, T, re->slope);
   if (ekind == BK2_EV_RESTICK1 || ekind == BK2_EV_RESTICK2) {
     /* The hump the re-stick guard climbs into: its maximum just after the
@@ -566,7 +337,7 @@ static void phase_borders(const bk2_dpar *P, const mode_flow *f, int fresh,
     if (ok) {
       sc_dual m = guard_dual(P, f, ekind, ta);
       snprintf(name, sizeof name, "%s max after the event, phase %d (slip %s)",
-               guard_text(ekind), ev->phase, mn);
+               bk2_guard_text(ekind), ev->phase, mn);
       sc_bk2_border_add(ev->borders, SC_BORDER_GRAZING, &m, name);
       sc_bk2_patch(ev, ekind | BK2_EV_ATMAX, nbefore, 0);
     }
@@ -577,7 +348,7 @@ static void phase_borders(const bk2_dpar *P, const mode_flow *f, int fresh,
     if (nm > 0) {
       sc_dual m = sc_dscale(guard_dual(P, f, kind[i], tb), -1, nd);
       snprintf(name, sizeof name, "%s max, phase %d (slip %s)",
-               guard_text(kind[i]), ev->phase, mn);
+               bk2_guard_text(kind[i]), ev->phase, mn);
       sc_bk2_border_add(ev->borders,
                         kind[i] < 3 ? SC_BORDER_GRAZING : SC_BORDER_TOUCH,
                         &m, name);
@@ -589,7 +360,7 @@ static void phase_borders(const bk2_dpar *P, const mode_flow *f, int fresh,
     if (st != 1 || ri.tangent || !(ri.slope > 0)) continue;
     sc_dual m = sc_dsub(event_time(P, f, kind[i], ri.t, ri.slope), Td, nd);
     snprintf(name, sizeof name, "%s rise after the event, phase %d (slip %s)",
-             guard_text(kind[i]), ev->phase, mn);
+             bk2_guard_text(kind[i]), ev->phase, mn);
     sc_bk2_border_add(ev->borders,
                       ekind == BK2_EV_THRESHOLD ? SC_BORDER_CROSSING
                                                 : SC_BORDER_BOTH,
@@ -722,7 +493,7 @@ static int first_event(const bk2_inst *b, int mode, int fresh,
     return sc_fail(msg, SC_EUNDEF,
                    "no event within %.6g time units of slip mode %s: the "
                    "slip does not end",
-                   tmax, mode_name(mode));
+                   tmax, bk2_mode_name(mode));
   int both = 0;
   for (int i = 0; i < ng; i++) {
     if (i == first || !r[i].found) continue;
@@ -779,7 +550,7 @@ static int exact_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
       return sc_fail(msg, SC_EINVAL,
                      "bk2: the forced itinerary code does not fit slip mode "
                      "%s (event %d)",
-                     mode_name(mode), want);
+                     bk2_mode_name(mode), want);
     double ts = 0, tb, gb;
     int sk = kind[first] < 3 && (fresh & kind[first]);
     if (atmax) {
@@ -791,7 +562,7 @@ static int exact_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
         return sc_fail(msg, SC_EUNDEF,
                        "bk2: the forced grazing event of slip mode %s needs "
                        "%d maxima of its guard, found %d",
-                       mode_name(mode), skip + 1, nm);
+                       bk2_mode_name(mode), skip + 1, nm);
       double g2;
       sc_guard_eval(&g[first], ts, NULL, NULL, &g2);
       r[first] = (sc_root){.found = 1, .t = ts, .slope = g2};
@@ -801,7 +572,7 @@ static int exact_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
         return sc_fail(msg, SC_EUNDEF,
                        "bk2: the forced event of slip mode %s needs %d "
                        "maxima of its guard, found %d",
-                       mode_name(mode), skip, nm);
+                       bk2_mode_name(mode), skip, nm);
       sk = 0;
     }
     int st = atmax ? 1
@@ -814,7 +585,7 @@ static int exact_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
       return sc_fail(msg, SC_EUNDEF,
                      "bk2: the forced event (%s reaching zero) does not "
                      "occur in slip mode %s within %.6g time units",
-                     guard_text(kind[first]), mode_name(mode), tmax);
+                     bk2_guard_text(kind[first]), bk2_mode_name(mode), tmax);
     ev->steps += r[first].steps;
     both = BK2_IS_BOTH(want);
   }
@@ -852,192 +623,6 @@ static int exact_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
     return SC_BK2_STICK;
   }
   return next;
-}
-
-int sc_bk2_phase(const bk2_inst *b, const bk2_dpar *P, int mode, int fresh,
-                 bk2_state *x, double *duration, bk2_events *ev,
-                 sc_msg *msg) {
-  if (b->numerical)
-    return sc_bk2_num_phase(b, P, mode, fresh, x, duration, ev, msg);
-  return exact_phase(b, P, mode, fresh, x, duration, ev, msg);
-}
-
-/* Which blocks start slipping when entering `next` from `mode`. */
-static int fresh_blocks(int mode, int next) {
-  if (mode == SC_BK2_STICK)
-    return next == SC_BK2_SLIP1 ? 1 : next == SC_BK2_SLIP2 ? 2 : 3;
-  if (next == SC_BK2_SLIP12) return mode == SC_BK2_SLIP1 ? 2 : 1;
-  return 0;
-}
-
-/* The switching border of a GSP: the distance of d from d* on the side of
- * the onset mode, a surface in the state (d_on = d*). */
-static void switch_border(const bk2_inst *b, const bk2_dpar *P, sc_dual d,
-                          int mode, sc_border_list *l) {
-  int nd = P->nd;
-  sc_dual ds = sc_ddiv(sc_daddc(P->beta, -1),
-                       sc_daddc(sc_dscale(P->alpha, 2, nd), 1), nd);
-  ds.v = b->dstar; /* the same number as the onset's comparison */
-  sc_dual m = mode == SC_BK2_SLIP1 ? sc_dsub(ds, d, nd) : sc_dsub(d, ds, nd);
-  if (mode == SC_BK2_SLIP12) m.v = 0;
-  sc_bk2_border_add(l, SC_BORDER_SWITCHING, &m,
-                    mode == SC_BK2_SLIP1   ? "d* - d at the onset (block 1)"
-                    : mode == SC_BK2_SLIP2 ? "d - d* at the onset (block 2)"
-                                           : "d = d* at the onset (both)");
-  if (l->n <= l->cap) {
-    sc_border *bd = &l->b[l->n - 1];
-    bd->on_state = 1;
-    bd->d_on = b->dstar;
-    for (int k = 0; k < BK2_NPARAM; k++) bd->d_on_dp[k] = ds.d[k + 1];
-  }
-}
-
-/* The threshold gap of the block that stayed stuck through a one-block
- * phase that ended by a re-stick: the length of the next global stick
- * phase, times V (zero at crossing-sliding). */
-static void gap_border(const bk2_dpar *P, int mode, const bk2_state *x,
-                       int phase, sc_border_list *l) {
-  int nd = P->nd;
-  sc_dual m = mode == SC_BK2_SLIP1
-                  ? sc_dsub(P->t2, spring(P, x->y2, x->y1), nd)
-                  : sc_dsub(sc_dconst(1, nd), spring(P, x->y1, x->y2), nd);
-  char name[2 * SC_BORDER_NAME];
-  snprintf(name, sizeof name, "threshold gap of block %d, phase %d (slip %s)",
-           mode == SC_BK2_SLIP1 ? 2 : 1, phase, mode_name(mode));
-  sc_bk2_border_add(l, SC_BORDER_CROSSING, &m, name);
-}
-
-/* The borders' own codes, once the iterate's code is complete: a
- * grazing met from the side where the guard fires ends its phase at the
- * guard's maximum; a start at d* whose first phase ends at once at the
- * other block's threshold is a start of both blocks without that phase. */
-static void border_codes(const sc_itin_code *code, size_t border0,
-                         const bk2_events *ev, sc_border_list *l) {
-  for (int k = 0; k < ev->npatch; k++) {
-    sc_border *bd = &l->b[ev->patch[k].idx];
-    int at = 1 + 2 * (ev->patch[k].phase - 1);
-    if (at + 1 >= code->n) continue;
-    if (ev->patch[k].drop_next) {
-      /* only when the next phase is the other block alone, ended by its
-       * re-stick (then it ends the iterate too) */
-      if (at + 3 >= code->n || code->c[at + 2] == BK2_EV_THRESHOLD) continue;
-    }
-    bd->alt = *code;
-    bd->alt.c[at] = ev->patch[k].c0;
-    bd->alt.c[at + 1] = ev->patch[k].c1;
-    if (ev->patch[k].drop_next) {
-      memmove(bd->alt.c + at + 2, bd->alt.c + at + 4,
-              (size_t)(code->n - at - 4));
-      bd->alt.n -= 2;
-    }
-  }
-  if (border0 < l->n && border0 < l->cap && code->n >= 3 &&
-      code->c[0] != SC_BK2_SLIP12 && code->c[1] == BK2_EV_THRESHOLD) {
-    sc_border *bd = &l->b[border0];
-    bd->alt.n = code->n - 2;
-    bd->alt.c[0] = SC_BK2_SLIP12;
-    memcpy(bd->alt.c + 1, code->c + 3, (size_t)(code->n - 3));
-  }
-}
-
-int sc_bk2_iterate(const bk2_inst *b, const bk2_dpar *P, sc_dual d,
-                   unsigned flags, bk2_state *x, sc_map_value *out,
-                   bk2_phase_fn fn, void *ctx, sc_msg *msg) {
-  return sc_bk2_iterate_ex(b, P, d, flags, NULL, NULL, NULL, x, out, fn, ctx,
-                           msg);
-}
-
-/* Follow the motion from the GSP of displacement d to the next GSP. */
-int sc_bk2_iterate_ex(const bk2_inst *b, const bk2_dpar *P, sc_dual d,
-                      unsigned flags, const sc_itin_code *force,
-                      sc_itin_code *code, sc_border_list *borders,
-                      bk2_state *x, sc_map_value *out, bk2_phase_fn fn,
-                      void *ctx, sc_msg *msg) {
-  int nd = P->nd;
-  const unsigned char *fc = force && force->n > 0 ? force->c : NULL;
-  int mode, fpos = 1;
-  sc_itin_code own; /* borders need the code for their own codes */
-  if (borders && !code) code = &own;
-  if (fc) {
-    mode = fc[0];
-    if (mode < SC_BK2_SLIP1 || mode > SC_BK2_SLIP12 || force->n % 2 == 0)
-      return sc_fail(msg, SC_EINVAL, "bk2: malformed itinerary code");
-    onset_state(P, d, mode, x);
-    /* Exactly on the switching surface a forced one-block start whose
-     * first phase ends at once at the other block's threshold is the
-     * start of both (the tie rule), and that phase has length zero. */
-    if (mode != SC_BK2_SLIP12 && d.v == b->dstar && force->n >= 3 &&
-        fc[1] == BK2_EV_THRESHOLD)
-      mode = SC_BK2_SLIP12, fpos = 3;
-  } else {
-    mode = sc_bk2_onset(b, P, d, x);
-  }
-  int fresh = fresh_blocks(SC_BK2_STICK, mode);
-  bk2_events ev = {0};
-  ev.want_code = code != NULL;
-  ev.borders = borders;
-  size_t ilen = 0;
-  out->itinerary[0] = '\0';
-  if (code) code->n = 1, code->c[0] = (unsigned char)mode;
-  size_t border0 = borders ? borders->n : 0;
-  if (borders) switch_border(b, P, d, mode, borders);
-  int first_mode = mode;
-  for (int n = 0; n < b->acc.max_events; n++) {
-    bk2_state x0 = *x;
-    double dur;
-    itin_add(out->itinerary, &ilen, mode, flags);
-    if (fc) {
-      if (fpos + 1 >= force->n)
-        return sc_fail(msg, SC_EINVAL,
-                       "bk2: the forced itinerary code ends before a global "
-                       "stick phase");
-      ev.force = fc + fpos;
-      fpos += 2;
-    }
-    ev.phase = n + 1;
-    ev.onset = n == 0 && mode != SC_BK2_SLIP12;
-    if (ev.onset) /* S_j - T_j of the stuck block j at the onset */
-      ev.onset_gap = (1 + 2 * b->alpha) *
-                     (mode == SC_BK2_SLIP1 ? d.v - b->dstar : b->dstar - d.v);
-    int next = sc_bk2_phase(b, P, mode, fresh, x, &dur, &ev, msg);
-    if (next < 0) return next;
-    out->nphases++;
-    if (code && code->n > 0) {
-      if (code->n + 2 <= SC_CODE_LEN) {
-        code->c[code->n++] = ev.rec[0];
-        code->c[code->n++] = ev.rec[1];
-      } else {
-        code->n = 0; /* too long to force: the caller is told by n = 0 */
-      }
-    }
-    if (borders && mode != SC_BK2_SLIP12 && next == SC_BK2_STICK)
-      gap_border(P, mode, x, n + 1, borders);
-    if (fn) {
-      int st = fn(ctx, mode, &x0, dur);
-      if (st) return st;
-    }
-    if (next == SC_BK2_STICK) {
-      sc_dual dn = sc_dsub(x->y2, x->y1, nd);
-      out->f = dn.v;
-      if (nd) {
-        out->dfdd = dn.d[0];
-        for (int k = 0; k + 1 < nd; k++) out->dfdp[k] = dn.d[k + 1];
-      }
-      /* One block slipping alone from a GSP: f(d) = d + c (docs/model.md),
-       * f' = 1 exactly, whatever rounding says. */
-      out->neutral = out->nphases == 1 && first_mode != SC_BK2_SLIP12;
-      if (out->neutral && nd) out->dfdd = 1;
-      if (borders && code && code->n > 0) border_codes(code, border0, &ev,
-                                                       borders);
-      return SC_OK;
-    }
-    fresh = fresh_blocks(mode, next);
-    mode = next;
-  }
-  return sc_fail(msg, SC_EUNDEF,
-                 "no return to a global stick phase after %d slip phases "
-                 "(max-events): the motion settles on a slip cycle",
-                 b->acc.max_events);
 }
 
 /* ---- the value-only path -------------------------------------------------
@@ -1216,7 +801,7 @@ static int value_iterate(const bk2_inst *b, double d, unsigned flags,
                          sc_map_value *out, sc_msg *msg) {
   const bk2_dpar *P = &b->p0;
   vstate x;
-  int mode = onset_mode(b, d);
+  int mode = bk2_onset_mode(b, d);
   if (mode == SC_BK2_SLIP1) {
     x.y1 = P->alpha.v * d + 1;
     x.y2 = x.y1 + d;
@@ -1225,11 +810,11 @@ static int value_iterate(const bk2_inst *b, double d, unsigned flags,
     x.y1 = x.y2 - d;
   }
   x.u1 = x.u2 = P->vs.v;
-  int fresh = fresh_blocks(SC_BK2_STICK, mode), first_mode = mode;
+  int fresh = bk2_fresh_blocks(SC_BK2_STICK, mode), first_mode = mode;
   size_t ilen = 0;
   out->itinerary[0] = '\0';
   for (int n = 0; n < b->acc.max_events; n++) {
-    itin_add(out->itinerary, &ilen, mode, flags);
+    bk2_itin_add(out->itinerary, &ilen, mode, flags);
     double gap = n == 0 && mode != SC_BK2_SLIP12
                      ? (1 + 2 * b->alpha) *
                            (mode == SC_BK2_SLIP1 ? d - b->dstar : b->dstar - d)
@@ -1242,7 +827,7 @@ static int value_iterate(const bk2_inst *b, double d, unsigned flags,
       out->neutral = out->nphases == 1 && first_mode != SC_BK2_SLIP12;
       return SC_OK;
     }
-    fresh = fresh_blocks(mode, next);
+    fresh = bk2_fresh_blocks(mode, next);
     mode = next;
   }
   return sc_fail(msg, SC_EUNDEF,
@@ -1251,198 +836,47 @@ static int value_iterate(const bk2_inst *b, double d, unsigned flags,
                  b->acc.max_events);
 }
 
-_Static_assert(1 + 4 <= SC_NDIR, "bk2 needs d and four parameters");
 
-/* f' is not finite: an event with zero slope.  Next to d* with the
- * driver frozen that is rounding (the other block starts at its threshold
- * with zero speed, so f' grows like |d - d*|^(-1/2), beyond what double
- * resolves): say so rather than return NaN with SC_OK. */
-static int nonfinite_derivative(const bk2_inst *b, double d, int st,
-                                const sc_map_value *out, sc_msg *msg) {
-  /* (At d* itself the derivative is that of the start of both blocks:
-   * the switching's own system, which the curve and branch tasks solve;
-   * f' of the map is unbounded on both sides there, docs/accuracy.md D4.) */
-  if (st || isfinite(out->dfdd)) return st;
-  return sc_fail(msg, SC_ENONFINITE,
-                 "bk2: f'(%.17g) is not finite: an event with zero slope "
-                 "(d - d* = %.3g; next to d* f' grows like |d - d*|^(-1/2))",
-                 d, d - b->dstar);
+/* ---- the flows interface ------------------------------------------------ */
+
+static int exact_setup(bk2_inst *b, sc_msg *msg) {
+  (void)msg;
+  sc_bk2_first_restick(b);
+  return SC_OK;
 }
 
-/* The largest |d| the model resolves: the onset state is ~ alpha d and
- * the guards combine it with terms of size 1; beyond this their sums and
- * event horizons overflow or lose every digit of the slip (1e100 leaves
- * alpha up to 1e6 and its squares far from overflow). */
-#define BK2_D_MAX 1e100
-
-static int d_out_of_reach(double d, sc_msg *msg) {
-  if (fabs(d) <= BK2_D_MAX) return SC_OK;
-  return sc_fail(msg, SC_EUNDEF,
-                 "bk2: d = %g is beyond what the model resolves (valid: "
-                 "|d| <= %g)",
-                 d, BK2_D_MAX);
-}
-
-static int bk2_eval(void *vinst, double d, unsigned flags, sc_map_value *out,
-                    sc_msg *msg) {
-  const bk2_inst *b = vinst;
-  if (d_out_of_reach(d, msg)) return SC_EUNDEF;
-  if (b->acc.precision == SC_PRECISION_QUAD) { /* bk2_quad.c */
-    if (flags & SC_EVAL_DERIV2)
-      return sc_fail(msg, SC_EINVAL,
-                     "bk2: second derivatives are computed in double only "
-                     "(valid with SC_EVAL_DERIV2: precision = double)");
-    return sc_bk2_quad_eval(b->alpha, b->beta, b->phi, b->v, b->frozen,
-                            b->acc.max_events, d, flags, out, msg);
-  }
-  if (flags & SC_EVAL_DERIV2)
-    return sc_bk2_eval_jet(b, d, flags, out, NULL, msg);
-  bk2_dpar P;
-  int nd = (flags & SC_EVAL_DERIV) ? bk2_nd(b) : 0;
-  if (!nd && !b->numerical && !b->dual_only)
-    return value_iterate(b, d, flags, out, msg);
-  if (nd) sc_bk2_dparams(b, nd, &P);
-  else P = b->p0;
-  bk2_state x;
-  int st = sc_bk2_iterate(b, &P, sc_dvar(d, 0, nd), flags, &x, out, NULL,
-                          NULL, msg);
-  return nd ? nonfinite_derivative(b, d, st, out, msg) : st;
-}
-
-/* Numerical flows: the integration tolerance, times the growth of an
- * error over a slip phase (a few oscillations): PRECISION_FACTOR. */
-#define PRECISION_FACTOR 10.0
-
-static double bk2_precision(const void *vinst) {
-  const bk2_inst *b = vinst;
-  if (!b->numerical) return 0;
-  return PRECISION_FACTOR * (b->acc.ode_atol + b->acc.ode_rtol);
-}
-
-static int bk2_eval_ex(void *vinst, double d, unsigned flags,
-                       const sc_itin_code *force, sc_itin_code *code,
-                       sc_border_list *borders, sc_map_value *out,
-                       sc_msg *msg) {
-  const bk2_inst *b = vinst;
-  if (d_out_of_reach(d, msg)) return SC_EUNDEF;
-  if (flags & SC_EVAL_DERIV2)
-    return sc_bk2_eval_jet_ex(b, d, flags, force, code, borders, out, NULL,
-                              msg);
-  bk2_dpar P;
-  int nd = (flags & SC_EVAL_DERIV) || borders ? bk2_nd(b) : 0;
-  if (!nd && !b->numerical && !b->dual_only && !(force && force->n > 0) &&
-      !code)
-    return value_iterate(b, d, flags, out, msg);
-  if (nd) sc_bk2_dparams(b, nd, &P);
-  else P = b->p0;
-  bk2_state x;
-  int st = sc_bk2_iterate_ex(b, &P, sc_dvar(d, 0, nd), flags, force, code,
-                             borders, &x, out, NULL, NULL, msg);
-  if (st || !(flags & SC_EVAL_DERIV)) return st;
-  /* a forced code at d* (a switching's own system) has the derivative of
-   * that system: only a NaN is refused there */
-  if (force && force->n > 0)
-    return isfinite(out->dfdd)
-               ? SC_OK
-               : sc_fail(msg, SC_ENONFINITE,
-                         "bk2: f'(%.17g) along the forced code is not "
-                         "finite: an event with zero slope",
-                         d);
-  return nonfinite_derivative(b, d, st, out, msg);
-}
-
-/* ---- trajectories --------------------------------------------------- */
-
-typedef struct {
-  const bk2_inst *b;
-  const bk2_dpar *P;
-  double tau, dtau;
-  int (*fn)(void *, double, const double *, int);
-  void *ctx;
-} traj_ctx;
-
-static int emit(traj_ctx *c, double tau, const bk2_state *x, int mode) {
-  double s[4] = {x->y1.v, x->y2.v, x->u1.v, x->u2.v};
-  return c->fn(c->ctx, tau, s, mode) ? SC_ECALLBACK : SC_OK;
-}
+static void exact_release(bk2_inst *b) { (void)b; }
 
 /* Sample one finished slip phase every dtau and at its end. */
-static int traj_phase(void *vc, int mode, const bk2_state *x0, double dur) {
-  traj_ctx *c = vc;
-  const bk2_inst *b = c->b;
-  if (b->numerical) return sc_bk2_num_sample(b, c->P, mode, x0, dur, c);
-  mode_flow f = flow_make(c->P, mode, x0);
+static int exact_sample(const bk2_inst *b, const bk2_dpar *P, int mode,
+                        const bk2_state *x0, double dur, bk2_traj *c) {
+  (void)b;
+  mode_flow f = flow_make(P, mode, x0);
   double a2[2];
   bk2_state x;
   long n = (long)floor(dur / c->dtau);
-  for (long i = 0; i <= n; i++) {
-    double t = i * c->dtau;
-    flow_at(c->P, &f, t, &x, a2);
-    if (emit(c, c->tau + t, &x, mode)) return SC_ECALLBACK;
+  for (long i = 0; i <= n + 1; i++) {
+    double t = i <= n ? i * c->dtau : dur;
+    flow_at(P, &f, t, &x, a2);
+    double s[4] = {x.y1.v, x.y2.v, x.u1.v, x.u2.v};
+    if (bk2_traj_emit(c, t, s, mode)) return SC_ECALLBACK;
   }
-  flow_at(c->P, &f, dur, &x, a2);
-  if (emit(c, c->tau + dur, &x, mode)) return SC_ECALLBACK;
   c->tau += dur;
   return SC_OK;
 }
 
-int sc_bk2_traj_emit(void *vc, double t, const double s[4], int mode) {
-  traj_ctx *c = vc;
-  return c->fn(c->ctx, c->tau + t, s, mode) ? SC_ECALLBACK : SC_OK;
+/* Closed forms: only rounding. */
+static double exact_precision(const bk2_inst *b) {
+  (void)b;
+  return 0;
 }
 
-void sc_bk2_traj_advance(void *vc, double dur) { ((traj_ctx *)vc)->tau += dur; }
-
-double sc_bk2_traj_dtau(void *vc) { return ((traj_ctx *)vc)->dtau; }
-
-static int bk2_trajectory(void *vinst, double d, int iterations, double dtau,
-                          int (*fn)(void *, double, const double *, int),
-                          void *ctx, sc_msg *msg) {
-  const bk2_inst *b = vinst;
-  bk2_dpar P;
-  sc_bk2_dparams(b, 0, &P);
-  traj_ctx c = {b, &P, 0, dtau, fn, ctx};
-  sc_map_value out;
-  for (int k = 0; k < iterations; k++) {
-    memset(&out, 0, sizeof out);
-    bk2_state x;
-    int st = sc_bk2_iterate(b, &P, sc_dconst(d, 0), 0, &x, &out, traj_phase,
-                            &c, msg);
-    if (st) return st;
-    /* The global stick phase: both blocks move with V until the first
-     * threshold; S_i grows at rate V.  With V = 0 it is passed at once
-     * (quasi-static loading). */
-    double s1 = spring(&P, x.y1, x.y2).v, s2 = spring(&P, x.y2, x.y1).v;
-    double gap = fmax(0, fmin(1 - s1, b->beta - s2));
-    double tstick = b->v > 0 ? gap / b->v : 0;
-    x.u1 = x.u2 = sc_dconst(b->v, 0);
-    long n = (long)floor(tstick / dtau);
-    for (long i = 0; i <= n; i++) {
-      bk2_state xs = x;
-      xs.y1.v += b->v * i * dtau;
-      xs.y2.v += b->v * i * dtau;
-      if (emit(&c, c.tau + i * dtau, &xs, SC_BK2_STICK)) return SC_ECALLBACK;
-    }
-    c.tau += tstick;
-    d = out.f;
-  }
-  return SC_OK;
-}
-
-const sc_model_type sc_model_bk2 = {
-    .name = "bk2",
-    .doc = "two-block Burridge-Knopoff stick-slip model (docs/model.md)",
-    .state_name = "d",
-    .state_label = "Y_2 - Y_1",
-    .nparam = BK2_NPARAM,
-    .params = bk2_params,
-    .noption = 3,
-    .options = bk2_options,
-    .inst_size = sizeof(bk2_inst),
-    .setup = bk2_setup,
-    .release = bk2_release,
-    .eval = bk2_eval,
-    .eval_ex = bk2_eval_ex,
-    .precision = bk2_precision,
-    .trajectory = bk2_trajectory,
+const bk2_flows sc_bk2_flows_exact = {
+    .name = "exact",
+    .setup = exact_setup,
+    .release = exact_release,
+    .phase = exact_phase,
+    .sample = exact_sample,
+    .precision = exact_precision,
+    .value = value_iterate,
 };

@@ -1,13 +1,31 @@
 /* Private to the bk2 model: its instance, parameters as duals, state,
- * and the pieces shared by the exact and the numerical flows. */
+ * the flows interface and the pieces shared by its two implementations.
+ *
+ * Layout of the model:
+ *   bk2_map.c        the model interface (parameters, setup, evaluation),
+ *                    the event loop from one GSP to the next, the borders
+ *                    of a whole iterate and trajectories: flows-agnostic;
+ *   bk2_event.c      the rules every flow obeys: the onset of a slip, what
+ *                    an event does to the state and its sensitivities, how
+ *                    borders are recorded;
+ *   bk2.c            the closed-form flows (`flows = exact`), certified
+ *                    event search, and their value-only fast path;
+ *   bk2_numerical.c  the integrated flows (`flows = numerical`, GSL
+ *                    odeiv2; velocity-weakening friction);
+ *   bk2_jet.c, bk2_quad.c  second derivatives, quad precision.
+ * The event loop reaches a flow only through bk2_flows; the two flows
+ * never call each other. */
 #ifndef SC_MODELS_BK2_IMPL_H
 #define SC_MODELS_BK2_IMPL_H
+
+#include <string.h>
 
 #include "hybrid/dual.h"
 #include "slipcont/hybrid.h"
 #include "slipcont/models.h"
 
 typedef struct bk2_num bk2_num; /* numerical-flow workspace (GSL) */
+typedef struct bk2_flows bk2_flows;
 
 /* Parameters: alpha, beta, phi, v, gamma (velocity weakening only). */
 #define BK2_NPARAM 5
@@ -23,6 +41,7 @@ typedef struct {
   int frozen;    /* driver = frozen: Vs = 0 during slips */
   int vw;        /* friction = velocity-weakening */
   int numerical; /* flows = numerical (always with velocity weakening) */
+  const bk2_flows *flows; /* exact or numerical, chosen by bk2_setup */
   sc_accuracy acc;
   double mu, w1, w2, vs, dstar; /* derived */
   bk2_num *num;                 /* owned; NULL for exact flows */
@@ -56,6 +75,58 @@ static inline int bk2_nd(const bk2_inst *b) {
 typedef struct {
   sc_dual y1, y2, u1, u2;
 } bk2_state;
+
+/* Spring force S_a = (1 + alpha) Y_a - alpha Y_b on block a. */
+static inline sc_dual bk2_spring(const bk2_dpar *P, sc_dual ya, sc_dual yb) {
+  int nd = P->nd;
+  return sc_dadd(ya, sc_dmul(P->alpha, sc_dsub(ya, yb, nd), nd), nd);
+}
+
+/* The mode of the slip that ends a GSP of displacement d: block 1 is at
+ * its threshold first iff d < d* (docs/model.md, "The event map"); at d*
+ * both are, and both start (the tie rule). */
+static inline int bk2_onset_mode(const bk2_inst *b, double d) {
+  return d < b->dstar ? SC_BK2_SLIP1 : d > b->dstar ? SC_BK2_SLIP2
+                                                    : SC_BK2_SLIP12;
+}
+
+/* Which blocks start slipping when entering `next` from `mode` (bit 0:
+ * block 1, bit 1: block 2). */
+static inline int bk2_fresh_blocks(int mode, int next) {
+  if (mode == SC_BK2_STICK)
+    return next == SC_BK2_SLIP1 ? 1 : next == SC_BK2_SLIP2 ? 2 : 3;
+  if (next == SC_BK2_SLIP12) return mode == SC_BK2_SLIP1 ? 2 : 1;
+  return 0;
+}
+
+/* A slip mode's name in itineraries and border names. */
+static inline const char *bk2_mode_name(int mode) {
+  return mode == SC_BK2_SLIP1 ? "1" : mode == SC_BK2_SLIP2 ? "2" : "12";
+}
+
+/* A guard's name in border names (kinds: see bk2_events). */
+static inline const char *bk2_guard_text(int kind) {
+  return kind == 1 ? "U1-Vs" : kind == 2 ? "U2-Vs" : "S-T of stuck block";
+}
+
+/* Append mode's name to the itinerary itin of length *len ("1-12-2"),
+ * when flags ask for it; "..." once it is full. */
+static inline void bk2_itin_add(char *itin, size_t *len, int mode,
+                                unsigned flags) {
+  if (!(flags & SC_EVAL_ITINERARY)) return;
+  const char *tok = bk2_mode_name(mode);
+  size_t need = strlen(tok) + (*len ? 1 : 0);
+  if (*len + need + 4 >= SC_ITIN_LEN) {
+    if (*len + 4 < SC_ITIN_LEN && strcmp(itin + *len - 3, "...") != 0) {
+      strcpy(itin + *len, "...");
+      *len += 3;
+    }
+    return;
+  }
+  if (*len) itin[(*len)++] = '-';
+  strcpy(itin + *len, tok);
+  *len += strlen(tok);
+}
 
 /* What one slip phase is asked to do and what it reveals.  In: `force`
  * (NULL: take the first event) is the phase's two code bytes, the ending
@@ -122,6 +193,10 @@ void sc_bk2_dparams(const bk2_inst *b, int nd, bk2_dpar *P);
 /* Fill first_g, first_r, first_ok with b->search (again after changing
  * the search). */
 void sc_bk2_first_restick(bk2_inst *b);
+/* The onset state of a slip of `mode` from the GSP of displacement d. */
+void sc_bk2_onset_state(const bk2_dpar *P, sc_dual d, int mode,
+                        bk2_state *x);
+/* The onset mode of d (bk2_onset_mode) and its state. */
 int sc_bk2_onset(const bk2_inst *b, const bk2_dpar *P, sc_dual d,
                  bk2_state *x);
 void sc_bk2_event_shift(const bk2_dpar *P, sc_dual gval, double slope,
@@ -133,9 +208,6 @@ void sc_bk2_event_shift(const bk2_dpar *P, sc_dual gval, double slope,
  * that sticks, and return the next mode. */
 int sc_bk2_take_event(const bk2_dpar *P, int mode, int kind, double slope,
                       const double acc[2], bk2_state *x);
-int sc_bk2_phase(const bk2_inst *b, const bk2_dpar *P, int mode, int fresh,
-                 bk2_state *x, double *duration, bk2_events *ev,
-                 sc_msg *msg);
 int sc_bk2_iterate(const bk2_inst *b, const bk2_dpar *P, sc_dual d,
                    unsigned flags, bk2_state *x, sc_map_value *out,
                    bk2_phase_fn fn, void *ctx, sc_msg *msg);
@@ -148,18 +220,49 @@ int sc_bk2_iterate_ex(const bk2_inst *b, const bk2_dpar *P, sc_dual d,
                       bk2_state *x, sc_map_value *out, bk2_phase_fn fn,
                       void *ctx, sc_msg *msg);
 
-/* Trajectory context helpers for the numerical sampler. */
-int sc_bk2_traj_emit(void *traj_ctx, double t, const double s[4], int mode);
-void sc_bk2_traj_advance(void *traj_ctx, double duration);
-double sc_bk2_traj_dtau(void *traj_ctx);
+/* Where a trajectory goes: samples every dtau of slip time, times
+ * counted from the start of the run (tau). */
+typedef struct {
+  double tau, dtau;
+  int (*fn)(void *, double, const double *, int);
+  void *ctx;
+} bk2_traj;
 
-/* Numerical flows (bk2_numerical.c). */
-int sc_bk2_num_setup(bk2_inst *b, sc_msg *msg);
-void sc_bk2_num_release(bk2_inst *b);
-int sc_bk2_num_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
-                     int fresh, bk2_state *x, double *duration,
-                     bk2_events *ev, sc_msg *msg);
-int sc_bk2_num_sample(const bk2_inst *b, const bk2_dpar *P, int mode,
-                      const bk2_state *x0, double duration, void *traj_ctx);
+/* Emit the state s (Y1, Y2, U1, U2) at time t into the phase. */
+static inline int bk2_traj_emit(bk2_traj *c, double t, const double s[4],
+                                int mode) {
+  return c->fn(c->ctx, c->tau + t, s, mode) ? SC_ECALLBACK : SC_OK;
+}
+
+/* The flows of the model: what the event loop (bk2_map.c) asks of them.
+ * Two implementations, sc_bk2_flows_exact (bk2.c) and
+ * sc_bk2_flows_numerical (bk2_numerical.c). */
+struct bk2_flows {
+  const char *name; /* the value of `flows` */
+  /* Prepare b for its parameters (b->flows is set): caches, workspaces.
+   * Its release frees what it made; both may be called more than once. */
+  int (*setup)(bk2_inst *b, sc_msg *msg);
+  void (*release)(bk2_inst *b);
+  /* One slip phase of `mode` (fresh: the blocks that start slipping)
+   * from state x to its first event (the rules of bk2_events, taken
+   * with sc_bk2_take_event*): x becomes the state after the event,
+   * *duration the phase's length; returns the next mode or an error. */
+  int (*phase)(const bk2_inst *b, const bk2_dpar *P, int mode, int fresh,
+               bk2_state *x, double *duration, bk2_events *ev, sc_msg *msg);
+  /* Sample a finished phase of `mode` from x0 lasting `duration` every
+   * t->dtau and at its end, then advance t->tau by its duration. */
+  int (*sample)(const bk2_inst *b, const bk2_dpar *P, int mode,
+                const bk2_state *x0, double duration, bk2_traj *t);
+  /* How far a map value can be from the exact one (0: rounding only). */
+  double (*precision)(const bk2_inst *b);
+  /* Optional (NULL: the event loop on duals with nd = 0): a plain
+   * evaluation (no derivatives, forced code, code or borders) that gives
+   * the same numbers faster. */
+  int (*value)(const bk2_inst *b, double d, unsigned flags,
+               sc_map_value *out, sc_msg *msg);
+};
+
+extern const bk2_flows sc_bk2_flows_exact;
+extern const bk2_flows sc_bk2_flows_numerical;
 
 #endif

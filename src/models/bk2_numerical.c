@@ -110,7 +110,7 @@ static int rhs(double t, const double y[], double dy[], void *vp) {
   return GSL_SUCCESS;
 }
 
-void sc_bk2_num_release(bk2_inst *b) {
+static void num_release(bk2_inst *b) {
   bk2_num *n = b->num;
   if (!n) return;
   for (int i = 0; i < 2; i++) {
@@ -122,11 +122,11 @@ void sc_bk2_num_release(bk2_inst *b) {
   b->num = NULL;
 }
 
-int sc_bk2_num_setup(bk2_inst *b, sc_msg *msg) {
+static int num_setup(bk2_inst *b, sc_msg *msg) {
   if (b->num && b->num->atol == b->acc.ode_atol &&
       b->num->rtol == b->acc.ode_rtol)
     return SC_OK;
-  sc_bk2_num_release(b);
+  num_release(b);
   bk2_num *n = calloc(1, sizeof *n);
   if (!n) goto fail;
   b->num = n;
@@ -141,7 +141,7 @@ int sc_bk2_num_setup(bk2_inst *b, sc_msg *msg) {
   }
   return SC_OK;
 fail:
-  sc_bk2_num_release(b);
+  num_release(b);
   return sc_fail(msg, SC_ENOMEM, "bk2: cannot allocate the ODE workspace");
 }
 
@@ -447,16 +447,6 @@ static int num_scan(const bk2_inst *b, const bk2_dpar *P, int mode,
   return SC_OK;
 }
 
-static const char *num_guard_text(int kind) {
-  return kind == BK2_EV_RESTICK1   ? "U1-Vs"
-         : kind == BK2_EV_RESTICK2 ? "U2-Vs"
-                                   : "S-T of stuck block";
-}
-
-static const char *num_mode_name(int mode) {
-  return mode == SC_BK2_SLIP1 ? "1" : mode == SC_BK2_SLIP2 ? "2" : "12";
-}
-
 /* The borders of a numerical phase, named and signed as the exact
  * flows' (phase_borders() in bk2.c). */
 static int num_borders(const bk2_inst *b, const bk2_dpar *P, int mode,
@@ -475,7 +465,7 @@ static int num_borders(const bk2_inst *b, const bk2_dpar *P, int mode,
                     msg);
   if (st) return st;
   char name[2 * SC_BORDER_NAME];
-  const char *mn = num_mode_name(mode);
+  const char *mn = bk2_mode_name(mode);
   int eg = BK2_GUARD_OF(ekind);
   for (int k = 0; k < ng; k++) {
     scan_guard *q = &sg[k];
@@ -483,14 +473,14 @@ static int num_borders(const bk2_inst *b, const bk2_dpar *P, int mode,
         !BK2_IS_BOTH(ekind)) {
       sc_dual m = guard_at(P, mode, q->kind, yatmax ? yatmax : q->yafter);
       snprintf(name, sizeof name, "%s max after the event, phase %d (slip %s)",
-               num_guard_text(q->kind), ev->phase, mn);
+               bk2_guard_text(q->kind), ev->phase, mn);
       sc_bk2_border_add(ev->borders, SC_BORDER_GRAZING, &m, name);
       sc_bk2_patch(ev, ekind | BK2_EV_ATMAX, q->nmax, 0);
     }
     if (q->gbest > -HUGE_VAL) {
       sc_dual m = sc_dscale(guard_at(P, mode, q->kind, q->ybest), -1, nd);
       snprintf(name, sizeof name, "%s max, phase %d (slip %s)",
-               num_guard_text(q->kind), ev->phase, mn);
+               bk2_guard_text(q->kind), ev->phase, mn);
       sc_bk2_border_add(ev->borders,
                         q->kind < 3 ? SC_BORDER_GRAZING : SC_BORDER_TOUCH, &m,
                         name);
@@ -500,7 +490,7 @@ static int num_borders(const bk2_inst *b, const bk2_dpar *P, int mode,
     sc_dual m = sc_dconst(q->troot - te, nd);
     for (int j = 0; j < nd; j++) m.d[j] = -g.d[j] / q->sroot - Td->d[j];
     snprintf(name, sizeof name, "%s rise after the event, phase %d (slip %s)",
-             num_guard_text(q->kind), ev->phase, mn);
+             bk2_guard_text(q->kind), ev->phase, mn);
     sc_bk2_border_add(ev->borders,
                       ekind == BK2_EV_THRESHOLD ? SC_BORDER_CROSSING
                                                 : SC_BORDER_BOTH,
@@ -557,7 +547,7 @@ static int num_phase_at_max(const bk2_inst *b, const bk2_dpar *P, int mode,
   return sc_bk2_take_event_at_max(P, mode, kind, g2, acc2, x);
 }
 
-int sc_bk2_num_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
+static int num_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
                      int fresh, bk2_state *x, double *duration,
                      bk2_events *ev, sc_msg *msg) {
   bk2_num *n = b->num;
@@ -727,23 +717,41 @@ int sc_bk2_num_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
                  tend, mode);
 }
 
-int sc_bk2_num_sample(const bk2_inst *b, const bk2_dpar *P, int mode,
-                      const bk2_state *x0, double duration, void *traj) {
+static int num_sample(const bk2_inst *b, const bk2_dpar *P, int mode,
+                      const bk2_state *x0, double duration, bk2_traj *traj) {
   (void)P;
   bk2_num *n = b->num;
   rhs_ctx ctx = {b, mode, 0};
   gsl_odeiv2_system sys = {rhs, NULL, NSTATE, &ctx};
   double y[NSTATE] = {x0->y1.v, x0->y2.v, x0->u1.v, x0->u2.v};
   double hmax = STEP_FRACTION * fastest_period(b, mode);
-  double t = 0, dtau = sc_bk2_traj_dtau(traj);
-  int st = sc_bk2_traj_emit(traj, 0, y, mode);
+  double t = 0, dtau = traj->dtau;
+  int st = bk2_traj_emit(traj, 0, y, mode);
   long nsamp = (long)ceil(duration / dtau);
   for (long i = 1; i <= nsamp && !st; i++) {
     double t1 = i == nsamp ? duration : i * dtau;
     if (advance_to(n, 0, &sys, t, t1, hmax, y)) return SC_ENOCONV;
     t = t1;
-    st = sc_bk2_traj_emit(traj, t, y, mode);
+    st = bk2_traj_emit(traj, t, y, mode);
   }
-  sc_bk2_traj_advance(traj, duration);
+  traj->tau += duration;
   return st;
 }
+
+/* The integration tolerance, times the growth of an error over a slip
+ * phase (a few oscillations). */
+#define PRECISION_FACTOR 10.0
+
+static double num_precision(const bk2_inst *b) {
+  return PRECISION_FACTOR * (b->acc.ode_atol + b->acc.ode_rtol);
+}
+
+const bk2_flows sc_bk2_flows_numerical = {
+    .name = "numerical",
+    .setup = num_setup,
+    .release = num_release,
+    .phase = num_phase,
+    .sample = num_sample,
+    .precision = num_precision,
+    .value = NULL,
+};

@@ -1,0 +1,119 @@
+/* The rules of the bk2 model that every flow obeys (bk2_impl.h): the
+ * onset of a slip from a global stick phase, what an event does to the
+ * state and to its sensitivities, and how borders and itineraries are
+ * recorded.  The derivations are in docs/derivations.md. */
+#include <math.h>
+#include <string.h>
+
+#include "hybrid/dual.h"
+#include "models/bk2_impl.h"
+
+/* ---- events ------------------------------------------------------------ */
+
+/* Apply the event-time sensitivity: the guard gval (a dual evaluated at
+ * fixed time) vanishes at the event, so dt = -dg / g' and the state moves
+ * along its velocity: x += xdot dt. */
+void sc_bk2_event_shift(const bk2_dpar *P, sc_dual gval, double slope,
+                        const double acc[2], bk2_state *x) {
+  int nd = P->nd;
+  if (nd == 0) return;
+  double dt[SC_NDIR];
+  /* g' = 0: the event time is not differentiable (f' is infinite there,
+   * docs/model.md: |d - d*|^(-1/2) at d* with V_s = 0): say so with NaN. */
+  for (int k = 0; k < nd; k++) dt[k] = slope != 0 ? -gval.d[k] / slope : NAN;
+  double xdot[4] = {x->u1.v, x->u2.v, acc[0], acc[1]};
+  sc_dual *xs[4] = {&x->y1, &x->y2, &x->u1, &x->u2};
+  for (int i = 0; i < 4; i++)
+    for (int k = 0; k < nd; k++) xs[i]->d[k] += xdot[i] * dt[k];
+}
+
+int sc_bk2_take_event(const bk2_dpar *P, int mode, int kind, double slope,
+                      const double acc[2], bk2_state *x) {
+  int nd = P->nd;
+  if (nd) {
+    /* the guard on duals at fixed time: its sensitivity moves the event */
+    sc_dual gv;
+    if (kind == 1) gv = sc_dsub(x->u1, P->vs, nd);
+    else if (kind == 2) gv = sc_dsub(x->u2, P->vs, nd);
+    else if (mode == SC_BK2_SLIP1)
+      gv = sc_dsub(bk2_spring(P, x->y2, x->y1), P->t2, nd);
+    else
+      gv = sc_daddc(bk2_spring(P, x->y1, x->y2), -1);
+    sc_bk2_event_shift(P, gv, slope, acc, x);
+  }
+  switch (kind) {
+  case 1:
+    x->u1 = P->vs;
+    return mode == SC_BK2_SLIP1 ? SC_BK2_STICK : SC_BK2_SLIP2;
+  case 2:
+    x->u2 = P->vs;
+    return mode == SC_BK2_SLIP2 ? SC_BK2_STICK : SC_BK2_SLIP1;
+  default:
+    return SC_BK2_SLIP12;
+  }
+}
+
+int sc_bk2_take_event_at_max(const bk2_dpar *P, int mode, int kind,
+                             double g2, const double acc[2], bk2_state *x) {
+  /* the event time solves g' = 0: dt = -dg'/g'' at fixed time, with
+   * g' = U_i' = K_i - S_i of the slipping block */
+  int nd = P->nd;
+  sc_dual gp = kind == BK2_EV_RESTICK1
+                   ? sc_dsub(P->k1, bk2_spring(P, x->y1, x->y2), nd)
+                   : sc_dsub(P->k2, bk2_spring(P, x->y2, x->y1), nd);
+  sc_bk2_event_shift(P, gp, g2, acc, x);
+  bk2_dpar P0 = *P;
+  P0.nd = 0; /* shifted already */
+  return sc_bk2_take_event(&P0, mode, kind, g2, acc, x);
+}
+
+void sc_bk2_patch(bk2_events *ev, int c0, int c1, int drop_next) {
+  if (ev->borders->n > ev->borders->cap || ev->npatch >= 8) return;
+  ev->patch[ev->npatch].idx = ev->borders->n - 1;
+  ev->patch[ev->npatch].phase = ev->phase;
+  ev->patch[ev->npatch].c0 = (unsigned char)c0;
+  ev->patch[ev->npatch].c1 = (unsigned char)c1;
+  ev->patch[ev->npatch].drop_next = drop_next;
+  ev->npatch++;
+}
+
+/* ---- the onset of a slip ------------------------------------------------ */
+
+void sc_bk2_onset_state(const bk2_dpar *P, sc_dual d, int mode,
+                        bk2_state *x) {
+  int nd = P->nd;
+  if (mode == SC_BK2_SLIP1) {
+    x->y1 = sc_daddc(sc_dmul(P->alpha, d, nd), 1);
+    x->y2 = sc_dadd(x->y1, d, nd);
+  } else {
+    x->y2 = sc_dsub(P->beta, sc_dmul(P->alpha, d, nd), nd);
+    x->y1 = sc_dsub(x->y2, d, nd);
+  }
+  x->u1 = x->u2 = P->vs;
+}
+
+int sc_bk2_onset(const bk2_inst *b, const bk2_dpar *P, sc_dual d,
+                 bk2_state *x) {
+  int mode = bk2_onset_mode(b, d.v);
+  sc_bk2_onset_state(P, d, mode, x);
+  return mode;
+}
+
+/* ---- borders ------------------------------------------------------------ */
+
+void sc_bk2_border_add(sc_border_list *l, sc_border_kind kind,
+                       const sc_dual *m, const char *name) {
+  if (l->n++ >= l->cap) return; /* counted: the caller grows and repeats */
+  sc_border *bd = &l->b[l->n - 1];
+  memset(bd, 0, sizeof *bd);
+  bd->kind = kind;
+  bd->value = m->v;
+  bd->dd = m->d[0];
+  for (int k = 0; k < BK2_NPARAM; k++) bd->dp[k] = m->d[k + 1];
+  size_t len = strlen(name);
+  if (len >= sizeof bd->name) len = sizeof bd->name - 1; /* cut */
+  memcpy(bd->name, name, len);
+  bd->name[len] = '\0';
+}
+
+
