@@ -28,7 +28,13 @@ echo "== API reference (doxygen) =="
 if command -v doxygen >/dev/null 2>&1; then
   rm -rf build/doc && mkdir -p build/doc
   doxygen docs/Doxyfile
-  echo "build/doc/html: $(grep -c 'warning:' build/doc/warnings.txt || true) warnings (build/doc/warnings.txt)"
+  nwarn=$(grep -c 'warning:' build/doc/warnings.txt || true)
+  echo "build/doc/html: $nwarn warnings (build/doc/warnings.txt)"
+  if [ "$nwarn" != 0 ]; then
+    cat build/doc/warnings.txt
+    echo "every public declaration is documented: fix the warnings above" >&2
+    exit 1
+  fi
 else
   echo "doxygen not installed: skipped"
 fi

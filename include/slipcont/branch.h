@@ -41,9 +41,10 @@ typedef struct {
   int neutral;         /**< 1: a continuous family of neutral orbits */
   double multiplier;   /**< (f^m)' on the orbit; 1 for a family */
   int stable;          /**< |multiplier| < 1 (0 for a family) */
-  double lo, hi;       /**< family: the d-interval of the piece holding it
+  double lo;           /**< family: the d-interval of the piece holding it
                             (the located ends of its itinerary); an
                             isolated orbit: lo = hi = d[0] */
+  double hi;           /**< the other end (see lo) */
   double residual;     /**< |f^m(d[0]) - d[0]| */
   const double *d;     /**< the m orbit points, from the smallest one, in
                             the order of the orbit (owned by the set) */
@@ -57,7 +58,8 @@ typedef struct sc_orbit_set sc_orbit_set;
 /** What sc_fixed_points_find() scans. */
 typedef struct {
   int period;      /**< m >= 1 */
-  double from, to; /**< the d interval (from < to) */
+  double from;     /**< the d interval: from (< to) */
+  double to;       /**< the d interval: to */
   size_t steps;    /**< initial scan grid, >= 2 points, ends included */
 } sc_fixed_points_spec;
 
@@ -126,7 +128,8 @@ SC_API sc_point_label sc_point_label_of_border(sc_border_kind k);
 /** What sc_orbit_branch_run() continues. */
 typedef struct {
   size_t param;      /**< index of the continued parameter */
-  double from, to;   /**< start value and the other end of the interval */
+  double from;       /**< start value of the parameter */
+  double to;         /**< the other end of the interval */
   int period;        /**< period m of the starting orbit, >= 1 */
   double d0;         /**< guess of a point of the starting orbit; polished
                           by multiple shooting at p = from.  NaN: no start
@@ -138,19 +141,20 @@ typedef struct {
   long max_points;   /**< accepted points per branch segment, >= 2 */
   int max_branches;  /**< branches (segments) at most, >= 1 */
   int max_period;    /**< no branch switching beyond this period */
-  double h0, hmax;   /**< arclength steps (0: derived from |to - from|) */
+  double h0;         /**< first arclength step (0: from |to - from|) */
+  double hmax;       /**< largest step (0: from |to - from|) */
   /** Backend of the bordered systems; NULL for dense. */
   const sc_linsolve_type *linsolve;
   /** Called after each accepted point with the number of points so far;
    * non-zero stops the run with SC_ECALLBACK.  May be NULL. */
   int (*progress)(void *ctx, size_t npoints);
-  void *progress_ctx;
+  void *progress_ctx; /**< passed to progress */
 } sc_orbit_branch_spec;
 
 /** One accepted point of a branch. */
 typedef struct {
   int branch;        /**< segment number, from 0 */
-  int period;
+  int period;        /**< period m of the orbit */
   double p;          /**< parameter value */
   double d;          /**< first orbit point (the continued unknown) */
   double multiplier; /**< (f^m)'(d) */
@@ -175,7 +179,7 @@ SC_API const char *sc_location_method_text(sc_location_method l);
 
 /** One special point. */
 typedef struct {
-  sc_point_label label;
+  sc_point_label label; /**< LP, PD, a border kind, EP, ... */
   int branch;        /**< segment number */
   int period;        /**< period of the orbit at the point */
   double p;          /**< parameter value */
@@ -190,12 +194,14 @@ typedef struct {
                           system at the returned point (NaN: not solved) */
   double error;      /**< estimated error in p: the last Newton step
                           (newton), the bracket (bisection, not located) */
-  sc_location_method method;
+  sc_location_method method; /**< how it was found */
   int iterations;    /**< Newton or location iterations */
   const char *border; /**< the border's name (borders only, else "") */
   const char *note;  /**< which block and mode, what followed, reasons */
 } sc_orbit_special_info;
 
+/** A computed branch diagram: its points, segments and special points
+ * (sc_orbit_branch_run()). */
 typedef struct sc_orbit_branch sc_orbit_branch;
 
 /**

@@ -76,8 +76,13 @@ SC_API int sc_curve_locate(const sc_curve_system *cs, size_t k, double *u,
 /** Derivatives of g = f^m at (x, p) up to those a fold or flip curve and
  * their normal forms need. */
 typedef struct {
-  double g, gx, gxx, gxxx;
-  double gp[SC_MAP1D_MAXPARAM], gxp[SC_MAP1D_MAXPARAM], gxxp[SC_MAP1D_MAXPARAM];
+  double g;                      /**< g(x, p) */
+  double gx;                     /**< dg/dx */
+  double gxx;                    /**< d2g/dx2 */
+  double gxxx;                   /**< d3g/dx3 */
+  double gp[SC_MAP1D_MAXPARAM];  /**< dg/dp_i */
+  double gxp[SC_MAP1D_MAXPARAM]; /**< d2g/dx dp_i */
+  double gxxp[SC_MAP1D_MAXPARAM]; /**< d3g/dx2 dp_i */
 } sc_curve_jet;
 
 /** g and its derivatives at (x, p) (all np parameters); returns 0, > 0
@@ -102,9 +107,9 @@ typedef enum {
  * that parameter's column, proportional to that tangent component).
  */
 typedef struct {
-  sc_curve_jet_fn fn;
-  void *user;
-  sc_curve_type type;
+  sc_curve_jet_fn fn;          /**< g and its derivatives */
+  void *user;                  /**< passed to fn */
+  sc_curve_type type;          /**< fold or flip */
   size_t np;                   /**< parameters of g */
   double p[SC_MAP1D_MAXPARAM]; /**< their values (free ones replaced) */
   int ifree[2];                /**< indices of p_a, p_b (p_b = u[2]) */
@@ -140,11 +145,11 @@ typedef struct {
   sc_curve_jet_fn gfn; /**< g = f^m at x_0, for the normal-form test */
   void *user;          /**< passed to fn */
   void *guser;         /**< passed to gfn */
-  sc_curve_type type;
+  sc_curve_type type; /**< fold or flip */
   size_t period; /**< m >= 1 */
-  size_t np;
-  double p[SC_MAP1D_MAXPARAM];
-  int ifree[2];
+  size_t np;     /**< parameters of f */
+  double p[SC_MAP1D_MAXPARAM]; /**< their values (free ones replaced) */
+  int ifree[2];  /**< indices of p_a, p_b */
   sc_curve_ms_work *work; /**< from sc_curve_ms_work_alloc(period) */
 } sc_curve_map1d_ms;
 
@@ -173,14 +178,18 @@ SC_API double sc_curve_coefficient(sc_curve_type type, const sc_curve_jet *jet);
 
 /** Settings of sc_curve_trace(). */
 typedef struct {
-  sc_curve_type type;
+  sc_curve_type type; /**< fold, flip or border */
   int period;      /**< m >= 1 */
   int multiple;    /**< 1: multiple shooting in (d_0..d_{m-1}, x, y);
                         0: single shooting on f^m */
-  int ix, iy;      /**< parameter indices of x and y (distinct) */
-  double xlo, xhi; /**< the box: the curve stops at its edges */
-  double ylo, yhi;
-  double h0, hmax; /**< arclength steps (in (d, x, y)) */
+  int ix;          /**< parameter index of x */
+  int iy;          /**< parameter index of y (not ix) */
+  double xlo;      /**< the box, where the curve stops: x from */
+  double xhi;      /**< x to */
+  double ylo;      /**< y from */
+  double yhi;      /**< y to */
+  double h0;       /**< first arclength step (in (d, x, y)) */
+  double hmax;     /**< largest arclength step */
   long max_points; /**< per direction */
   /** SC_CURVE_BORDER: the kind of border followed; the start's orbit
    * border of this kind nearest to zero is taken */
@@ -192,13 +201,15 @@ SC_API void sc_curve_settings_default(sc_curve_settings *s);
 
 /** One point of a traced curve. */
 typedef struct {
-  double x, y, d;     /**< parameters and the orbit point carried */
+  double x;           /**< first parameter */
+  double y;           /**< second parameter */
+  double d;           /**< the orbit point carried */
   double multiplier;  /**< (f^m)' there: +1 or -1 up to the tolerance */
   double coefficient; /**< the normal-form coefficient (psi_0); on a
                            border curve the border's value m_k (zero up
                            to the residual) */
   int branch;         /**< 0: the first direction, 1: the other */
-  const char *itinerary;
+  const char *itinerary; /**< of f^m from d, iterates joined by '|' */
 } sc_curve_point;
 
 /** A codimension-two or end point of a traced curve. */
@@ -210,8 +221,10 @@ typedef struct {
                       "GR", "CS", "SW", "BR", "TT"); with a '?' ("CP?",
                       "GR?") for a sign change of the test that was not
                       located or is not a zero (note says why) */
-  double x, y, d;
-  double coefficient;
+  double x;           /**< first parameter */
+  double y;           /**< second parameter */
+  double d;           /**< the orbit point */
+  double coefficient; /**< the normal-form coefficient there */
   double residual; /**< sc_curve_cert.residual; NaN for EP; for a
                         border point, the largest of |F| and |m_k| */
   char note[128];  /**< "beta min", "supercritical to subcritical",
@@ -220,9 +233,11 @@ typedef struct {
 
 /** Callbacks of sc_curve_trace(); either may be NULL; non-zero stops. */
 typedef struct {
+  /** each accepted point */
   int (*point)(void *ctx, const sc_curve_point *p);
+  /** each special or end point */
   int (*special)(void *ctx, const sc_curve_special *s);
-  void *ctx;
+  void *ctx; /**< passed to both */
 } sc_curve_output;
 
 /** What sc_curve_trace() did. */

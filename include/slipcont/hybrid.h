@@ -28,7 +28,8 @@ extern "C" {
 
 /** A guard c0 + c1 t + sum_k (a_k cos w_k t + b_k sin w_k t). */
 typedef struct {
-  double c0, c1;
+  double c0;                   /**< constant term */
+  double c1;                   /**< drift (coefficient of t) */
   int n;                       /**< number of sinusoids, 0..SC_GUARD_MAXFREQ */
   double w[SC_GUARD_MAXFREQ];  /**< frequencies, > 0 */
   double a[SC_GUARD_MAXFREQ];  /**< cosine coefficients */

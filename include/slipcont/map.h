@@ -20,6 +20,8 @@
 extern "C" {
 #endif
 
+/** A model instance: a model type with its parameter values, options and
+ * accuracy (sc_map_new()); opaque. */
 typedef struct sc_map sc_map;
 
 /**

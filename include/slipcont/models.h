@@ -27,7 +27,8 @@ extern "C" {
 typedef struct {
   const char *name;  /**< as in docs/model.md: "alpha", "beta", "phi", "v" */
   double def;        /**< default value */
-  double lo, hi;     /**< valid range */
+  double lo;         /**< valid range: lower end */
+  double hi;         /**< valid range: upper end */
   int lo_open;       /**< 1: lo itself is excluded */
   int hi_open;       /**< 1: hi itself is excluded (hi may be HUGE_VAL) */
   const char *doc;   /**< one line */
@@ -139,8 +140,8 @@ SC_API const char *sc_border_label(sc_border_kind k);
  * n = 0: no code (a model without borders, or more phases than fit).
  */
 typedef struct {
-  int n;
-  unsigned char c[SC_CODE_LEN];
+  int n;                        /**< bytes used; 0: no code */
+  unsigned char c[SC_CODE_LEN]; /**< the code's bytes (model-defined) */
 } sc_itin_code;
 
 /** Longest border name, NUL included. */
@@ -154,7 +155,7 @@ typedef struct {
  * natural itinerary changes at the border).
  */
 typedef struct {
-  sc_border_kind kind;
+  sc_border_kind kind; /**< grazing, crossing, switching, ... */
   int iterate;        /**< iterate of f^n it belongs to, from 0 */
   double value;       /**< m */
   double dd;          /**< dm/dd, d the argument of the evaluation */
@@ -165,8 +166,8 @@ typedef struct {
    * |d - d*|^(-1/2) with the driver frozen), so a point on such a border
    * is located with the orbit started exactly on it. */
   int on_state;
-  double d_on;
-  double d_on_dp[SC_MAXPARAM];
+  double d_on;                 /**< on_state: the point d_on(p) */
+  double d_on_dp[SC_MAXPARAM]; /**< on_state: d d_on / dp_i */
   /** The code of this iterate to follow to stay on the border (n = 0:
    * the iterate's own code serves): e.g. a grazing met from the side
    * where the guard fires is followed with the event at the guard's
@@ -183,9 +184,9 @@ typedef struct {
  * the first cap are stored: grow the storage and evaluate again).
  */
 typedef struct {
-  sc_border *b;
-  size_t cap;
-  size_t n;
+  sc_border *b; /**< storage for cap borders */
+  size_t cap;   /**< entries b holds */
+  size_t n;     /**< borders of the evaluation (may exceed cap) */
 } sc_border_list;
 
 
@@ -200,11 +201,11 @@ typedef struct sc_model_type {
   const char *doc;        /**< one line */
   const char *state_name; /**< what the map acts on: "d" (bk2), "x" */
   const char *state_label; /**< plot label of the state, NULL: the name */
-  size_t nparam;
-  const sc_param_info *params;
-  size_t noption;
-  const sc_option_info *options;
-  size_t inst_size;
+  size_t nparam;                 /**< number of parameters */
+  const sc_param_info *params;   /**< their table, in parameter order */
+  size_t noption;                /**< number of options */
+  const sc_option_info *options; /**< their table */
+  size_t inst_size;              /**< bytes of a model instance */
   /** Prepare @p inst for the given values (derived constants, workspace);
    * called after every change.  May refuse option combinations. */
   int (*setup)(void *inst, const double *p, const int *opt,
