@@ -1,6 +1,8 @@
 sc_add_test(test_common)
 sc_add_test(test_guard)
 sc_add_test(test_bk2)
+# The 1:n resonance of a slip of both blocks: BR = 0 at alpha = (n^2-1)/2.
+sc_add_test(test_bk2_resonance)
 # The API example prints the period-2 orbit of fig 5.4.
 add_test(NAME example_api COMMAND example_api)
 set_tests_properties(example_api PROPERTIES PASS_REGULAR_EXPRESSION
