@@ -16,6 +16,10 @@
 # gfortran and python3; without them the AUTO part is skipped with a
 # message and the exit status is 0 (CI does not install AUTO).
 set -eu
+if [ $# -lt 2 ] || [ $# -gt 3 ]; then
+  echo "usage: sh bench/auto/run_auto.sh BUILD/bench/bench_accuracy_branch OUTDIR [REPEATS]" >&2
+  exit 2
+fi
 BIN=$1 OUT=$2 REPEAT=${3:-11}
 HERE=$(cd "$(dirname "$0")" && pwd)
 mkdir -p "$OUT"
