@@ -1,5 +1,5 @@
 """AUTO-07p on the logistic and cubic maps, the side of the comparison in
-docs/accuracy.md ("Branches: slipcont and AUTO-07p") that run_auto.sh
+docs/accuracy.md ("Branches on smooth maps") that run_auto.sh
 cannot do in sh: time each setting (median of REPEATS), read the special
 points from fort.7, append rows to OUTDIR/smooth.csv and tables to
 OUTDIR/smooth.md.

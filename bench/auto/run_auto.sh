@@ -1,6 +1,6 @@
 #!/bin/sh
 # slipcont and AUTO-07p side by side on the logistic and cubic maps
-# (docs/accuracy.md, "Branches: slipcont and AUTO-07p"): step size and
+# (docs/accuracy.md, "Branches on smooth maps"): step size and
 # Newton tolerances against the error of the located flips and folds
 # (known exactly) and time, one point per setting on one plot.
 #
