@@ -3,6 +3,7 @@
  * reads whatever labels and values the branch code reports:
  *
  *   build/bench/bench_accuracy_branch OUTDIR
+ *   build/bench/bench_accuracy_branch --smooth OUTDIR REPEATS
  *
  * Fig 5.8's orbits (driver frozen, beta = 2.5, alpha in [2.8, 4]) are
  * continued from three starts without branch switching (period 2 from
@@ -15,8 +16,12 @@
  * where none is found within 1e-3), the plot the largest over the folds
  * and flips and over the borders.  Writes
  * OUTDIR/branch.csv, branch.gp, branch.png (if gnuplot runs) and appends
- * a table to OUTDIR/tables.md, and a second one for the logistic map,
- * whose special points are known exactly (run_logistic()). */
+ * a table to OUTDIR/tables.md, then one each for the logistic and cubic
+ * maps, whose special points are known exactly (smooth_all(): median of
+ * 11 runs per setting, OUTDIR/smooth.csv, smooth.gp, smooth.png).  With
+ * --smooth only the latter, REPEATS runs per setting, tables to
+ * OUTDIR/smooth.md: bench/auto/run_auto.sh runs it next to AUTO-07p on the
+ * same maps and adds AUTO's rows to smooth.csv and smooth.md. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
@@ -105,79 +110,268 @@ static double run(const bsetting *s, spt *pts, int *npts, unsigned long *nev) {
   return t;
 }
 
-/* The logistic map x -> r x (1 - x), whose special points are known
- * exactly: flips at r = 3, 1 + sqrt(6) and r_3 = 3.5440903595519228536
- * (period 4 -> 8, a published constant), the period-3 fold at
- * 1 + 2 sqrt(2).  Period 1 from r = 2.8 with branch switching up to
- * period 8, and period 3 from r = 3.84.  Returns the run's time and the
- * largest |p - exact| (missing points counted in *missing). */
-static double run_logistic(const char *preset, double hmax, double *err,
-                           int *missing, unsigned long *nev) {
-  const struct {
-    const char *label;
-    int period;
-    double p;
-  } exact[] = {
-      {"PD", 1, 3.0},
+/* Smooth maps whose special points are known exactly, the same problems
+ * as bench/auto/ gives AUTO-07p (run_auto.sh puts both on one plot). */
+typedef struct {
+  const char *label;
+  int period;
+  double p;
+} exact_pt;
+
+typedef struct {
+  const char *name;  /* model */
+  const char *param; /* continued parameter */
+  const char *fixed; /* another parameter held fixed, or NULL */
+  double fixed_value;
+  double from, to, d0;
+  int switch_pd, max_period;
+  int extra_period; /* a second start (0: none) */
+  double extra_p, extra_d;
+  const char *doc;
+  int nexact;
+  exact_pt exact[4];
+} smooth_case;
+
+static const smooth_case smooth_cases[] = {
+    /* Flips at r = 3, 1 + sqrt(6) and r_3 = 3.5440903595519228536
+     * (period 4 -> 8, a published constant), the period-3 fold at
+     * 1 + 2 sqrt(2).  Period 1 from r = 2.8 with branch switching up to
+     * period 8, and period 3 from r = 3.84. */
+    {"logistic",
+     "r",
+     NULL,
+     0,
+     2.8,
+     3.9,
+     0.6,
+     1,
+     8,
+     3,
+     3.84,
+     0.1494,
+     "flips at 3, 1 + sqrt(6), 3.5440903595519229, the period-3 fold at "
+     "1 + 2 sqrt(2): period 1 from r = 2.8 with branch switching to "
+     "period 8, period 3 from r = 3.84",
+     4,
+     {{"PD", 1, 3.0},
       {"PD", 2, 3.4494897427831781}, /* 1 + sqrt(6) */
       {"PD", 4, 3.5440903595519229},
-      {"LP", 3, 3.8284271247461901}, /* 1 + 2 sqrt(2) */
-  };
-  sc_accuracy acc;
-  sc_msg msg;
-  sc_map *m;
-  sc_accuracy_preset(&acc, preset, NULL);
-  if (sc_map_alloc("logistic", &acc, &m, &msg) ||
-      sc_map_set_param_by_name(m, "r", 2.8, &msg)) {
-    fprintf(stderr, "bench_accuracy_branch: %s\n", msg.text);
-    exit(1);
-  }
-  sc_orbit_branch_spec sp = {
-      .param = 0,
-      .from = 2.8,
-      .to = 3.9,
-      .period = 1,
-      .d0 = 0.6,
-      .switch_pd = 1,
-      .max_points = 4000,
-      .max_branches = 16,
-      .max_period = 8,
-      .hmax = hmax,
-  };
-  sc_orbit_branch *ob;
-  double t0 = now();
-  unsigned long e0 = sc_map_nevals(m);
-  int st = sc_orbit_branch_alloc(m, &sp, &ob, &msg);
-  if (!st) st = sc_orbit_branch_add_start(ob, 3.84, 0.1494, 3, &msg);
-  if (!st) st = sc_orbit_branch_run(ob, &msg);
-  double t = now() - t0;
-  if (st) {
-    fprintf(stderr, "bench_accuracy_branch: logistic: %s\n", msg.text);
-    exit(1);
-  }
-  *nev = sc_map_nevals(m) - e0;
-  *err = 0;
-  *missing = 0;
-  for (size_t k = 0; k < sizeof exact / sizeof exact[0]; k++) {
-    double best = HUGE_VAL;
-    for (size_t i = 0; i < sc_orbit_branch_nspecial(ob); i++) {
-      sc_orbit_special_info q;
-      if (sc_orbit_branch_special(ob, i, &q)) continue;
-      if (strcmp(sc_point_label_text(q.label), exact[k].label) == 0 &&
-          q.period == exact[k].period)
-        best = fmin(best, fabs(q.p - exact[k].p));
+      {"LP", 3, 3.8284271247461901}}}, /* 1 + 2 sqrt(2) */
+    /* x -> x + mu1 + mu2 x - x^3 at mu2 = 1/2, mu1 from -1 to 1 along the
+     * S-shaped branch mu1 = x^3 - x/2: flips where f' = -1 (x = -+
+     * sqrt(5/6), mu1 = -+sqrt(5/6)/3), folds where f' = 1 (x = -+1/sqrt
+     * 6, mu1 = +-1/(3 sqrt 6)).  No branch switching. */
+    {"cubic",
+     "mu1",
+     "mu2",
+     0.5,
+     -1.0,
+     1.0,
+     -1.165,
+     0,
+     1,
+     0,
+     0,
+     0,
+     "mu2 = 1/2, mu1 from -1 to 1: flips at mu1 = -+sqrt(5/6)/3, folds at "
+     "mu1 = +-1/(3 sqrt 6)",
+     4,
+     {{"PD", 1, -0.30429030972509228}, /* -sqrt(5/6)/3 */
+      {"LP", 1, 0.13608276348795434},  /* 1/(3 sqrt 6) */
+      {"LP", 1, -0.13608276348795434},
+      {"PD", 1, 0.30429030972509228}}},
+};
+
+/* A located point farther than this from the exact one counts as not
+ * found; the exact points of one map are at least 0.09 apart (and run_auto.py
+ * uses the same window for AUTO's points). */
+#define SMOOTH_MATCH 1e-2
+
+static int cmp_double(const void *a, const void *b) {
+  double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
+/* One smooth case under one setting, run `repeats` times: returns the
+ * median time and the largest |p - exact| over the exact points found
+ * (a point of that label and period within SMOOTH_MATCH; the others are
+ * counted in *missing).  Every repeat gives the same points (deterministic). */
+static double run_smooth(const smooth_case *c, const char *preset, double hmax,
+                         int repeats, double *err, int *missing,
+                         unsigned long *nev) {
+  double times[64];
+  if (repeats > 64) repeats = 64;
+  for (int rep = 0; rep < repeats; rep++) {
+    sc_accuracy acc;
+    sc_msg msg;
+    sc_map *m;
+    sc_accuracy_preset(&acc, preset, NULL);
+    if (sc_map_alloc(c->name, &acc, &m, &msg) ||
+        sc_map_set_param_by_name(m, c->param, c->from, &msg) ||
+        (c->fixed &&
+         sc_map_set_param_by_name(m, c->fixed, c->fixed_value, &msg))) {
+      fprintf(stderr, "bench_accuracy_branch: %s\n", msg.text);
+      exit(1);
     }
-    if (best > 1e-3) (*missing)++;
-    else *err = fmax(*err, best);
+    sc_orbit_branch_spec sp = {
+        .param = (size_t)sc_map_param_index(m, c->param),
+        .from = c->from,
+        .to = c->to,
+        .period = 1,
+        .d0 = c->d0,
+        .switch_pd = c->switch_pd,
+        .max_points = 4000,
+        .max_branches = 16,
+        .max_period = c->max_period,
+        .hmax = hmax,
+    };
+    sc_orbit_branch *ob;
+    double t0 = now();
+    unsigned long e0 = sc_map_nevals(m);
+    int st = sc_orbit_branch_alloc(m, &sp, &ob, &msg);
+    if (!st && c->extra_period)
+      st = sc_orbit_branch_add_start(ob, c->extra_p, c->extra_d,
+                                     c->extra_period, &msg);
+    if (!st) st = sc_orbit_branch_run(ob, &msg);
+    times[rep] = now() - t0;
+    if (st) {
+      fprintf(stderr, "bench_accuracy_branch: %s: %s\n", c->name, msg.text);
+      exit(1);
+    }
+    *nev = sc_map_nevals(m) - e0;
+    *err = 0;
+    *missing = 0;
+    for (int k = 0; k < c->nexact; k++) {
+      double best = HUGE_VAL;
+      for (size_t i = 0; i < sc_orbit_branch_nspecial(ob); i++) {
+        sc_orbit_special_info q;
+        if (sc_orbit_branch_special(ob, i, &q)) continue;
+        if (strcmp(sc_point_label_text(q.label), c->exact[k].label) == 0 &&
+            q.period == c->exact[k].period)
+          best = fmin(best, fabs(q.p - c->exact[k].p));
+      }
+      if (best > SMOOTH_MATCH)
+        (*missing)++;
+      else
+        *err = fmax(*err, best);
+    }
+    sc_orbit_branch_free(ob);
+    sc_map_free(m);
   }
-  sc_orbit_branch_free(ob);
-  sc_map_free(m);
-  return t;
+  qsort(times, (size_t)repeats, sizeof times[0], cmp_double);
+  return times[repeats / 2];
+}
+
+/* The smooth maps under each preset and hmax: a table in md, rows in
+ * OUTDIR/smooth.csv (run_auto.sh appends AUTO-07p's) and the plot
+ * OUTDIR/smooth.gp -> smooth.png. */
+static int smooth_all(const char *dir, FILE *md, int repeats) {
+  const char *presets[] = {"fast", "default", "precise"};
+  const double hs[] = {0.02, 0.01, 0.005};
+  char path[512];
+  snprintf(path, sizeof path, "%s/smooth.csv", dir);
+  FILE *csv = fopen(path, "w");
+  if (!csv) {
+    fprintf(stderr, "bench_accuracy_branch: cannot write %s\n", path);
+    return 1;
+  }
+  fprintf(csv, "map,tool,setting,seconds,max_err,missing,process_seconds\n");
+  for (size_t ic = 0; ic < sizeof smooth_cases / sizeof smooth_cases[0]; ic++) {
+    const smooth_case *c = &smooth_cases[ic];
+    fprintf(md,
+            "\nThe %s map against its exact special points (%s); slipcont, "
+            "median of %d runs in one process:\n\n"
+            "| setting | time (s) | map evaluations | max abs p - exact "
+            "| missing (none within 1e-2) |\n|---|---|---|---|---|\n",
+            c->name, c->doc, repeats);
+    for (int ip = 0; ip < 3; ip++)
+      for (int ih = 0; ih < 3; ih++) {
+        double err;
+        int missing;
+        unsigned long nev;
+        double t =
+            run_smooth(c, presets[ip], hs[ih], repeats, &err, &missing, &nev);
+        fprintf(md, "| %s hmax %g | %.3g | %lu | %.3g | %d |\n", presets[ip],
+                hs[ih], t, nev, err, missing);
+        fprintf(csv, "%s,slipcont,%s hmax %g,%.6g,%.6g,%d,\n", c->name,
+                presets[ip], hs[ih], t, err, missing);
+      }
+  }
+  fclose(csv);
+  snprintf(path, sizeof path, "%s/smooth.gp", dir);
+  FILE *gp = fopen(path, "w");
+  if (!gp) return 1;
+  fprintf(gp,
+          "# slipcont and (where run_auto.sh added its rows) AUTO-07p\n"
+          "set terminal pngcairo size 1200,560\n"
+          "set output '%s/smooth.png'\n"
+          "set datafile separator ','\nset logscale xy\nset grid\n"
+          "set format y \"10^{%%L}\"\nset format x \"10^{%%L}\"\n"
+          "set key below\nset xlabel \"seconds per run (median)\"\n"
+          "set ylabel \"max |p - p_{exact}| over the points found\"\n"
+          "f = '%s/smooth.csv'\n"
+          "y(e) = e > 1e-17 ? e : 1e-17\n"
+          "lab(n) = n > 0 ? sprintf('%%s (%%d not found)', strcol(3), n) "
+          ": strcol(3)\n"
+          "set yrange [1e-17:1]\n"
+          "is(m, t) = strcol(1) eq m && strcol(2) eq t\n"
+          "set multiplot layout 1,2\n",
+          dir, dir);
+  const char *titles[] = {"logistic map: flips at 3, 1+sqrt 6, r_3; fold "
+                          "of period 3",
+                          "cubic map (mu2 = 1/2): two flips, two folds"};
+  for (size_t ic = 0; ic < 2; ic++) {
+    const char *n = smooth_cases[ic].name;
+    fprintf(gp,
+            "set title \"%s\"\n"
+            "plot f every ::1 using (is('%s','slipcont') ? $4 : NaN):(y($5)) "
+            "with points pt 7 ps 1.2 lc 1 title 'slipcont (in process)', \\\n"
+            "     f every ::1 using (is('%s','auto') ? $4 : NaN):(y($5)) "
+            "with points pt 5 ps 1.2 lc 2 title 'AUTO-07p (its Total Time)', "
+            "\\\n"
+            "     f every ::1 using (is('%s','auto') ? $7 : NaN):(y($5)) "
+            "with points pt 4 ps 1.2 lc 2 title 'AUTO-07p (wall, with "
+            "process start and files)', \\\n"
+            "     f every ::1 using (strcol(1) eq '%s' ? $4 : NaN):(y($5)):"
+            "(lab($6)) "
+            "with labels offset 0.6,0.5 left font ',7' tc rgb 'gray40' "
+            "notitle\n",
+            titles[ic], n, n, n, n);
+  }
+  fprintf(gp, "unset multiplot\n");
+  fclose(gp);
+  char cmd[1100];
+  snprintf(cmd, sizeof cmd, "gnuplot '%s/smooth.gp' 2>/dev/null", dir);
+  if (system(cmd) != 0)
+    fprintf(stderr, "bench_accuracy_branch: gnuplot failed (smooth.gp)\n");
+  return 0;
 }
 
 int main(int argc, char **argv) {
-  if (argc < 2) {
-    fprintf(stderr, "usage: bench_accuracy_branch OUTDIR\n");
+  const int smooth_repeats = 11;
+  if (argc == 4 && strcmp(argv[1], "--smooth") == 0) {
+    /* Only the smooth maps, for run_auto.sh: tables to OUTDIR/smooth.md. */
+    char *end;
+    long reps = strtol(argv[3], &end, 10);
+    if (*end || reps < 1 || reps > 64) {
+      fprintf(stderr, "bench_accuracy_branch: REPEATS must be 1..64 (%s)\n",
+              argv[3]);
+      return 2;
+    }
+    char path[512];
+    snprintf(path, sizeof path, "%s/smooth.md", argv[2]);
+    FILE *md = fopen(path, "w");
+    if (!md) {
+      fprintf(stderr, "bench_accuracy_branch: cannot write %s\n", path);
+      return 1;
+    }
+    int st = smooth_all(argv[2], md, (int)reps);
+    fclose(md);
+    return st;
+  }
+  if (argc != 2) {
+    fprintf(stderr, "usage: bench_accuracy_branch OUTDIR\n"
+                    "       bench_accuracy_branch --smooth OUTDIR REPEATS\n");
     return 2;
   }
   const char *dir = argv[1];
@@ -254,21 +448,8 @@ int main(int argc, char **argv) {
       fprintf(md, "\n");
       fprintf(csv, "%s,%.6g,%.6g,%.6g,%d\n", label, t, e_lp, e_other, missing);
     }
-  fprintf(md, "\nThe logistic map against its exact special points "
-              "(flips at 3, 1 + sqrt(6), 3.5440903595519229, the period-3 "
-              "fold at 1 + 2 sqrt(2)): period 1 from r = 2.8 with branch "
-              "switching to period 8, period 3 from r = 3.84.\n\n"
-              "| setting | time (s) | map evaluations | max abs p - exact "
-              "| missing |\n|---|---|---|---|---|\n");
-  for (int ip = 0; ip < 3; ip++)
-    for (int ih = 0; ih < 3; ih++) {
-      double err;
-      int missing;
-      double t = run_logistic(presets[ip], hs[ih], &err, &missing, &nev);
-      fprintf(md, "| %s hmax %g | %.3g | %lu | %.3g | %d |\n", presets[ip],
-              hs[ih], t, nev, err, missing);
-    }
   fclose(csv);
+  if (smooth_all(dir, md, smooth_repeats)) return 1;
   fclose(md);
   snprintf(path, sizeof path, "%s/branch.gp", dir);
   FILE *gp = fopen(path, "w");
