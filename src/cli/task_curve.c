@@ -191,6 +191,43 @@ static int read_start(const char *spec, start_row *row, char *why, size_t len) {
   return SC_OK;
 }
 
+/* Every folder matched by `also` holds a curve.csv in (x, y). */
+static int also_check(const sc_scene *s, const char *xn, const char *yn,
+                      sc_msg *msg) {
+  const char *also = sc_scene_text(s, "also");
+  char dir[2048], path[2100];
+  for (const char *p = also; p && next_word(&p, dir, sizeof dir);) {
+    glob_t g;
+    int gr = glob(dir, 0, NULL, &g);
+    size_t ng = gr == 0 ? g.gl_pathc : 0;
+    if (ng == 0) {
+      if (gr == 0) globfree(&g);
+      return sc_scene_fail_key(s, "task", "also", msg,
+                               "also: %s matches no folder (valid: output "
+                               "folders of curve tasks; run them first)",
+                               dir);
+    }
+    for (size_t i = 0; i < ng; i++) {
+      snprintf(path, sizeof path, "%s/curve.csv", g.gl_pathv[i]);
+      FILE *f = fopen(path, "r");
+      char line[256] = "", want[256];
+      char *ok = f ? fgets(line, sizeof line, f) : NULL;
+      if (f) fclose(f);
+      snprintf(want, sizeof want, "%s,%s,", xn, yn);
+      if (!ok || strncmp(line, want, strlen(want)) != 0) {
+        globfree(&g);
+        return sc_scene_fail_key(s, "task", "also", msg,
+                                 "also: %s is not a readable curve.csv in (%s, "
+                                 "%s) (valid: output folders of curve tasks in "
+                                 "x = %s, y = %s; run them first)",
+                                 path, xn, yn, xn, yn);
+      }
+    }
+    globfree(&g);
+  }
+  return SC_OK;
+}
+
 static int curve_check(const sc_scene *s, sc_msg *msg) {
   const sc_map *m = sc_scene_map(s);
   const char *xn = sc_scene_text(s, "x"), *yn = sc_scene_text(s, "y");
@@ -243,37 +280,8 @@ static int curve_check(const sc_scene *s, sc_msg *msg) {
           "(valid: inside the box)",
           nm[k], v, sc_scene_text(s, lo[k]), sc_scene_text(s, hi[k]));
   }
-  const char *also = sc_scene_text(s, "also");
-  char dir[2048], path[2100];
-  for (const char *p = also; p && next_word(&p, dir, sizeof dir);) {
-    glob_t g;
-    int gr = glob(dir, 0, NULL, &g);
-    size_t ng = gr == 0 ? g.gl_pathc : 0;
-    if (ng == 0) {
-      if (gr == 0) globfree(&g);
-      return sc_scene_fail_key(s, "task", "also", msg,
-                               "also: %s matches no folder (valid: output "
-                               "folders of curve tasks; run them first)",
-                               dir);
-    }
-    for (size_t i = 0; i < ng; i++) {
-    snprintf(path, sizeof path, "%s/curve.csv", g.gl_pathv[i]);
-    FILE *f = fopen(path, "r");
-    char line[256] = "", want[256];
-    char *ok = f ? fgets(line, sizeof line, f) : NULL;
-    if (f) fclose(f);
-    snprintf(want, sizeof want, "%s,%s,", xn, yn);
-    if (!ok || strncmp(line, want, strlen(want)) != 0) {
-      globfree(&g);
-      return sc_scene_fail_key(s, "task", "also", msg,
-                               "also: %s is not a readable curve.csv in (%s, "
-                               "%s) (valid: output folders of curve tasks in "
-                               "x = %s, y = %s; run them first)",
-                               path, xn, yn, xn, yn);
-    }
-    }
-    globfree(&g);
-  }
+  int st = also_check(s, xn, yn, msg);
+  if (st) return st;
   const char *ov = sc_scene_text(s, "overlay");
   if (ov) return overlay_check(s, ov, xn, yn, msg);
   return SC_OK;
