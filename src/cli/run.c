@@ -310,6 +310,26 @@ int sc_cli_summary_begin(sc_cli_run *r, sc_file **out) {
 }
 
 /* See tasks.h. */
+int sc_cli_check_param_ends(const sc_scene *s, sc_msg *msg) {
+  const sc_map *m = sc_scene_map(s);
+  const char *name = sc_scene_text(s, "parameter");
+  const sc_param_info *pi =
+      &sc_map_type(m)->params[sc_map_param_index(m, name)];
+  /* The range is the model table's (never a copy of it). */
+  sc_key_info range = {pi->name, SC_KEY_REAL, 0, NULL, pi->lo, pi->hi,
+                       pi->lo_open, pi->hi_open, NULL, NULL};
+  char text[128];
+  sc_key_range_text(&range, text, sizeof text);
+  const char *ends[] = {"from", "to"};
+  for (int k = 0; k < 2; k++)
+    if (sc_param_check(pi, sc_scene_real(s, ends[k]), NULL))
+      return sc_scene_fail_key(s, "task", ends[k], msg,
+                               "%s = %s out of range of %s (valid: %s)",
+                               ends[k], sc_scene_text(s, ends[k]), name, text);
+  return SC_OK;
+}
+
+/* See tasks.h. */
 int sc_cli_write_map_graph(sc_cli_run *r, const char *name, int n,
                            double from, double to, size_t steps) {
   sc_file *csv = NULL;

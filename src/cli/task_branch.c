@@ -194,20 +194,8 @@ static int has_auto(const sc_scene *s) {
 }
 
 static int branch_check(const sc_scene *s, sc_msg *msg) {
-  const sc_map *m = sc_scene_map(s);
-  const char *name = sc_scene_text(s, "parameter");
-  const sc_param_info *pi =
-      &sc_map_type(m)->params[sc_map_param_index(m, name)];
-  sc_key_info range = {pi->name, SC_KEY_REAL, 0, NULL, pi->lo, pi->hi,
-                       pi->lo_open, pi->hi_open, NULL, NULL};
-  char text[128];
-  sc_key_range_text(&range, text, sizeof text);
-  const char *ends[] = {"from", "to"};
-  for (int k = 0; k < 2; k++)
-    if (sc_param_check(pi, sc_scene_real(s, ends[k]), NULL))
-      return sc_scene_fail_key(s, "task", ends[k], msg,
-                               "%s = %s out of range of %s (valid: %s)",
-                               ends[k], sc_scene_text(s, ends[k]), name, text);
+  int st = sc_cli_check_param_ends(s, msg);
+  if (st) return st;
   if (sc_scene_real(s, "from") == sc_scene_real(s, "to"))
     return sc_scene_fail_key(s, "task", "to", msg,
                              "to = %s equals from (valid: to != from)",
@@ -218,7 +206,7 @@ static int branch_check(const sc_scene *s, sc_msg *msg) {
                              "(valid: [1, iterations])",
                              sc_scene_int(s, "keep"),
                              sc_scene_int(s, "iterations"));
-  int st = parse_starts(s, NULL, NULL, msg);
+  st = parse_starts(s, NULL, NULL, msg);
   if (st) return st;
   if (!sc_scene_text(s, "d0") && !sc_scene_text(s, "starts"))
     return sc_scene_fail_key(s, "task", "d0", msg,

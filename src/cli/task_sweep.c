@@ -39,21 +39,8 @@ static const sc_key_info sweep_keys[] = {
 #define SWEEP_MAX_VALUES 536870912.0
 
 static int sweep_check(const sc_scene *s, sc_msg *msg) {
-  const sc_map *m = sc_scene_map(s);
-  const char *name = sc_scene_text(s, "parameter");
-  const sc_param_info *pi = &sc_map_type(m)->params[sc_map_param_index(m, name)];
-  /* The range is the model table's (never a copy of it). */
-  sc_key_info range = {pi->name, SC_KEY_REAL, 0, NULL, pi->lo, pi->hi,
-                       pi->lo_open, pi->hi_open, NULL, NULL};
-  char text[128];
-  sc_key_range_text(&range, text, sizeof text);
-  const char *ends[] = {"from", "to"};
-  for (int k = 0; k < 2; k++) {
-    if (sc_param_check(pi, sc_scene_real(s, ends[k]), NULL))
-      return sc_scene_fail_key(s, "task", ends[k], msg,
-                               "%s = %s out of range of %s (valid: %s)",
-                               ends[k], sc_scene_text(s, ends[k]), name, text);
-  }
+  int st = sc_cli_check_param_ends(s, msg);
+  if (st) return st;
   const char *xs = sc_scene_text(s, "x-scale");
   if (xs && strcmp(xs, "log") == 0 &&
       sc_grid_check("x-scale", sc_scene_real(s, "from"), sc_scene_real(s, "to"),

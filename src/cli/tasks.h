@@ -138,6 +138,11 @@ const char *const *sc_cli_step_names(size_t *n);
  */
 int sc_cli_task_run(const sc_cli_task *t, sc_cli_run *r);
 
+/** For a task's check: `[task] from` and `to` inside the range of the
+ * model parameter named by `[task] parameter` (the model's table, with
+ * sc_param_check()); the message names the key's line. */
+int sc_cli_check_param_ends(const sc_scene *s, sc_msg *msg);
+
 /**
  * The graph of f^n over [from, to] on @p steps points into the CSV file
  * @p name (columns d,f,itinerary), with an empty line wherever the
