@@ -126,8 +126,9 @@ typedef struct sc_cli_task {
   void (*release)(sc_cli_run *r, void *job);
 } sc_cli_task;
 
-/** The names of the steps in their order ("prepare", ..., "report";
- * release is not a step that can be skipped); sets @p n. */
+/** The names of the steps in their order, "prepare" to "report" (the
+ * names --interrupt-before accepts; release always runs and is not
+ * listed); sets @p n. */
 const char *const *sc_cli_step_names(size_t *n);
 
 /**
