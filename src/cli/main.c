@@ -35,6 +35,7 @@ typedef struct {
   int quiet;
   long threads;
   long stop_after_rows;
+  const char *interrupt_before;
   int help;
   int markdown;
 } cli_args;
@@ -66,6 +67,10 @@ static void usage(FILE *f) {
       "  --stop-after-rows N      chart: stop after N rows with a checkpoint,"
       " as a kill\n"
       "                           would (to test resuming)\n"
+      "  --interrupt-before STEP  raise SIGINT just before a step of the run"
+      " (prepare,\n"
+      "                           compute, write, summary, plots, report; to"
+      " test stopping)\n"
       "\n"
       "exit status: 0 success, 1 computation failed or interrupted, 2 bad "
       "input (usage,\nscene, output folder); 130/143 when SIGINT/SIGTERM "
@@ -80,7 +85,8 @@ static void run_usage(FILE *f, const char *cmd) {
           "usage: slipcont %s SCENE [--set SECTION.KEY=VALUE]... [--out DIR]"
           "%s\n\n",
           cmd, strcmp(cmd, "run") == 0 ? " [--quiet] [--threads N]"
-                                         " [--stop-after-rows N]" : "");
+                                         " [--stop-after-rows N]"
+                                         " [--interrupt-before STEP]" : "");
   if (strcmp(cmd, "run") == 0)
     fputs("Validate the scene, create the output folder, compute the task, "
           "write CSV files,\nsummary.txt and gnuplot scripts, and render "
@@ -108,6 +114,15 @@ static int bad_usage(const char *fmt, const char *arg) {
   fprintf(stderr, fmt, arg);
   fputs(" (see slipcont --help)\n", stderr);
   return EXIT_INPUT;
+}
+
+/* 1 if @p name is a step of the run skeleton (tasks.h). */
+static int is_step(const char *name) {
+  size_t n;
+  const char *const *steps = sc_cli_step_names(&n);
+  for (size_t i = 0; i < n; i++)
+    if (strcmp(name, steps[i]) == 0) return 1;
+  return 0;
 }
 
 /* Options of run and check, before or after the scene. */
@@ -141,6 +156,14 @@ static int parse_run_args(int argc, char **argv, cli_args *a) {
                                 &a->stop_after_rows))
         return bad_usage("--stop-after-rows needs a row count >= 1, not "
                          "'%s'", val ? val : "");
+    } else if (strncmp(s, "--interrupt-before", 18) == 0 &&
+               (s[18] == '\0' || s[18] == '=')) {
+      val = s[18] ? s + 19 : (i + 1 < argc ? argv[++i] : NULL);
+      if (!val || !is_step(val))
+        return bad_usage("--interrupt-before needs a step (prepare, compute, "
+                         "write, summary, plots or report), not '%s'",
+                         val ? val : "");
+      a->interrupt_before = val;
     } else if (s[0] == '-' && s[1]) {
       return bad_usage("unknown option '%s'", s);
     } else if (!a->scene) {
@@ -280,7 +303,8 @@ static int cmd_run(const cli_args *a) {
           stderr);
   sc_cli_catch_signals();
   r.stop_after_rows = a->stop_after_rows;
-  int st = task->run(&r);
+  r.interrupt_before = a->interrupt_before;
+  int st = sc_cli_task_run(task, &r);
   sc_cli_signals_done();
   if (st) {
     fprintf(stderr, "slipcont: %s: %s\n", sc_scene_name(s), msg.text);

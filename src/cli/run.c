@@ -1,5 +1,6 @@
-/* What a task may use while it runs: atomic files named in the notes,
- * the head of summary.txt, plot declarations, notes and progress. */
+/* The one run skeleton (sc_cli_task_run: the steps of every task in
+ * order), and what a task may use while it runs: atomic files named in
+ * the notes, the head of summary.txt, plot scripts, notes, signals. */
 #define _POSIX_C_SOURCE 200809L
 
 #include <signal.h>
@@ -83,21 +84,126 @@ void sc_cli_signals_done(void) {
 
 /* ------------------------------------------------------------------ */
 
+int sc_cli_stop(sc_cli_run *r) {
+  return sc_cli_interrupted() ? sc_fail(r->msg, SC_ECALLBACK, "interrupted")
+                              : SC_OK;
+}
+
+/* ------------------------------------------------------------------ */
+/* Files: every one open is listed in r->open until committed or aborted. */
+
 int sc_cli_open(sc_cli_run *r, const char *name, sc_file **f) {
+  *f = NULL;
+  if (r->nopen == SC_CLI_MAXOPEN)
+    return sc_fail(r->msg, SC_EINTERNAL, "%s: more than %d files open",
+                   name, SC_CLI_MAXOPEN);
   int st = sc_file_open(r->dir, name, f, r->msg);
-  if (st == SC_OK) track(*f);
-  return st;
+  if (st) return st;
+  track(*f);
+  r->open[r->nopen++] = *f;
+  return SC_OK;
+}
+
+/* Take @p f off the list of open files. */
+static void forget(sc_cli_run *r, const sc_file *f) {
+  for (size_t i = 0; i < r->nopen; i++)
+    if (r->open[i] == f) {
+      r->open[i] = r->open[--r->nopen];
+      return;
+    }
 }
 
 int sc_cli_commit(sc_cli_run *r, const char *name, sc_file *f) {
+  forget(r, f);
   int st = sc_file_commit(f, r->msg);
-  if (st == SC_OK) {
+  if (st == SC_OK && name) {
     size_t n = strlen(r->written);
     snprintf(r->written + n, sizeof r->written - n, "%s%s", n ? ", " : "",
              name);
   }
   return st;
 }
+
+void sc_cli_abort(sc_cli_run *r, sc_file *f) {
+  if (!f) return;
+  forget(r, f);
+  sc_file_abort(f);
+}
+
+int sc_cli_plot_begin(sc_cli_run *r, const char *stem, const char *title,
+                      const char *xlabel, const char *ylabel,
+                      sc_file **gp) {
+  char script[64], png[64];
+  snprintf(script, sizeof script, "%s.gp", stem);
+  snprintf(png, sizeof png, "%s.png", stem);
+  int st = sc_cli_open(r, script, gp);
+  if (st == SC_OK)
+    sc_plot_head(sc_file_stream(*gp), png, title, xlabel, ylabel);
+  return st;
+}
+
+int sc_cli_plot_end(sc_cli_run *r, const char *stem, sc_file *gp) {
+  char script[64], png[64];
+  snprintf(script, sizeof script, "%s.gp", stem);
+  snprintf(png, sizeof png, "%s.png", stem);
+  int st = sc_cli_commit(r, script, gp);
+  return st ? st : sc_cli_add_plot(r, script, png);
+}
+
+/* ------------------------------------------------------------------ */
+/* The one run skeleton (tasks.h).                                       */
+
+enum { STEP_PREPARE, STEP_COMPUTE, STEP_WRITE, STEP_SUMMARY, STEP_PLOTS,
+       STEP_REPORT, NSTEPS };
+
+static const char *const step_names[NSTEPS] = {
+    "prepare", "compute", "write", "summary", "plots", "report"};
+
+const char *const *sc_cli_step_names(size_t *n) {
+  *n = NSTEPS;
+  return step_names;
+}
+
+/* The summary step: head by the driver, findings by the task. */
+static int summary_step(const sc_cli_task *t, sc_cli_run *r, void *job) {
+  sc_file *f = NULL;
+  int st = sc_cli_summary_begin(r, &f);
+  if (!st) st = t->summary(r, job, sc_file_stream(f));
+  return st ? st : sc_cli_commit(r, "summary.txt", f);
+}
+
+static int run_step(const sc_cli_task *t, sc_cli_run *r, void *job, int k) {
+  switch (k) {
+  case STEP_PREPARE: return t->prepare ? t->prepare(r, job) : SC_OK;
+  case STEP_COMPUTE: return t->compute ? t->compute(r, job) : SC_OK;
+  case STEP_WRITE: return t->write ? t->write(r, job) : SC_OK;
+  case STEP_SUMMARY: return t->summary ? summary_step(t, r, job) : SC_OK;
+  case STEP_PLOTS: return t->plots ? t->plots(r, job) : SC_OK;
+  default: return t->report ? t->report(r, job) : SC_OK;
+  }
+}
+
+int sc_cli_task_run(const sc_cli_task *t, sc_cli_run *r) {
+  void *job = calloc(1, t->job_size ? t->job_size : 1);
+  if (!job) return sc_fail(r->msg, SC_ENOMEM, "%s: out of memory", t->type.kind);
+  int st = SC_OK;
+  for (int k = 0; k < NSTEPS && !st; k++) {
+    if (r->interrupt_before && strcmp(r->interrupt_before, step_names[k]) == 0)
+      raise(SIGINT); /* the test hook: as if the user pressed ^C now */
+    if (k > STEP_COMPUTE && r->compute_only) break;
+    st = sc_cli_stop(r);
+    if (!st) st = run_step(t, r, job, k);
+  }
+  if (!st && r->nopen) /* a task's bug: say which file */
+    st = sc_fail(r->msg, SC_EINTERNAL, "%s: %s was left open",
+                 t->type.kind, sc_file_temp_path(r->open[0]));
+  while (r->nopen) sc_cli_abort(r, r->open[r->nopen - 1]);
+  if (t->release) t->release(r, job);
+  free(job);
+  return st;
+}
+
+/* ------------------------------------------------------------------ */
 
 int sc_cli_add_plot(sc_cli_run *r, const char *script, const char *png) {
   if (r->nplots == SC_CLI_MAXPLOTS)
@@ -204,6 +310,26 @@ int sc_cli_summary_begin(sc_cli_run *r, sc_file **out) {
 }
 
 /* See tasks.h. */
+int sc_cli_check_param_ends(const sc_scene *s, sc_msg *msg) {
+  const sc_map *m = sc_scene_map(s);
+  const char *name = sc_scene_text(s, "parameter");
+  const sc_param_info *pi =
+      &sc_map_type(m)->params[sc_map_param_index(m, name)];
+  /* The range is the model table's (never a copy of it). */
+  sc_key_info range = {pi->name, SC_KEY_REAL, 0, NULL, pi->lo, pi->hi,
+                       pi->lo_open, pi->hi_open, NULL, NULL};
+  char text[128];
+  sc_key_range_text(&range, text, sizeof text);
+  const char *ends[] = {"from", "to"};
+  for (int k = 0; k < 2; k++)
+    if (sc_param_check(pi, sc_scene_real(s, ends[k]), NULL))
+      return sc_scene_fail_key(s, "task", ends[k], msg,
+                               "%s = %s out of range of %s (valid: %s)",
+                               ends[k], sc_scene_text(s, ends[k]), name, text);
+  return SC_OK;
+}
+
+/* See tasks.h. */
 int sc_cli_write_map_graph(sc_cli_run *r, const char *name, int n,
                            double from, double to, size_t steps) {
   sc_file *csv = NULL;
@@ -215,10 +341,7 @@ int sc_cli_write_map_graph(sc_cli_run *r, const char *name, int n,
   int have = 0;
   sc_map_value v;
   for (size_t i = 0; i < steps; i++) {
-    if (sc_cli_interrupted()) {
-      sc_file_abort(csv);
-      return sc_fail(r->msg, SC_ECALLBACK, "interrupted");
-    }
+    if ((st = sc_cli_stop(r))) return st; /* the driver aborts csv */
     double d = sc_grid(from, to, steps, i, SC_GRID_LINEAR);
     int e = sc_map_iterate(r->map, d, n, SC_EVAL_ITINERARY, &v, NULL);
     if (e == SC_EUNDEF || e == SC_ENONFINITE || e == SC_ENOCONV) {
@@ -226,10 +349,7 @@ int sc_cli_write_map_graph(sc_cli_run *r, const char *name, int n,
       have = 0;
       continue;
     }
-    if (e) {
-      sc_file_abort(csv);
-      return sc_fail(r->msg, e, "graph of f^%d at d = %.17g failed", n, d);
-    }
+    if (e) return sc_fail(r->msg, e, "graph of f^%d at d = %.17g failed", n, d);
     if (have && strcmp(last, v.itinerary) != 0) fputc('\n', f);
     snprintf(last, sizeof last, "%s", v.itinerary);
     have = 1;

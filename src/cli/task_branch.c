@@ -10,8 +10,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
+#include "cli/progress.h"
 #include "cli/tasks.h"
 #include "slipcont/analysis.h"
 #include "slipcont/branch.h"
@@ -194,20 +194,8 @@ static int has_auto(const sc_scene *s) {
 }
 
 static int branch_check(const sc_scene *s, sc_msg *msg) {
-  const sc_map *m = sc_scene_map(s);
-  const char *name = sc_scene_text(s, "parameter");
-  const sc_param_info *pi =
-      &sc_map_type(m)->params[sc_map_param_index(m, name)];
-  sc_key_info range = {pi->name, SC_KEY_REAL, 0, NULL, pi->lo, pi->hi,
-                       pi->lo_open, pi->hi_open, NULL, NULL};
-  char text[128];
-  sc_key_range_text(&range, text, sizeof text);
-  const char *ends[] = {"from", "to"};
-  for (int k = 0; k < 2; k++)
-    if (sc_param_check(pi, sc_scene_real(s, ends[k]), NULL))
-      return sc_scene_fail_key(s, "task", ends[k], msg,
-                               "%s = %s out of range of %s (valid: %s)",
-                               ends[k], sc_scene_text(s, ends[k]), name, text);
+  int st = sc_cli_check_param_ends(s, msg);
+  if (st) return st;
   if (sc_scene_real(s, "from") == sc_scene_real(s, "to"))
     return sc_scene_fail_key(s, "task", "to", msg,
                              "to = %s equals from (valid: to != from)",
@@ -218,7 +206,7 @@ static int branch_check(const sc_scene *s, sc_msg *msg) {
                              "(valid: [1, iterations])",
                              sc_scene_int(s, "keep"),
                              sc_scene_int(s, "iterations"));
-  int st = parse_starts(s, NULL, NULL, msg);
+  st = parse_starts(s, NULL, NULL, msg);
   if (st) return st;
   if (!sc_scene_text(s, "d0") && !sc_scene_text(s, "starts"))
     return sc_scene_fail_key(s, "task", "d0", msg,
@@ -247,17 +235,20 @@ static int branch_check(const sc_scene *s, sc_msg *msg) {
   return SC_OK;
 }
 
-static double now(void) {
-  struct timespec t;
-  clock_gettime(CLOCK_MONOTONIC, &t);
-  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
 
 /* The number of points is not known in advance: no bar, but a run
  * stops cleanly on SIGINT. */
 static int on_progress(void *ctx, size_t n) {
   (void)ctx;
   (void)n;
+  return sc_cli_interrupted();
+}
+
+/* The brute-force sweep stops on SIGINT too. */
+static int on_sweep_progress(void *ctx, size_t done, size_t total) {
+  (void)ctx;
+  (void)done;
+  (void)total;
   return sc_cli_interrupted();
 }
 
@@ -357,10 +348,7 @@ static int write_branch(sc_cli_run *r, const sc_orbit_branch *ob,
   sc_file *csv = NULL, *orb = NULL;
   int st = sc_cli_open(r, "branch.csv", &csv);
   if (!st) st = sc_cli_open(r, "branch-orbits.csv", &orb);
-  if (st) {
-    sc_file_abort(csv);
-    return st;
-  }
+  if (st) return st; /* the driver aborts what is open */
   FILE *f = sc_file_stream(csv), *g = sc_file_stream(orb);
   fprintf(f, "%s,d,multiplier,stable,itinerary,period,branch\n", pname);
   fprintf(g, "# every orbit point along each branch: one block per branch "
@@ -405,15 +393,13 @@ static int write_branch(sc_cli_run *r, const sc_orbit_branch *ob,
     }
   }
   st = sc_cli_commit(r, "branch.csv", csv);
-  if (st) {
-    sc_file_abort(orb);
-    return st;
-  }
-  return sc_cli_commit(r, "branch-orbits.csv", orb);
+  return st ? st : sc_cli_commit(r, "branch-orbits.csv", orb);
 }
 
-static int write_sweep(sc_cli_run *r, size_t param, double from, double to,
-                       double d0) {
+/* The brute-force sweep of the same range drawn under the branch: each
+ * value starts from the previous one's final state. */
+static int run_sweep(sc_cli_run *r, size_t param, double from, double to,
+                     double d0, sc_sweep **sw) {
   const sc_scene *s = r->scene;
   sc_sweep_spec sp = {0};
   sp.param = param;
@@ -425,15 +411,17 @@ static int write_sweep(sc_cli_run *r, size_t param, double from, double to,
   sp.d0 = d0;
   sp.direction = to >= from ? SC_SWEEP_UP : SC_SWEEP_DOWN;
   sp.seed = SC_SEED_PREVIOUS;
-  sc_sweep *sw = NULL;
-  int st = sc_sweep_alloc(r->map, &sp, &sw, r->msg);
-  if (!st) st = sc_sweep_run(sw, r->msg);
+  sp.progress = on_sweep_progress;
+  int st = sc_sweep_alloc(r->map, &sp, sw, r->msg);
+  if (!st) st = sc_sweep_run(*sw, r->msg);
+  if (st == SC_ECALLBACK && sc_cli_interrupted()) st = sc_cli_stop(r);
+  return st;
+}
+
+static int write_sweep(sc_cli_run *r, const sc_sweep *sw) {
   sc_file *csv = NULL;
-  if (!st) st = sc_cli_open(r, "branch-sweep.csv", &csv);
-  if (st) {
-    sc_sweep_free(sw);
-    return st;
-  }
+  int st = sc_cli_open(r, "branch-sweep.csv", &csv);
+  if (st) return st;
   FILE *f = sc_file_stream(csv);
   fputs("p,d\n", f);
   sc_sweep_point pt;
@@ -446,23 +434,21 @@ static int write_sweep(sc_cli_run *r, size_t param, double from, double to,
       fputc('\n', f);
     }
   }
-  sc_sweep_free(sw);
   return sc_cli_commit(r, "branch-sweep.csv", csv);
 }
 
 static int write_branch_plot(sc_cli_run *r, const sc_orbit_branch *ob,
                              const char *pname, double from, double to,
                              int with_sweep) {
-  sc_file *gp = NULL;
-  int st = sc_cli_open(r, "branch.gp", &gp);
-  if (st) return st;
-  FILE *f = sc_file_stream(gp);
   sc_map *m = r->map;
   char title[512];
-  const char *xl = sc_plot_label(m, pname);
   sc_plot_title(m, pname, title, sizeof title);
-  sc_plot_head(f, "branch.png", title, xl,
-               sc_plot_label(m, sc_map_type(m)->state_name));
+  sc_file *gp = NULL;
+  int st = sc_cli_plot_begin(r, "branch", title, sc_plot_label(m, pname),
+                             sc_plot_label(m, sc_map_type(m)->state_name),
+                             &gp);
+  if (st) return st;
+  FILE *f = sc_file_stream(gp);
   fprintf(f, "set xrange [%.17g:%.17g]\n", fmin(from, to), fmax(from, to));
   /* Numbered markers on every orbit point a special point concerns, a
    * marker per kind explained in the key, and the numbers' table in the
@@ -512,73 +498,85 @@ static int write_branch_plot(sc_cli_run *r, const sc_orbit_branch *ob,
   fputs(", \\\n     'branch-points.csv' skip 1 using 3:($5 > 0 ? $4 : NaN):1 "
         "with labels offset 0.9,0.7 font 'Sans,9' notitle\n",
         f);
-  st = sc_cli_commit(r, "branch.gp", gp);
-  if (st) return st;
-  return sc_cli_add_plot(r, "branch.gp", "branch.png");
+  return sc_cli_plot_end(r, "branch", gp);
 }
 
-/* f^m against d at a special point, with the diagonal and the orbit. */
-static int write_map_plot(sc_cli_run *r, const sc_orbit_branch *ob,
-                          size_t param, const char *which, double *buf,
-                          int maxq, char *chosen, size_t clen) {
+/* The special point at which f^m is drawn (plot-at): the first with
+ * that label, or the first of any label but EP; its orbit in buf and the
+ * d-range drawn.  0 when none qualifies (then nothing is drawn). */
+static int pick_special(sc_cli_run *r, const sc_orbit_branch *ob,
+                        size_t param, const char *which, double *buf,
+                        int maxq, sc_orbit_special_info *sp, double *lo,
+                        double *hi) {
   size_t ns = sc_orbit_branch_nspecial(ob);
-  sc_orbit_special_info sp;
   long idx = -1;
   int any = !which || strcmp(which, "first") == 0;
   for (size_t i = 0; idx < 0 && i < ns; i++) {
-    sc_orbit_branch_special(ob, i, &sp);
-    if (sp.label == SC_PT_EP) continue;
-    if (any || strcmp(which, sc_point_label_text(sp.label)) == 0)
+    sc_orbit_branch_special(ob, i, sp);
+    if (sp->label == SC_PT_EP) continue;
+    if (any || strcmp(which, sc_point_label_text(sp->label)) == 0)
       idx = (long)i;
   }
-  if (idx < 0) return SC_OK;
-  sc_orbit_branch_special(ob, (size_t)idx, &sp);
-  if (sp.period > maxq) return SC_OK;
-  sc_map *m = r->map;
-  if (orbit_points(m, param, sp.p, sp.d, sp.period, buf)) return SC_OK;
-  double lo = buf[0], hi = buf[0];
-  for (int k = 1; k < sp.period; k++) lo = fmin(lo, buf[k]), hi = fmax(hi, buf[k]);
-  double w = 0.3 * (hi - lo) + 0.01 * (1 + fabs(hi));
-  int st = sc_cli_write_map_graph(r, "branch-map.csv", sp.period, lo - w,
-                                  hi + w, 4001);
+  if (idx < 0) return 0;
+  sc_orbit_branch_special(ob, (size_t)idx, sp);
+  if (sp->period > maxq) return 0;
+  if (orbit_points(r->map, param, sp->p, sp->d, sp->period, buf)) return 0;
+  *lo = *hi = buf[0];
+  for (int k = 1; k < sp->period; k++)
+    *lo = fmin(*lo, buf[k]), *hi = fmax(*hi, buf[k]);
+  double w = 0.3 * (*hi - *lo) + 0.01 * (1 + fabs(*hi));
+  *lo -= w;
+  *hi += w;
+  return 1;
+}
+
+/* f^m against d at the special point, and its orbit on the diagonal. */
+static int write_special_map(sc_cli_run *r, const sc_orbit_special_info *sp,
+                             const double *buf, double lo, double hi) {
+  int st = sc_cli_write_map_graph(r, "branch-map.csv", sp->period, lo, hi,
+                                  4001);
+  sc_file *csv = NULL;
+  if (!st) st = sc_cli_open(r, "branch-map-orbit.csv", &csv);
   if (st) return st;
-  sc_file *csv = NULL, *gp = NULL;
-  if ((st = sc_cli_open(r, "branch-map-orbit.csv", &csv))) return st;
   FILE *f = sc_file_stream(csv);
   fputs("d,d\n", f);
-  for (int k = 0; k < sp.period; k++) {
+  for (int k = 0; k < sp->period; k++) {
     sc_csv_double(f, buf[k]);
     fputc(',', f);
     sc_csv_double(f, buf[k]);
     fputc('\n', f);
   }
-  if ((st = sc_cli_commit(r, "branch-map-orbit.csv", csv))) return st;
-  if ((st = sc_cli_open(r, "branch-map.gp", &gp))) return st;
-  f = sc_file_stream(gp);
-  const char *pname = sc_map_type(m)->params[param].name;
+  return sc_cli_commit(r, "branch-map-orbit.csv", csv);
+}
+
+/* The plot of f^m at the special point (figs 5.9-5.11). */
+static int special_map_plot(sc_cli_run *r, const char *pname,
+                            const sc_orbit_special_info *sp, double lo,
+                            double hi) {
+  sc_map *m = r->map;
+  const char *state = sc_map_type(m)->state_name;
   char title[700], ylab[64];
   snprintf(title, sizeof title, "f^{%d} at the %s point %s = %.12g "
            "(multiplier %.6g)",
-           sp.period, sc_point_label_text(sp.label), pname, sp.p,
-           sp.multiplier);
-  snprintf(chosen, clen, "%s at %s = %.17g", sc_point_label_text(sp.label),
-           pname, sp.p);
-  snprintf(ylab, sizeof ylab, "f^{%d}(%s)", sp.period,
-           sc_map_type(m)->state_name);
-  sc_plot_head(f, "branch-map.png", title,
-               sc_plot_label(m, sc_map_type(m)->state_name), ylab);
-  fprintf(f, "set xrange [%.17g:%.17g]\nset yrange [%.17g:%.17g]\n", lo - w,
-          hi + w, lo - w, hi + w);
+           sp->period, sc_point_label_text(sp->label), pname, sp->p,
+           sp->multiplier);
+  snprintf(ylab, sizeof ylab, "f^{%d}(%s)", sp->period, state);
+  sc_file *gp = NULL;
+  int st = sc_cli_plot_begin(r, "branch-map", title, sc_plot_label(m, state),
+                             ylab, &gp);
+  if (st) return st;
+  FILE *f = sc_file_stream(gp);
+  fprintf(f, "set xrange [%.17g:%.17g]\nset yrange [%.17g:%.17g]\n", lo, hi,
+          lo, hi);
   fputs("set key inside left top box opaque\n", f);
   fprintf(f, "plot 'branch-map.csv' skip 1 using 1:2 with lines lw 1.5 "
              "lc rgb '#1f4e9e' title 'f^{%d}', \\\n",
-          sp.period);
+          sp->period);
   fputs("     x with lines dt 2 lc rgb '#777777' title 'diagonal', \\\n", f);
   fputs("     'branch-map-orbit.csv' skip 1 using 1:2 with points pt 6 ps 1.8 "
         "lw 2 lc rgb '#d62728' title 'orbit points'\n",
         f);
-  if ((st = sc_cli_commit(r, "branch-map.gp", gp))) return st;
-  return sc_cli_add_plot(r, "branch-map.gp", "branch-map.png");
+  return sc_cli_plot_end(r, "branch-map", gp);
 }
 
 static int add_start(void *ctx, double p, double d, int period) {
@@ -639,13 +637,33 @@ static int auto_starts(sc_cli_run *r, sc_orbit_branch *ob, size_t param,
   return SC_OK;
 }
 
-static int branch_run(sc_cli_run *r) {
+/* One branch run: the spec, the branch, the brute-force sweep, the
+ * special point drawn, and the parameter's value to restore. */
+typedef struct {
+  const char *pname;
+  size_t param;
+  double saved;          /* the parameter's value in the scene */
+  double *buf;           /* max-period + 2 orbit points */
+  sc_orbit_branch_spec sp;
+  double at, d0;         /* the d0 start and where it lies */
+  sc_orbit_branch *ob;
+  sc_sweep *sw;          /* sweep = yes */
+  size_t nauto, nauto_lost;
+  double elapsed, tsweep;
+  unsigned long nev;
+  int have_special;      /* a special point is drawn: */
+  sc_orbit_special_info special;
+  double lo, hi;         /* d-range of its plot */
+} branch_job;
+
+static int branch_prepare(sc_cli_run *r, void *job) {
+  branch_job *j = job;
   const sc_scene *s = r->scene;
-  sc_map *m = r->map;
-  const char *pname = sc_scene_text(s, "parameter");
-  size_t param = (size_t)sc_map_param_index(m, pname);
-  sc_orbit_branch_spec sp = {
-      .param = param,
+  j->pname = sc_scene_text(s, "parameter");
+  j->param = (size_t)sc_map_param_index(r->map, j->pname);
+  j->saved = sc_map_get_param(r->map, j->param);
+  j->sp = (sc_orbit_branch_spec){
+      .param = j->param,
       .from = sc_scene_real(s, "from"),
       .to = sc_scene_real(s, "to"),
       .period = (int)sc_scene_int(s, "period"),
@@ -660,95 +678,138 @@ static int branch_run(sc_cli_run *r) {
       .progress = on_progress,
       .progress_ctx = r,
   };
-  double saved = sc_map_get_param(m, param);
-  sc_orbit_branch *ob = NULL;
-  double *buf = malloc(((size_t)sp.max_period + 2) * sizeof *buf);
-  if (!buf) return sc_fail(r->msg, SC_ENOMEM, "branch: out of memory");
-  double t0 = now();
-  unsigned long ev0 = sc_map_nevals(m);
   /* d0 at `at` inside the interval: a start continued both ways */
-  double at = sc_scene_text(s, "at") ? sc_scene_real(s, "at") : sp.from;
-  double d0 = sp.d0;
-  if (at != sp.from) sp.d0 = NAN;
-  int st = sc_orbit_branch_alloc(m, &sp, &ob, r->msg);
-  if (!st && at != sp.from && isfinite(d0))
-    st = sc_orbit_branch_add_start(ob, at, d0, sp.period, r->msg);
-  if (!st) st = parse_starts(s, add_start, ob, r->msg);
-  size_t nauto = 0, nauto_lost = 0;
-  if (!st && has_auto(s))
-    st = auto_starts(r, ob, param, &nauto, &nauto_lost);
-  if (!st) st = sc_orbit_branch_run(ob, r->msg);
-  double elapsed = now() - t0;
-  unsigned long nev = sc_map_nevals(m) - ev0;
-  if (st) goto done;
-  if ((st = write_points(r, ob, pname))) goto done;
-  if ((st = write_point_orbits(r, ob, param, buf, sp.max_period))) goto done;
-  if ((st = write_branch(r, ob, pname, param, buf, sp.max_period))) goto done;
-  int with_sweep = sc_scene_flag(s, "sweep");
-  double t1 = now();
-  if (with_sweep) {
-    sc_map_set_param(m, param, saved, NULL);
-    if ((st = write_sweep(r, param, sp.from, sp.to, sp.d0))) goto done;
-  }
-  double tsweep = now() - t1;
-  if ((st = write_branch_plot(r, ob, pname, sp.from, sp.to, with_sweep)))
-    goto done;
-  char chosen[256] = "none";
-  if ((st = write_map_plot(r, ob, param, sc_scene_text(s, "plot-at"), buf,
-                           sp.max_period, chosen, sizeof chosen)))
-    goto done;
-  sc_map_set_param(m, param, saved, NULL);
+  j->at = sc_scene_text(s, "at") ? sc_scene_real(s, "at") : j->sp.from;
+  j->d0 = j->sp.d0;
+  if (j->at != j->sp.from) j->sp.d0 = NAN;
+  j->buf = malloc(((size_t)j->sp.max_period + 2) * sizeof *j->buf);
+  if (!j->buf) return sc_fail(r->msg, SC_ENOMEM, "branch: out of memory");
+  return sc_orbit_branch_alloc(r->map, &j->sp, &j->ob, r->msg);
+}
 
-  sc_file *sum = NULL;
-  if ((st = sc_cli_summary_begin(r, &sum))) goto done;
-  FILE *f = sc_file_stream(sum);
-  fprintf(f, "  branches: %d, points: %zu, special points: %zu\n",
-          sc_orbit_branch_nbranches(ob), sc_orbit_branch_npoints(ob),
-          sc_orbit_branch_nspecial(ob));
-  int count[SC_PT_EP + 1] = {0}, nbis = 0, nfail = 0;
+/* The starts, the continuation, then the brute-force sweep. */
+static int branch_compute(sc_cli_run *r, void *job) {
+  branch_job *j = job;
+  double t0 = sc_progress_now();
+  unsigned long ev0 = sc_map_nevals(r->map);
+  int st = SC_OK;
+  if (j->at != j->sp.from && isfinite(j->d0))
+    st = sc_orbit_branch_add_start(j->ob, j->at, j->d0, j->sp.period, r->msg);
+  if (!st) st = parse_starts(r->scene, add_start, j->ob, r->msg);
+  if (!st && has_auto(r->scene))
+    st = auto_starts(r, j->ob, j->param, &j->nauto, &j->nauto_lost);
+  if (!st) st = sc_orbit_branch_run(j->ob, r->msg);
+  j->elapsed = sc_progress_now() - t0;
+  j->nev = sc_map_nevals(r->map) - ev0;
+  if (st || !sc_scene_flag(r->scene, "sweep")) return st;
+  t0 = sc_progress_now();
+  sc_map_set_param(r->map, j->param, j->saved, NULL);
+  st = run_sweep(r, j->param, j->sp.from, j->sp.to, j->sp.d0, &j->sw);
+  j->tsweep = sc_progress_now() - t0;
+  return st;
+}
+
+static int branch_write(sc_cli_run *r, void *job) {
+  branch_job *j = job;
+  int maxq = j->sp.max_period, st;
+  if ((st = write_points(r, j->ob, j->pname)) ||
+      (st = write_point_orbits(r, j->ob, j->param, j->buf, maxq)) ||
+      (st = write_branch(r, j->ob, j->pname, j->param, j->buf, maxq)) ||
+      (j->sw && (st = write_sweep(r, j->sw))))
+    return st;
+  j->have_special = pick_special(r, j->ob, j->param,
+                                 sc_scene_text(r->scene, "plot-at"), j->buf,
+                                 maxq, &j->special, &j->lo, &j->hi);
+  if (j->have_special)
+    st = write_special_map(r, &j->special, j->buf, j->lo, j->hi);
+  /* orbit_points() moved the parameter: the summary lists the scene's */
+  sc_map_set_param(r->map, j->param, j->saved, NULL);
+  return st;
+}
+
+/* Special points by label and by how they were located. */
+typedef struct {
+  int label[SC_PT_EP + 1];
+  int nbis, nfail; /* by bisection (fallback); detected, not located */
+} special_count;
+
+static special_count count_specials(const sc_orbit_branch *ob) {
+  special_count c = {{0}, 0, 0};
   for (size_t i = 0; i < sc_orbit_branch_nspecial(ob); i++) {
     sc_orbit_special_info p;
     sc_orbit_branch_special(ob, i, &p);
-    if ((unsigned)p.label <= SC_PT_EP) count[p.label]++;
-    nbis += p.method == SC_LOC_BISECTION;
-    nfail += p.method == SC_LOC_FAILED;
+    if ((unsigned)p.label <= SC_PT_EP) c.label[p.label]++;
+    c.nbis += p.method == SC_LOC_BISECTION;
+    c.nfail += p.method == SC_LOC_FAILED;
   }
+  return c;
+}
+
+static int branch_summary(sc_cli_run *r, void *job, FILE *f) {
+  const branch_job *j = job;
+  const sc_orbit_branch *ob = j->ob;
+  fprintf(f, "  branches: %d, points: %zu, special points: %zu\n",
+          sc_orbit_branch_nbranches(ob), sc_orbit_branch_npoints(ob),
+          sc_orbit_branch_nspecial(ob));
+  special_count c = count_specials(ob);
   fputs("  by label:", f);
   for (int l = 0; l <= SC_PT_EP; l++)
-    if (count[l]) fprintf(f, " %s %d", sc_point_label_text(l), count[l]);
-  if (has_auto(s))
+    if (c.label[l]) fprintf(f, " %s %d", sc_point_label_text(l), c.label[l]);
+  if (has_auto(r->scene))
     fprintf(f, "\n  starts = auto: %zu orbits found and started%s%zu not "
                "started (max-branches)",
-            nauto, nauto_lost ? "; " : "; ", nauto_lost);
+            j->nauto, j->nauto_lost ? "; " : "; ", j->nauto_lost);
   fprintf(f, "\n  met again by another segment (reported once): %zu\n",
           sc_orbit_branch_nduplicate(ob));
   fprintf(f, "  located by Newton with a residual certificate: %zu; by "
              "bisection (fallback): %d; detected but NOT located: %d\n",
-          sc_orbit_branch_nspecial(ob) - (size_t)(nbis + nfail) -
-              (size_t)count[SC_PT_EP],
-          nbis, nfail);
+          sc_orbit_branch_nspecial(ob) - (size_t)(c.nbis + c.nfail) -
+              (size_t)c.label[SC_PT_EP],
+          c.nbis, c.nfail);
   for (size_t i = 0; i < sc_orbit_branch_nspecial(ob); i++) {
     sc_orbit_special_info p;
     sc_orbit_branch_special(ob, i, &p);
     fprintf(f, "  %s  %s = %.17g  d = %.17g  period %d  multiplier %.17g\n"
                "      %s%s residual %.3g, error %.3g; branch %d: %s\n",
-            sc_point_label_text(p.label), pname, p.p, p.d, p.period,
+            sc_point_label_text(p.label), j->pname, p.p, p.d, p.period,
             p.multiplier, sc_location_method_text(p.method),
             p.method == SC_LOC_NONE ? "" : ":", p.residual, p.error, p.branch,
             p.note);
   }
-  fprintf(f, "  continuation: %.3f s, %lu map evaluations\n", elapsed, nev);
-  if (with_sweep) fprintf(f, "  brute-force sweep: %.3f s\n", tsweep);
-  fprintf(f, "  map drawn at: %s\n", chosen);
-  st = sc_cli_commit(r, "summary.txt", sum);
-  sc_cli_note(r, "%d branches, %zu points, %zu special points in %.2f s",
-              sc_orbit_branch_nbranches(ob), sc_orbit_branch_npoints(ob),
-              sc_orbit_branch_nspecial(ob), elapsed);
-done:
-  sc_map_set_param(m, param, saved, NULL);
-  sc_orbit_branch_free(ob);
-  free(buf);
+  fprintf(f, "  continuation: %.3f s, %lu map evaluations\n", j->elapsed,
+          j->nev);
+  if (j->sw) fprintf(f, "  brute-force sweep: %.3f s\n", j->tsweep);
+  if (j->have_special)
+    fprintf(f, "  map drawn at: %s at %s = %.17g\n",
+            sc_point_label_text(j->special.label), j->pname, j->special.p);
+  else
+    fputs("  map drawn at: none\n", f);
+  return SC_OK;
+}
+
+static int branch_plots(sc_cli_run *r, void *job) {
+  const branch_job *j = job;
+  int st = write_branch_plot(r, j->ob, j->pname, j->sp.from, j->sp.to,
+                             j->sw != NULL);
+  if (!st && j->have_special)
+    st = special_map_plot(r, j->pname, &j->special, j->lo, j->hi);
   return st;
+}
+
+static int branch_report(sc_cli_run *r, void *job) {
+  const branch_job *j = job;
+  sc_cli_note(r, "%d branches, %zu points, %zu special points in %.2f s",
+              sc_orbit_branch_nbranches(j->ob), sc_orbit_branch_npoints(j->ob),
+              sc_orbit_branch_nspecial(j->ob), j->elapsed);
+  return SC_OK;
+}
+
+static void branch_release(sc_cli_run *r, void *job) {
+  branch_job *j = job;
+  if (j->pname) sc_map_set_param(r->map, j->param, j->saved, NULL);
+  sc_orbit_branch_free(j->ob);
+  sc_sweep_free(j->sw);
+  free(j->buf);
 }
 
 const sc_cli_task sc_cli_task_branch = {
@@ -766,5 +827,12 @@ const sc_cli_task sc_cli_task_branch = {
                "branch-points.csv (every orbit point of each special point), "
                "branch-orbits.csv, branch-sweep.csv, summary.txt, "
                "branch.gp/png, branch-map.gp/png",
-    .run = branch_run,
+    .job_size = sizeof(branch_job),
+    .prepare = branch_prepare,
+    .compute = branch_compute,
+    .write = branch_write,
+    .summary = branch_summary,
+    .plots = branch_plots,
+    .report = branch_report,
+    .release = branch_release,
 };

@@ -236,11 +236,11 @@ static int ckpt_write(sc_cli_run *r, const char *text, uint64_t hash,
   for (size_t k = 0; k < n; k++) {
     point_encode(&grid[k], b);
     if (fwrite(b, 1, sizeof b, o) != sizeof b) {
-      sc_file_abort(f);
+      sc_cli_abort(r, f);
       return sc_fail(msg, SC_EIO, "%s/%s: write failed", dir, CKPT_NAME);
     }
   }
-  return sc_file_commit(f, msg);
+  return sc_cli_commit(r, NULL, f); /* not named: removed at the end */
 }
 
 
@@ -416,10 +416,6 @@ static void chart_title(const sc_map *m, const sc_chart_spec *c, char *buf,
 
 static int write_plot(sc_cli_run *r, const sc_chart_spec *c,
                       const long *count) {
-  sc_file *f = NULL;
-  int st = sc_cli_open(r, "chart.gp", &f);
-  if (st) return st;
-  FILE *o = sc_file_stream(f);
   char title[512], xl[128], yl[128];
   chart_title(r->map, c, title, sizeof title);
   /* A log axis is drawn as log10 of the values: the cells are then
@@ -428,7 +424,10 @@ static int write_plot(sc_cli_run *r, const sc_chart_spec *c,
            sc_plot_label(r->map, c->x));
   snprintf(yl, sizeof yl, c->y_scale ? "log10 %s" : "%s",
            sc_plot_label(r->map, c->y));
-  sc_plot_head(o, "chart.png", title, xl, yl);
+  sc_file *f = NULL;
+  int st = sc_cli_plot_begin(r, "chart", title, xl, yl, &f);
+  if (st) return st;
+  FILE *o = sc_file_stream(f);
   double x0 = c->x_scale ? log10(fabs(c->x_from)) : c->x_from;
   double x1 = c->x_scale ? log10(fabs(c->x_to)) : c->x_to;
   double y0 = c->y_scale ? log10(fabs(c->y_from)) : c->y_from;
@@ -478,39 +477,7 @@ static int write_plot(sc_cli_run *r, const sc_chart_spec *c,
             "'#000000' fc rgb '#%06x' title 'undefined'",
             UNDEF_RGB);
   fputc('\n', o);
-  st = sc_cli_commit(r, "chart.gp", f);
-  if (!st) st = sc_cli_add_plot(r, "chart.gp", "chart.png");
-  return st;
-}
-
-static int write_summary(sc_cli_run *r, const sc_chart_spec *c,
-                         const long *count, double iterations, double secs,
-                         long resumed, int ranks, int threads) {
-  sc_file *f = NULL;
-  int st = sc_cli_summary_begin(r, &f);
-  if (st) return st;
-  FILE *o = sc_file_stream(f);
-  long n = c->x_steps * c->y_steps;
-  fprintf(o, "  %ld x %ld = %ld points, %.0f map iterates (%.1f a point)\n",
-          c->x_steps, c->y_steps, n, iterations, iterations / (double)n);
-  fprintf(o, "  %.3f s on %d rank(s) x %d thread(s)", secs, ranks, threads);
-  if (resumed) fprintf(o, ", resumed after %ld rows", resumed);
-  fputc('\n', o);
-  for (int p = 1; p <= c->max_period; p++)
-    if (count[CLASS(p)])
-      fprintf(o, "  period %-3d %10ld points (%.2f%%)\n", p, count[CLASS(p)],
-              100.0 * (double)count[CLASS(p)] / (double)n);
-  long high = count[CLASS(SC_PERIOD_HIGH)];
-  long unset = count[CLASS(SC_PERIOD_UNSETTLED)];
-  long undef = count[CLASS(SC_PERIOD_UNDEFINED)];
-  fprintf(o, "  high       %10ld points (%.2f%%): period > %d or chaos\n",
-          high, 100.0 * (double)high / (double)n, c->max_period);
-  fprintf(o, "  not settled %9ld points (%.2f%%): still converging after %ld "
-          "iterates (raise transient)\n",
-          unset, 100.0 * (double)unset / (double)n, c->transient);
-  fprintf(o, "  undefined  %10ld points (%.2f%%)\n", undef,
-          100.0 * (double)undef / (double)n);
-  return sc_cli_commit(r, "summary.txt", f);
+  return sc_cli_plot_end(r, "chart", f);
 }
 
 /* ------------------------------------------------------------------ */
@@ -549,6 +516,9 @@ typedef struct {
   char *text;      /* the scene's effective values (checkpoint) */
   uint64_t hash;   /* and their fingerprint */
   sc_chart_point *grid, *mine, *stage;
+  int mpi;           /* sc_mpi_chart_begin() succeeded */
+  long *count;       /* points of each class (rank 0, once complete) */
+  double iterations; /* map iterates in all */
 } chart_job;
 
 /* Rows per block: enough points to keep the threads busy (whole rows per
@@ -576,11 +546,34 @@ static int agree(sc_cli_run *r, int st, const char *who) {
   return st;
 }
 
-/* Step 1: the scene text and its hash, the buffers, the checkpoint.
- * Failures before the first collective call fall through to it, so that
- * every rank learns of them. */
-static int chart_prepare(sc_cli_run *r, chart_job *j) {
-  int st = SC_OK;
+/* This process among the ranks, the spec, the block size. */
+static int chart_setup(sc_cli_run *r, chart_job *j) {
+  j->c = spec_of(r->scene);
+  j->nx = j->c.x_steps;
+  j->ny = j->c.y_steps;
+  j->size = 1;
+  int st = sc_chart_check(r->map, &j->c, r->msg);
+  if (st) return st;
+#ifdef SLIPCONT_MPI
+  if ((st = sc_mpi_chart_begin(&j->rank, &j->size, r->msg))) return st;
+  j->mpi = 1;
+  /* rank 0 writes every file; the others only compute */
+  r->compute_only = j->rank != 0;
+#endif
+  j->threads = omp_get_max_threads();
+  j->t0 = sc_progress_now();
+  j->block = block_rows(j);
+  j->stop_after = j->rank == 0 ? r->stop_after_rows : 0;
+  return SC_OK;
+}
+
+/* The ranks, the scene text and its hash, the buffers, the checkpoint.
+ * Failures after sc_mpi_chart_begin() fall through to the first
+ * collective call, so that every rank learns of them. */
+static int chart_prepare(sc_cli_run *r, void *job) {
+  chart_job *j = job;
+  int st = chart_setup(r, j);
+  if (st) return st;
   j->text = malloc(SCENE_TEXT_LEN);
   if (!j->text)
     st = sc_fail(r->msg, SC_ENOMEM, "chart: out of memory");
@@ -620,10 +613,11 @@ static int chart_prepare(sc_cli_run *r, chart_job *j) {
   return st;
 }
 
-/* Step 2: the rows from the checkpoint's end to the last, block by
- * block, with a checkpoint every CKPT_INTERVAL_S, on a signal (then
- * SC_ECALLBACK) and at --stop-after-rows. */
-static int chart_compute(sc_cli_run *r, chart_job *j) {
+/* The rows from the checkpoint's end to the last, block by block, with a
+ * checkpoint every CKPT_INTERVAL_S, on a signal (then SC_ECALLBACK) and
+ * at --stop-after-rows. */
+static int chart_compute(sc_cli_run *r, void *job) {
+  chart_job *j = job;
   const long nx = j->nx, ny = j->ny;
   int st = SC_OK;
   sc_progress bar;
@@ -682,69 +676,85 @@ static int chart_compute(sc_cli_run *r, chart_job *j) {
   return st;
 }
 
-/* Step 3 (rank 0): the files, then the checkpoint is removed.  A long
- * chart first leaves a complete checkpoint, so that a rerun after a kill
- * while writing only writes the files. */
-static int chart_write(sc_cli_run *r, chart_job *j) {
-  const long n = j->nx * j->ny;
-  int st = SC_OK;
+/* The files (rank 0): the grid is complete.  A long chart first leaves
+ * a complete checkpoint, so that a rerun after a kill while writing only
+ * writes the files. */
+static int chart_write(sc_cli_run *r, void *job) {
+  chart_job *j = job;
+  int st;
   if (j->start < j->ny && sc_progress_now() - j->t0 >= CKPT_INTERVAL_S &&
       (st = ckpt_write(r, j->text, j->hash, j->nx, j->ny, j->grid)))
     return st;
-  long *count = calloc(NCLASSES(j->c.max_period), sizeof *count);
-  double iterations = 0;
-  if (!count) return sc_fail(r->msg, SC_ENOMEM, "chart: out of memory");
-  count_classes(j->grid, n, j->c.max_period, count, &iterations);
-  st = write_csv(r, &j->c, j->grid);
-  if (!st)
-    st = write_summary(r, &j->c, count, iterations,
-                       sc_progress_now() - j->t0, j->start, j->size,
-                       j->threads);
-  if (!st) st = write_plot(r, &j->c, count);
-  if (!st) {
-    char path[4096];
-    snprintf(path, sizeof path, "%s/%s", r->dir, CKPT_NAME);
-    if (remove(path) != 0 && errno != ENOENT)
-      sc_cli_note(r, "could not remove %s: %s", path, strerror(errno));
-    sc_cli_note(r,
-                "chart: %ld points in %.2f s (%d rank(s) x %d thread(s)); "
-                "%ld high, %ld not settled, %ld undefined",
-                n, sc_progress_now() - j->t0, j->size, j->threads,
-                count[CLASS(SC_PERIOD_HIGH)],
-                count[CLASS(SC_PERIOD_UNSETTLED)],
-                count[CLASS(SC_PERIOD_UNDEFINED)]);
-  }
-  free(count);
-  return st;
+  j->count = calloc(NCLASSES(j->c.max_period), sizeof *j->count);
+  if (!j->count) return sc_fail(r->msg, SC_ENOMEM, "chart: out of memory");
+  count_classes(j->grid, j->nx * j->ny, j->c.max_period, j->count,
+                &j->iterations);
+  return write_csv(r, &j->c, j->grid);
 }
 
-static int chart_run(sc_cli_run *r) {
-  chart_job j;
-  memset(&j, 0, sizeof j);
-  j.c = spec_of(r->scene);
-  j.nx = j.c.x_steps;
-  j.ny = j.c.y_steps;
-  j.size = 1;
-  int st = sc_chart_check(r->map, &j.c, r->msg);
-  if (st) return st;
+static int chart_summary(sc_cli_run *r, void *job, FILE *o) {
+  const chart_job *j = job;
+  const sc_chart_spec *c = &j->c;
+  const long *count = j->count;
+  (void)r;
+  long n = c->x_steps * c->y_steps;
+  fprintf(o, "  %ld x %ld = %ld points, %.0f map iterates (%.1f a point)\n",
+          c->x_steps, c->y_steps, n, j->iterations,
+          j->iterations / (double)n);
+  fprintf(o, "  %.3f s on %d rank(s) x %d thread(s)",
+          sc_progress_now() - j->t0, j->size, j->threads);
+  if (j->start) fprintf(o, ", resumed after %ld rows", j->start);
+  fputc('\n', o);
+  for (int p = 1; p <= c->max_period; p++)
+    if (count[CLASS(p)])
+      fprintf(o, "  period %-3d %10ld points (%.2f%%)\n", p, count[CLASS(p)],
+              100.0 * (double)count[CLASS(p)] / (double)n);
+  long high = count[CLASS(SC_PERIOD_HIGH)];
+  long unset = count[CLASS(SC_PERIOD_UNSETTLED)];
+  long undef = count[CLASS(SC_PERIOD_UNDEFINED)];
+  fprintf(o, "  high       %10ld points (%.2f%%): period > %d or chaos\n",
+          high, 100.0 * (double)high / (double)n, c->max_period);
+  fprintf(o, "  not settled %9ld points (%.2f%%): still converging after %ld "
+          "iterates (raise transient)\n",
+          unset, 100.0 * (double)unset / (double)n, c->transient);
+  fprintf(o, "  undefined  %10ld points (%.2f%%)\n", undef,
+          100.0 * (double)undef / (double)n);
+  return SC_OK;
+}
+
+static int chart_plots(sc_cli_run *r, void *job) {
+  const chart_job *j = job;
+  return write_plot(r, &j->c, j->count);
+}
+
+/* Every file is written: the checkpoint goes. */
+static int chart_report(sc_cli_run *r, void *job) {
+  const chart_job *j = job;
+  char path[4096];
+  snprintf(path, sizeof path, "%s/%s", r->dir, CKPT_NAME);
+  if (remove(path) != 0 && errno != ENOENT)
+    sc_cli_note(r, "could not remove %s: %s", path, strerror(errno));
+  sc_cli_note(r,
+              "chart: %ld points in %.2f s (%d rank(s) x %d thread(s)); "
+              "%ld high, %ld not settled, %ld undefined",
+              j->nx * j->ny, sc_progress_now() - j->t0, j->size, j->threads,
+              j->count[CLASS(SC_PERIOD_HIGH)],
+              j->count[CLASS(SC_PERIOD_UNSETTLED)],
+              j->count[CLASS(SC_PERIOD_UNDEFINED)]);
+  return SC_OK;
+}
+
+static void chart_release(sc_cli_run *r, void *job) {
+  chart_job *j = job;
+  (void)r;
+  free(j->grid);
+  free(j->mine);
+  free(j->stage);
+  free(j->text);
+  free(j->count);
 #ifdef SLIPCONT_MPI
-  if ((st = sc_mpi_chart_begin(&j.rank, &j.size, r->msg))) return st;
+  if (j->mpi) sc_mpi_chart_end();
 #endif
-  j.threads = omp_get_max_threads();
-  j.t0 = sc_progress_now();
-  j.block = block_rows(&j);
-  j.stop_after = j.rank == 0 ? r->stop_after_rows : 0;
-  st = chart_prepare(r, &j);
-  if (!st) st = chart_compute(r, &j);
-  if (!st && j.rank == 0) st = chart_write(r, &j);
-  free(j.grid);
-  free(j.mine);
-  free(j.stage);
-  free(j.text);
-#ifdef SLIPCONT_MPI
-  sc_mpi_chart_end();
-#endif
-  return st;
 }
 
 const sc_cli_task sc_cli_task_chart = {
@@ -756,5 +766,12 @@ const sc_cli_task sc_cli_task_chart = {
              .check = chart_check},
     .outputs = "chart.csv (x,y,period,d,iterations), summary.txt, chart.gp, "
                "chart.png; chart.checkpoint while unfinished",
-    .run = chart_run,
+    .job_size = sizeof(chart_job),
+    .prepare = chart_prepare,
+    .compute = chart_compute,
+    .write = chart_write,
+    .summary = chart_summary,
+    .plots = chart_plots,
+    .report = chart_report,
+    .release = chart_release,
 };

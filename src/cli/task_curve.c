@@ -8,8 +8,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
+#include "cli/progress.h"
 #include "cli/tasks.h"
 #include "slipcont/curve.h"
 
@@ -191,6 +191,43 @@ static int read_start(const char *spec, start_row *row, char *why, size_t len) {
   return SC_OK;
 }
 
+/* Every folder matched by `also` holds a curve.csv in (x, y). */
+static int also_check(const sc_scene *s, const char *xn, const char *yn,
+                      sc_msg *msg) {
+  const char *also = sc_scene_text(s, "also");
+  char dir[2048], path[2100];
+  for (const char *p = also; p && next_word(&p, dir, sizeof dir);) {
+    glob_t g;
+    int gr = glob(dir, 0, NULL, &g);
+    size_t ng = gr == 0 ? g.gl_pathc : 0;
+    if (ng == 0) {
+      if (gr == 0) globfree(&g);
+      return sc_scene_fail_key(s, "task", "also", msg,
+                               "also: %s matches no folder (valid: output "
+                               "folders of curve tasks; run them first)",
+                               dir);
+    }
+    for (size_t i = 0; i < ng; i++) {
+      snprintf(path, sizeof path, "%s/curve.csv", g.gl_pathv[i]);
+      FILE *f = fopen(path, "r");
+      char line[256] = "", want[256];
+      char *ok = f ? fgets(line, sizeof line, f) : NULL;
+      if (f) fclose(f);
+      snprintf(want, sizeof want, "%s,%s,", xn, yn);
+      if (!ok || strncmp(line, want, strlen(want)) != 0) {
+        globfree(&g);
+        return sc_scene_fail_key(s, "task", "also", msg,
+                                 "also: %s is not a readable curve.csv in (%s, "
+                                 "%s) (valid: output folders of curve tasks in "
+                                 "x = %s, y = %s; run them first)",
+                                 path, xn, yn, xn, yn);
+      }
+    }
+    globfree(&g);
+  }
+  return SC_OK;
+}
+
 static int curve_check(const sc_scene *s, sc_msg *msg) {
   const sc_map *m = sc_scene_map(s);
   const char *xn = sc_scene_text(s, "x"), *yn = sc_scene_text(s, "y");
@@ -243,37 +280,8 @@ static int curve_check(const sc_scene *s, sc_msg *msg) {
           "(valid: inside the box)",
           nm[k], v, sc_scene_text(s, lo[k]), sc_scene_text(s, hi[k]));
   }
-  const char *also = sc_scene_text(s, "also");
-  char dir[2048], path[2100];
-  for (const char *p = also; p && next_word(&p, dir, sizeof dir);) {
-    glob_t g;
-    int gr = glob(dir, 0, NULL, &g);
-    size_t ng = gr == 0 ? g.gl_pathc : 0;
-    if (ng == 0) {
-      if (gr == 0) globfree(&g);
-      return sc_scene_fail_key(s, "task", "also", msg,
-                               "also: %s matches no folder (valid: output "
-                               "folders of curve tasks; run them first)",
-                               dir);
-    }
-    for (size_t i = 0; i < ng; i++) {
-    snprintf(path, sizeof path, "%s/curve.csv", g.gl_pathv[i]);
-    FILE *f = fopen(path, "r");
-    char line[256] = "", want[256];
-    char *ok = f ? fgets(line, sizeof line, f) : NULL;
-    if (f) fclose(f);
-    snprintf(want, sizeof want, "%s,%s,", xn, yn);
-    if (!ok || strncmp(line, want, strlen(want)) != 0) {
-      globfree(&g);
-      return sc_scene_fail_key(s, "task", "also", msg,
-                               "also: %s is not a readable curve.csv in (%s, "
-                               "%s) (valid: output folders of curve tasks in "
-                               "x = %s, y = %s; run them first)",
-                               path, xn, yn, xn, yn);
-    }
-    }
-    globfree(&g);
-  }
+  int st = also_check(s, xn, yn, msg);
+  if (st) return st;
   const char *ov = sc_scene_text(s, "overlay");
   if (ov) return overlay_check(s, ov, xn, yn, msg);
   return SC_OK;
@@ -335,147 +343,138 @@ static int on_special(void *vc, const sc_curve_special *s) {
   return 0;
 }
 
-static double now(void) {
-  struct timespec t;
-  clock_gettime(CLOCK_MONOTONIC, &t);
-  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+/* One curve run: the settings, where it starts, the special points. */
+typedef struct {
+  sc_curve_settings set;
+  int ti;        /* index of the type in type_names */
+  const char *xn, *yn;
+  double d0;
+  out_ctx c;     /* the streams while tracing; the special points */
+  sc_curve_stats stats;
+  unsigned long nev;
+  double elapsed;
+} curve_job;
+
+static int curve_prepare(sc_cli_run *r, void *job) {
+  curve_job *j = job;
+  const sc_scene *s = r->scene;
+  sc_map *m = r->map;
+  sc_curve_settings *set = &j->set;
+  j->xn = sc_scene_text(s, "x");
+  j->yn = sc_scene_text(s, "y");
+  sc_curve_settings_default(set);
+  j->ti = type_index(sc_scene_text(s, "type"));
+  set->type = j->ti == 0   ? SC_CURVE_FOLD
+              : j->ti == 1 ? SC_CURVE_FLIP
+                           : SC_CURVE_BORDER;
+  set->border = type_kinds[j->ti];
+  set->period = (int)sc_scene_int(s, "period");
+  set->multiple = strcmp(sc_scene_text(s, "shooting"), "multiple") == 0;
+  set->ix = sc_map_param_index(m, j->xn);
+  set->iy = sc_map_param_index(m, j->yn);
+  set->xlo = sc_scene_real(s, "x-from"), set->xhi = sc_scene_real(s, "x-to");
+  set->ylo = sc_scene_real(s, "y-from"), set->yhi = sc_scene_real(s, "y-to");
+  set->hmax = sc_scene_real(s, "hmax");
+  if (set->hmax == 0)
+    set->hmax = fmin(set->xhi - set->xlo, set->yhi - set->ylo) / 50;
+  set->h0 = sc_scene_real(s, "h0");
+  if (set->h0 == 0) set->h0 = set->hmax / 10;
+  if (set->h0 > set->hmax) set->hmax = set->h0;
+  set->max_points = sc_scene_int(s, "max-points");
+  j->d0 = sc_scene_real(s, "d0");
+  const char *spec = sc_scene_text(s, "start");
+  if (!spec) return SC_OK;
+  /* checked by curve_check(): the row exists and fits */
+  start_row row;
+  char why[512];
+  if (read_start(spec, &row, why, sizeof why))
+    return sc_fail(r->msg, SC_EIO, "curve: start = %s: %s", spec, why);
+  j->d0 = row.d;
+  set->period = row.period;
+  return sc_map_set_param(m, (size_t)set->ix, row.value, r->msg);
 }
 
-static int curve_run(sc_cli_run *r) {
-  const sc_scene *s = r->scene;
-  int st0;
+/* The trace, streamed into curve.csv and points.csv. */
+static int curve_compute(sc_cli_run *r, void *job) {
+  curve_job *j = job;
   sc_map *m = r->map;
-  const char *xn = sc_scene_text(s, "x"), *yn = sc_scene_text(s, "y");
-  sc_curve_settings set;
-  sc_curve_settings_default(&set);
-  int ti = type_index(sc_scene_text(s, "type"));
-  set.type = ti == 0 ? SC_CURVE_FOLD : ti == 1 ? SC_CURVE_FLIP : SC_CURVE_BORDER;
-  set.border = type_kinds[ti];
-  set.period = (int)sc_scene_int(s, "period");
-  set.multiple = strcmp(sc_scene_text(s, "shooting"), "multiple") == 0;
-  set.ix = sc_map_param_index(m, xn);
-  set.iy = sc_map_param_index(m, yn);
-  set.xlo = sc_scene_real(s, "x-from"), set.xhi = sc_scene_real(s, "x-to");
-  set.ylo = sc_scene_real(s, "y-from"), set.yhi = sc_scene_real(s, "y-to");
-  set.hmax = sc_scene_real(s, "hmax");
-  if (set.hmax == 0) set.hmax = fmin(set.xhi - set.xlo, set.yhi - set.ylo) / 50;
-  set.h0 = sc_scene_real(s, "h0");
-  if (set.h0 == 0) set.h0 = set.hmax / 10;
-  if (set.h0 > set.hmax) set.hmax = set.h0;
-  set.max_points = sc_scene_int(s, "max-points");
-  double d0 = sc_scene_real(s, "d0");
-  const char *spec = sc_scene_text(s, "start");
-  if (spec) {
-    /* checked by curve_check(): the row exists and fits */
-    start_row row;
-    char why[512];
-    if (read_start(spec, &row, why, sizeof why))
-      return sc_fail(r->msg, SC_EIO, "curve: start = %s: %s", spec, why);
-    if ((st0 = sc_map_set_param(m, (size_t)set.ix, row.value, r->msg)))
-      return st0;
-    d0 = row.d;
-    set.period = row.period;
-  }
-
-  out_ctx c = {0};
-  c.period = set.period;
-  sc_file *cf = NULL, *pf = NULL, *sum = NULL, *gp = NULL;
-  int st;
-  if ((st = sc_cli_open(r, "curve.csv", &cf))) goto done;
-  if ((st = sc_cli_open(r, "points.csv", &pf))) goto done;
-  c.curve = sc_file_stream(cf);
-  c.points = sc_file_stream(pf);
-  fprintf(c.curve, "%s,%s,%s,period,multiplier,coefficient,itinerary\n", xn, yn,
-          sc_map_type(m)->state_name);
-  fprintf(c.points, "label,%s,%s,%s,period,note,coefficient,residual\n", xn, yn,
-          sc_map_type(m)->state_name);
-  sc_curve_output out = {on_point, on_special, &c};
-  sc_curve_stats stats;
+  out_ctx *c = &j->c;
+  c->period = j->set.period;
+  sc_file *cf = NULL, *pf = NULL;
+  int st = sc_cli_open(r, "curve.csv", &cf);
+  if (!st) st = sc_cli_open(r, "points.csv", &pf);
+  if (st) return st;
+  c->curve = sc_file_stream(cf);
+  c->points = sc_file_stream(pf);
+  const char *state = sc_map_type(m)->state_name;
+  fprintf(c->curve, "%s,%s,%s,period,multiplier,coefficient,itinerary\n",
+          j->xn, j->yn, state);
+  fprintf(c->points, "label,%s,%s,%s,period,note,coefficient,residual\n",
+          j->xn, j->yn, state);
+  sc_curve_output out = {on_point, on_special, c};
   unsigned long ev0 = sc_map_nevals(m);
-  double t0 = now();
-  st = sc_curve_trace(m, &set, d0, &out, &stats, r->msg);
-  double elapsed = now() - t0;
-  if (st == SC_ECALLBACK && (c.oom || sc_cli_interrupted()))
-    sc_fail(r->msg, st, "curve: %s", c.oom ? "out of memory" : "interrupted");
-  if (st) goto done;
-  if ((st = sc_cli_commit(r, "curve.csv", cf))) {
-    cf = NULL;
-    goto done;
-  }
-  cf = NULL;
-  if ((st = sc_cli_commit(r, "points.csv", pf))) {
-    pf = NULL;
-    goto done;
-  }
-  pf = NULL;
+  double t0 = sc_progress_now();
+  st = sc_curve_trace(m, &j->set, j->d0, &out, &j->stats, r->msg);
+  j->elapsed = sc_progress_now() - t0;
+  j->nev = sc_map_nevals(m) - ev0;
+  if (st == SC_ECALLBACK && (c->oom || sc_cli_interrupted()))
+    sc_fail(r->msg, st, "curve: %s", c->oom ? "out of memory" : "interrupted");
+  if (!st) st = sc_cli_commit(r, "curve.csv", cf);
+  return st ? st : sc_cli_commit(r, "points.csv", pf);
+}
 
-  if ((st = sc_cli_summary_begin(r, &sum))) goto done;
-  FILE *f = sc_file_stream(sum);
+static int curve_summary(sc_cli_run *r, void *job, FILE *f) {
+  const curve_job *j = job;
+  const sc_curve_stats *stats = &j->stats;
   fprintf(f, "  %s curve of the period-%d orbit in (%s, %s): %ld points%s\n",
-          type_names[ti], set.period, xn, yn,
-          stats.npoints, stats.closed ? ", closed" : "");
+          type_names[j->ti], j->set.period, j->xn, j->yn, stats->npoints,
+          stats->closed ? ", closed" : "");
   fprintf(f,
           "  largest residual of the defining system over the points: "
           "%.3g\n",
-          stats.max_residual);
-  fprintf(f, "  residual tolerance used: %.3g\n", stats.ftol);
-  if (stats.border_iterate >= 0)
+          stats->max_residual);
+  fprintf(f, "  residual tolerance used: %.3g\n", stats->ftol);
+  if (stats->border_iterate >= 0)
     fprintf(f, "  border followed: %s, %s, iterate %d of %d\n",
-            type_labels[ti], stats.border, stats.border_iterate + 1,
-            set.period);
-  fprintf(f, "  shooting: %s\n", set.multiple ? "multiple" : "single");
-  fprintf(f, "  codimension-two points: %ld\n", stats.nspecial);
-  for (size_t i = 0; i < c.nsp; i++)
+            type_labels[j->ti], stats->border, stats->border_iterate + 1,
+            j->set.period);
+  fprintf(f, "  shooting: %s\n", j->set.multiple ? "multiple" : "single");
+  fprintf(f, "  codimension-two points: %ld\n", stats->nspecial);
+  for (size_t i = 0; i < j->c.nsp; i++) {
+    const sc_curve_special *p = &j->c.sp[i];
     fprintf(f,
             "    %-3s %s = %.17g, %s = %.17g, %s = %.17g, coefficient "
             "%.6g, residual %.3g: %s\n",
-            c.sp[i].label, xn, c.sp[i].x, yn, c.sp[i].y,
-            sc_map_type(m)->state_name, c.sp[i].d, c.sp[i].coefficient,
-            c.sp[i].residual, c.sp[i].note);
-  fprintf(f, "  map evaluations: %lu; time %.3f s\n", sc_map_nevals(m) - ev0,
-          elapsed);
-  st = sc_cli_commit(r, "summary.txt", sum);
-  sum = NULL;
-  if (st) goto done;
-
-  if ((st = sc_cli_open(r, "curve.gp", &gp))) goto done;
-  f = sc_file_stream(gp);
-  char title[512], full[640];
-  sc_plot_title(m, NULL, title, sizeof title);
-  snprintf(full, sizeof full, "%s curve, period %d (%s)", type_names[ti],
-           set.period, title);
-  sc_plot_head(f, "curve.png", full, sc_plot_label(m, xn),
-               sc_plot_label(m, yn));
-  fprintf(f, "set xrange [%.17g:%.17g]\nset yrange [%.17g:%.17g]\n", set.xlo,
-          set.xhi, set.ylo, set.yhi);
-  fputs("set datafile separator ','\n", f);
-  /* with other curves drawn the key goes under the plot */
-  fputs(sc_scene_text(s, "also") ? "set key below horizontal font ',9'\n"
-                                 : "set key inside right top box opaque\n",
-        f);
-  fputs("lab(l) = strcol(1) eq l ? column(3) : NaN\n", f);
-  const char *ov = sc_scene_text(s, "overlay");
-  char ovpath[4096];
-  int have_ov = ov && realpath(ov, ovpath);
-  if (have_ov)
-    /* the chart's periods in light colours under the curve; undefined
-     * points (period -1) left out */
-    fputs("set palette defined (0 '#f2f2f2', 1 '#cfe3f7', 4 '#d9f2d0', "
-          "8 '#fbe3c8', 16 '#f6cfd6')\n"
-          "set cbrange [0:16]\nset cblabel 'period of the chart'\n",
-          f);
-  fputs("plot ", f);
-  if (have_ov) {
-    sc_plot_quote(f, ovpath);
-    fputs(" skip 1 using 1:2:($3 < 0 ? NaN : $3) with image notitle, \\\n"
-          "     ",
-          f);
+            p->label, j->xn, p->x, j->yn, p->y,
+            sc_map_type(r->map)->state_name, p->d, p->coefficient,
+            p->residual, p->note);
   }
-  /* the other curves (also): thin lines, their points labelled */
-  const char *also = sc_scene_text(s, "also");
-  const char *acol[6] = {"#b2182b", "#2166ac", "#1b7837", "#762a83",
-                         "#e08214", "#4d4d4d"};
-  char dir[2048], apath[4096];
+  fprintf(f, "  map evaluations: %lu; time %.3f s\n", j->nev, j->elapsed);
+  return SC_OK;
+}
+
+/* The chart of `overlay` in light colours under the curve (undefined
+ * points, period -1, left out); 1 if drawn. */
+static int plot_overlay(FILE *f, const char *ov) {
+  char path[4096];
+  if (!ov || !realpath(ov, path)) return 0;
+  fputs("set palette defined (0 '#f2f2f2', 1 '#cfe3f7', 4 '#d9f2d0', "
+        "8 '#fbe3c8', 16 '#f6cfd6')\n"
+        "set cbrange [0:16]\nset cblabel 'period of the chart'\n",
+        f);
+  fputs("plot ", f);
+  sc_plot_quote(f, path);
+  fputs(" skip 1 using 1:2:($3 < 0 ? NaN : $3) with image notitle, \\\n"
+        "     ",
+        f);
+  return 1;
+}
+
+/* The other curves (also): thin lines, their points labelled. */
+static void plot_also(FILE *f, const char *also) {
+  static const char *const acol[6] = {"#b2182b", "#2166ac", "#1b7837",
+                                      "#762a83", "#e08214", "#4d4d4d"};
+  char dir[2048], apath[4096], q[4200];
   int ia = 0;
   for (const char *p = also; p && next_word(&p, dir, sizeof dir);) {
     glob_t g;
@@ -484,39 +483,38 @@ static int curve_run(sc_cli_run *r) {
       if (!realpath(g.gl_pathv[gi], apath)) continue;
       const char *base = strrchr(apath, '/');
       base = base ? base + 1 : apath;
-      char q[4200];
+      const char *col = acol[ia++ % 6];
       snprintf(q, sizeof q, "%s/curve.csv", apath);
       sc_plot_quote(f, q);
       fprintf(f,
               " skip 1 using 1:2 with lines lw 1.5 lc rgb '%s' title '%s', "
               "\\\n     ",
-              acol[ia % 6], base);
+              col, base);
       snprintf(q, sizeof q, "%s/points.csv", apath);
       sc_plot_quote(f, q);
       fprintf(f,
               " skip 1 using 2:(strcol(1) eq 'EP' ? NaN : column(3)):1 with "
               "labels point pt 7 ps 0.8 lc rgb '%s' offset 0.6,0.6 font ',8' "
               "tc rgb '%s' notitle, \\\n     ",
-              acol[ia % 6], acol[ia % 6]);
-      ia++;
+              col, col);
     }
     globfree(&g);
   }
-  fprintf(f,
-          "'curve.csv' skip 1 using 1:2 with lines lw 2 lc rgb "
-          "'#1f4e9e' title '%s curve', \\\n",
-          type_names[ti]);
-  /* the labels present, each once in the key */
-  const char *labels[11] = {"CP", "GPD", "TP", "LP", "PD", "GR", "CS",
-                            "SW", "BR", "TT", "EP"};
-  const char *colors[11] = {"#d62728", "#9467bd", "#2ca02c", "#ff7f0e",
-                            "#8c564b", "#e377c2", "#17becf", "#bcbd22",
-                            "#1f77b4", "#7f7f7f", "#777777"};
-  int pts[11] = {7, 5, 9, 11, 13, 4, 8, 10, 12, 3, 6}, nk = 0, shown[11];
+}
+
+/* This curve's special points: each label present once in the key. */
+static void plot_labels(FILE *f, const out_ctx *c) {
+  static const char *const labels[11] = {"CP", "GPD", "TP", "LP", "PD", "GR",
+                                         "CS", "SW",  "BR", "TT", "EP"};
+  static const char *const colors[11] = {
+      "#d62728", "#9467bd", "#2ca02c", "#ff7f0e", "#8c564b", "#e377c2",
+      "#17becf", "#bcbd22", "#1f77b4", "#7f7f7f", "#777777"};
+  static const int pts[11] = {7, 5, 9, 11, 13, 4, 8, 10, 12, 3, 6};
+  int nk = 0, shown[11];
   for (int k = 0; k < 11; k++) {
     shown[k] = k == 10;
-    for (size_t i = 0; i < c.nsp && !shown[k]; i++)
-      shown[k] = strcmp(c.sp[i].label, labels[k]) == 0;
+    for (size_t i = 0; i < c->nsp && !shown[k]; i++)
+      shown[k] = strcmp(c->sp[i].label, labels[k]) == 0;
     nk += shown[k];
   }
   for (int k = 0; k < 11; k++)
@@ -525,19 +523,50 @@ static int curve_run(sc_cli_run *r) {
               "     'points.csv' skip 1 using 2:(lab('%s')) with points pt "
               "%d ps 2 lc rgb '%s' title '%s'%s\n",
               labels[k], pts[k], colors[k], labels[k], --nk ? ", \\" : "");
-  st = sc_cli_commit(r, "curve.gp", gp);
-  gp = NULL;
-  if (st) goto done;
-  st = sc_cli_add_plot(r, "curve.gp", "curve.png");
+}
+
+static int curve_plots(sc_cli_run *r, void *job) {
+  const curve_job *j = job;
+  const sc_scene *s = r->scene;
+  sc_map *m = r->map;
+  char title[512], full[640];
+  sc_plot_title(m, NULL, title, sizeof title);
+  snprintf(full, sizeof full, "%s curve, period %d (%s)", type_names[j->ti],
+           j->set.period, title);
+  sc_file *gp = NULL;
+  int st = sc_cli_plot_begin(r, "curve", full, sc_plot_label(m, j->xn),
+                             sc_plot_label(m, j->yn), &gp);
+  if (st) return st;
+  FILE *f = sc_file_stream(gp);
+  fprintf(f, "set xrange [%.17g:%.17g]\nset yrange [%.17g:%.17g]\n",
+          j->set.xlo, j->set.xhi, j->set.ylo, j->set.yhi);
+  fputs("set datafile separator ','\n", f);
+  /* with other curves drawn the key goes under the plot */
+  fputs(sc_scene_text(s, "also") ? "set key below horizontal font ',9'\n"
+                                 : "set key inside right top box opaque\n",
+        f);
+  fputs("lab(l) = strcol(1) eq l ? column(3) : NaN\n", f);
+  if (!plot_overlay(f, sc_scene_text(s, "overlay"))) fputs("plot ", f);
+  plot_also(f, sc_scene_text(s, "also"));
+  fprintf(f,
+          "'curve.csv' skip 1 using 1:2 with lines lw 2 lc rgb "
+          "'#1f4e9e' title '%s curve', \\\n",
+          type_names[j->ti]);
+  plot_labels(f, &j->c);
+  return sc_cli_plot_end(r, "curve", gp);
+}
+
+static int curve_report(sc_cli_run *r, void *job) {
+  const curve_job *j = job;
   sc_cli_note(r, "%ld curve points, %ld codimension-two points in %.3f s",
-              stats.npoints, stats.nspecial, elapsed);
-done:
-  sc_file_abort(cf);
-  sc_file_abort(pf);
-  sc_file_abort(sum);
-  sc_file_abort(gp);
-  free(c.sp);
-  return st;
+              j->stats.npoints, j->stats.nspecial, j->elapsed);
+  return SC_OK;
+}
+
+static void curve_release(sc_cli_run *r, void *job) {
+  curve_job *j = job;
+  (void)r;
+  free(j->c.sp);
 }
 
 const sc_cli_task sc_cli_task_curve = {
@@ -553,5 +582,11 @@ const sc_cli_task sc_cli_task_curve = {
     .outputs = "curve.csv (x,y,d,period,multiplier,coefficient,itinerary), "
                "points.csv (label,x,y,d,period,note,coefficient,residual), "
                "summary.txt, curve.gp, curve.png",
-    .run = curve_run,
+    .job_size = sizeof(curve_job),
+    .prepare = curve_prepare,
+    .compute = curve_compute,
+    .summary = curve_summary,
+    .plots = curve_plots,
+    .report = curve_report,
+    .release = curve_release,
 };

@@ -1,13 +1,11 @@
 /* Task `fixed-point`: every period-m orbit in an interval of d at fixed
  * parameters, without a start guess (sc_fixed_points_find, branch.h),
  * and the graph of f^m against d with the diagonal. */
-#define _POSIX_C_SOURCE 200809L
-
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
-#include <time.h>
 
+#include "cli/progress.h"
 #include "cli/tasks.h"
 #include "slipcont/branch.h"
 
@@ -32,72 +30,87 @@ static int fp_check(const sc_scene *s, sc_msg *msg) {
   return SC_OK;
 }
 
-static double now(void) {
-  struct timespec t;
-  clock_gettime(CLOCK_MONOTONIC, &t);
-  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+/* One search: its spec, the orbits found, counts for the notes. */
+typedef struct {
+  sc_fixed_points_spec sp;
+  sc_orbit_set *set;
+  size_t n, nstable, nfam; /* orbits, stable ones, neutral families */
+  unsigned long nev;       /* map evaluations of the search */
+  double elapsed;          /* its seconds */
+} fp_job;
+
+static int fp_prepare(sc_cli_run *r, void *job) {
+  fp_job *j = job;
+  const sc_scene *s = r->scene;
+  j->sp = (sc_fixed_points_spec){.period = (int)sc_scene_int(s, "period"),
+                                 .from = sc_scene_real(s, "from"),
+                                 .to = sc_scene_real(s, "to"),
+                                 .steps = (size_t)sc_scene_int(s, "steps")};
+  return SC_OK;
 }
 
-static int fp_run(sc_cli_run *r) {
-  const sc_scene *s = r->scene;
-  sc_map *m = r->map;
-  sc_fixed_points_spec sp = {.period = (int)sc_scene_int(s, "period"),
-                             .from = sc_scene_real(s, "from"),
-                             .to = sc_scene_real(s, "to"),
-                             .steps = (size_t)sc_scene_int(s, "steps")};
-  unsigned long ev0 = sc_map_nevals(m);
-  double t0 = now();
-  sc_orbit_set *set = NULL;
-  /* The search cannot be stopped from outside: a signal during it ends
-   * the process after SC_CLI_STOP_GRACE_S (tasks.h), before any file is
-   * opened; one that arrived by the time it returns stops here. */
-  int st = sc_fixed_points_find(m, &sp, &set, r->msg);
-  if (!st && sc_cli_interrupted()) {
-    sc_orbit_set_free(set);
-    return sc_fail(r->msg, SC_ECALLBACK, "interrupted");
-  }
+/* The search cannot be stopped from outside: a signal during it ends the
+ * process after SC_CLI_STOP_GRACE_S (tasks.h), before any file is
+ * opened; one that arrived by the time it returns stops the driver. */
+static int fp_compute(sc_cli_run *r, void *job) {
+  fp_job *j = job;
+  unsigned long ev0 = sc_map_nevals(r->map);
+  double t0 = sc_progress_now();
+  int st = sc_fixed_points_find(r->map, &j->sp, &j->set, r->msg);
   if (st) return st;
-  double elapsed = now() - t0;
-  unsigned long nev = sc_map_nevals(m) - ev0;
-  size_t n = sc_orbit_set_count(set), nstable = 0, nfam = 0;
-  sc_file *csv = NULL, *sum = NULL, *gp = NULL;
-  if ((st = sc_cli_open(r, "orbits.csv", &csv))) goto done;
+  j->elapsed = sc_progress_now() - t0;
+  j->nev = sc_map_nevals(r->map) - ev0;
+  j->n = sc_orbit_set_count(j->set);
+  sc_orbit_info o;
+  for (size_t i = 0; i < j->n; i++) {
+    sc_orbit_set_get(j->set, i, &o);
+    j->nfam += (size_t)o.neutral;
+    j->nstable += (size_t)(!o.neutral && o.stable);
+  }
+  return SC_OK;
+}
+
+/* orbits.csv: one row an orbit (a family: its piece's d-interval). */
+static int write_orbits(sc_cli_run *r, const fp_job *j) {
+  sc_file *csv = NULL;
+  int st = sc_cli_open(r, "orbits.csv", &csv);
+  if (st) return st;
   FILE *f = sc_file_stream(csv);
   fputs("period,multiplier,stable,d,itinerary\n", f);
   sc_orbit_info o;
-  for (size_t i = 0; i < n; i++) {
-    sc_orbit_set_get(set, i, &o);
+  for (size_t i = 0; i < j->n; i++) {
+    sc_orbit_set_get(j->set, i, &o);
     fprintf(f, "%d,", o.period);
     sc_csv_double(f, o.multiplier);
     if (o.neutral) {
-      /* A family: the d-interval of the piece holding it. */
       fputs(",family,", f);
       sc_csv_double(f, o.lo);
       fputs("..", f);
       sc_csv_double(f, o.hi);
-      nfam++;
     } else {
       fprintf(f, ",%s,", o.stable ? "yes" : "no");
       for (int k = 0; k < o.period; k++) {
         if (k) fputc(';', f);
         sc_csv_double(f, o.d[k]);
       }
-      nstable += (size_t)o.stable;
     }
     char itin[4096];
     snprintf(itin, sizeof itin, "%s", o.itinerary);
     fprintf(f, ",%s\n", sc_cli_csv_text(itin));
   }
-  st = sc_cli_commit(r, "orbits.csv", csv);
-  csv = NULL;
-  if (st) goto done;
+  return sc_cli_commit(r, "orbits.csv", csv);
+}
 
-  /* The orbit points on the diagonal, for the plot. */
-  if ((st = sc_cli_open(r, "fixed-point-orbits.csv", &csv))) goto done;
-  f = sc_file_stream(csv);
+/* The orbit points on the diagonal, for the plot. */
+static int write_diagonal(sc_cli_run *r, const fp_job *j) {
+  sc_file *csv = NULL;
+  int st = sc_cli_open(r, "fixed-point-orbits.csv", &csv);
+  if (st) return st;
+  FILE *f = sc_file_stream(csv);
   fputs("d,d,stable,orbit\n", f);
-  for (size_t i = 0; i < n; i++) {
-    sc_orbit_set_get(set, i, &o);
+  sc_orbit_info o;
+  for (size_t i = 0; i < j->n; i++) {
+    sc_orbit_set_get(j->set, i, &o);
     if (o.neutral) continue;
     for (int k = 0; k < o.period; k++) {
       sc_csv_double(f, o.d[k]);
@@ -106,23 +119,34 @@ static int fp_run(sc_cli_run *r) {
       fprintf(f, ",%d,%zu\n", o.stable, i + 1);
     }
   }
-  st = sc_cli_commit(r, "fixed-point-orbits.csv", csv);
-  csv = NULL;
-  if (st) goto done;
+  return sc_cli_commit(r, "fixed-point-orbits.csv", csv);
+}
 
+static int fp_write(sc_cli_run *r, void *job) {
+  const fp_job *j = job;
+  const sc_fixed_points_spec *sp = &j->sp;
+  int st = write_orbits(r, j);
+  if (!st) st = write_diagonal(r, j);
   /* The graph of f^m over the interval, with the diagonal. */
-  size_t gsteps = sp.steps < 2001 ? 2001 : sp.steps > 20001 ? 20001 : sp.steps;
-  if ((st = sc_cli_write_map_graph(r, "fixed-point-map.csv", sp.period,
-                                   sp.from, sp.to, gsteps)))
-    goto done;
+  size_t gsteps = sp->steps < 2001    ? 2001
+                  : sp->steps > 20001 ? 20001
+                                      : sp->steps;
+  if (!st)
+    st = sc_cli_write_map_graph(r, "fixed-point-map.csv", sp->period,
+                                sp->from, sp->to, gsteps);
+  return st;
+}
 
-  if ((st = sc_cli_summary_begin(r, &sum))) goto done;
-  f = sc_file_stream(sum);
+static int fp_summary(sc_cli_run *r, void *job, FILE *f) {
+  const fp_job *j = job;
+  (void)r;
   fprintf(f, "  period-%d orbits in [%.17g, %.17g]: %zu isolated (%zu "
              "stable), %zu neutral families\n",
-          sp.period, sp.from, sp.to, n - nfam, nstable, nfam);
-  for (size_t i = 0; i < n; i++) {
-    sc_orbit_set_get(set, i, &o);
+          j->sp.period, j->sp.from, j->sp.to, j->n - j->nfam, j->nstable,
+          j->nfam);
+  sc_orbit_info o;
+  for (size_t i = 0; i < j->n; i++) {
+    sc_orbit_set_get(j->set, i, &o);
     if (o.neutral)
       fprintf(f, "    family: d in [%.17g, %.17g], multiplier exactly 1\n",
               o.lo, o.hi);
@@ -132,33 +156,37 @@ static int fp_run(sc_cli_run *r) {
               o.residual);
   }
   fprintf(f, "  pieces of constant itinerary: %zu\n",
-          sc_orbit_set_npieces(set));
+          sc_orbit_set_npieces(j->set));
   fprintf(f, "  roots of lower period skipped: %zu\n",
-          sc_orbit_set_nlower(set));
+          sc_orbit_set_nlower(j->set));
   fprintf(f, "  points where the map is undefined: %zu\n",
-          sc_orbit_set_nundefined(set));
-  fprintf(f, "  map evaluations: %lu; time %.3f s\n", nev, elapsed);
-  st = sc_cli_commit(r, "summary.txt", sum);
-  sum = NULL;
-  if (st) goto done;
+          sc_orbit_set_nundefined(j->set));
+  fprintf(f, "  map evaluations: %lu; time %.3f s\n", j->nev, j->elapsed);
+  return SC_OK;
+}
 
-  if ((st = sc_cli_open(r, "fixed-point.gp", &gp))) goto done;
-  f = sc_file_stream(gp);
+static int fp_plots(sc_cli_run *r, void *job) {
+  const fp_job *j = job;
+  sc_map *m = r->map;
+  int per = j->sp.period;
   char title[512], full[640], ylab[64];
   sc_plot_title(m, NULL, title, sizeof title);
-  snprintf(full, sizeof full, "f^{%d}: %zu period-%d orbits (%s)", sp.period,
-           n, sp.period, title);
-  const char *xl = sc_plot_label(m, sc_map_type(m)->state_name);
-  snprintf(ylab, sizeof ylab, "f^{%d}(%s)", sp.period,
-           sc_map_type(m)->state_name);
-  sc_plot_head(f, "fixed-point.png", full, xl, ylab);
-  fprintf(f, "set xrange [%.17g:%.17g]\n", sp.from, sp.to);
+  snprintf(full, sizeof full, "f^{%d}: %zu period-%d orbits (%s)", per, j->n,
+           per, title);
+  snprintf(ylab, sizeof ylab, "f^{%d}(%s)", per, sc_map_type(m)->state_name);
+  sc_file *gp = NULL;
+  int st = sc_cli_plot_begin(r, "fixed-point", full,
+                             sc_plot_label(m, sc_map_type(m)->state_name),
+                             ylab, &gp);
+  if (st) return st;
+  FILE *f = sc_file_stream(gp);
+  fprintf(f, "set xrange [%.17g:%.17g]\n", j->sp.from, j->sp.to);
   fputs("set key inside left top box opaque\n", f);
   fputs("stab(c) = column(3) == 1 ? column(c) : NaN\n", f);
   fputs("unst(c) = column(3) == 0 ? column(c) : NaN\n", f);
   fprintf(f, "plot 'fixed-point-map.csv' skip 1 using 1:2 with lines lw 1.5 "
              "lc rgb '#1f4e9e' title 'f^{%d}', \\\n",
-          sp.period);
+          per);
   fputs("     x with lines dt 2 lc rgb '#777777' title 'diagonal', \\\n", f);
   fputs("     'fixed-point-orbits.csv' skip 1 using 1:(stab(2)) with points "
         "pt 7 ps 1.6 lc rgb '#2ca02c' title 'stable orbit points', \\\n",
@@ -166,18 +194,20 @@ static int fp_run(sc_cli_run *r) {
   fputs("     'fixed-point-orbits.csv' skip 1 using 1:(unst(2)) with points "
         "pt 6 ps 1.6 lw 2 lc rgb '#d62728' title 'unstable orbit points'\n",
         f);
-  st = sc_cli_commit(r, "fixed-point.gp", gp);
-  gp = NULL;
-  if (st) goto done;
-  st = sc_cli_add_plot(r, "fixed-point.gp", "fixed-point.png");
+  return sc_cli_plot_end(r, "fixed-point", gp);
+}
+
+static int fp_report(sc_cli_run *r, void *job) {
+  const fp_job *j = job;
   sc_cli_note(r, "%zu period-%d orbits (%zu stable, %zu families) in %.3f s",
-              n - nfam, sp.period, nstable, nfam, elapsed);
-done:
-  sc_file_abort(csv);
-  sc_file_abort(sum);
-  sc_file_abort(gp);
-  sc_orbit_set_free(set);
-  return st;
+              j->n - j->nfam, j->sp.period, j->nstable, j->nfam, j->elapsed);
+  return SC_OK;
+}
+
+static void fp_release(sc_cli_run *r, void *job) {
+  fp_job *j = job;
+  (void)r;
+  sc_orbit_set_free(j->set);
 }
 
 const sc_cli_task sc_cli_task_fixed_point = {
@@ -189,7 +219,14 @@ const sc_cli_task sc_cli_task_fixed_point = {
              .nkeys = sizeof fp_keys / sizeof fp_keys[0],
              .check = fp_check},
     .outputs = "orbits.csv (period,multiplier,stable,d,itinerary), "
-               "fixed-point-map.csv, fixed-point-orbits.csv, summary.txt, fixed-point.gp, "
-               "fixed-point.png",
-    .run = fp_run,
+               "fixed-point-map.csv, fixed-point-orbits.csv, summary.txt, "
+               "fixed-point.gp, fixed-point.png",
+    .job_size = sizeof(fp_job),
+    .prepare = fp_prepare,
+    .compute = fp_compute,
+    .write = fp_write,
+    .summary = fp_summary,
+    .plots = fp_plots,
+    .report = fp_report,
+    .release = fp_release,
 };

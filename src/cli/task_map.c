@@ -36,6 +36,10 @@ typedef struct {
   size_t extra;  /* pieces beyond MAP_MAX_PIECES */
 } map_pieces;
 
+static double param(const sc_map *m, const char *name) {
+  return sc_map_get_param(m, (size_t)sc_map_param_index(m, name));
+}
+
 static void add_point(map_pieces *ps, double d, double f, const char *itin) {
   map_piece *last = ps->n ? &ps->p[ps->n - 1] : NULL;
   if (last && !ps->extra && strcmp(last->itinerary, itin) == 0) {
@@ -56,132 +60,144 @@ static void add_point(map_pieces *ps, double d, double f, const char *itin) {
   snprintf(p->itinerary, sizeof p->itinerary, "%s", itin);
 }
 
-/* Short reasons are enough in the CSV: the first failure's full message
- * goes to the summary. */
-static int map_run(sc_cli_run *r) {
+/* One map run: the grid, and what the summary says about it. */
+typedef struct {
+  int n;                 /* the iterate drawn, f^n */
+  double from, to;
+  size_t steps;
+  size_t nok, nundef, nfailed;
+  double flo, fhi;       /* range of f^n where defined */
+  char first_reason[SC_MSG_LEN];  /* first undefined point */
+  char first_failure[SC_MSG_LEN]; /* first point the model refused */
+  map_pieces *pieces;
+  int bk2;               /* the model is bk2: d* is drawn */
+  double dstar;
+} map_job;
+
+static int map_prepare(sc_cli_run *r, void *job) {
+  map_job *j = job;
   const sc_scene *s = r->scene;
   sc_map *m = r->map;
-  int n = (int)sc_scene_int(s, "iterate");
-  double from = sc_scene_real(s, "from"), to = sc_scene_real(s, "to");
-  size_t steps = (size_t)sc_scene_int(s, "steps");
-  sc_file *csv = NULL, *sum = NULL, *gp = NULL;
+  j->n = (int)sc_scene_int(s, "iterate");
+  j->from = sc_scene_real(s, "from");
+  j->to = sc_scene_real(s, "to");
+  j->steps = (size_t)sc_scene_int(s, "steps");
+  j->flo = HUGE_VAL;
+  j->fhi = -HUGE_VAL;
+  j->bk2 = strcmp(sc_map_type(m)->name, "bk2") == 0;
+  if (j->bk2)
+    j->dstar = sc_bk2_dstar(param(m, "alpha"), param(m, "beta"));
+  j->pieces = calloc(1, sizeof *j->pieces);
+  return j->pieces ? SC_OK : sc_fail(r->msg, SC_ENOMEM, "map: out of memory");
+}
+
+/* One grid point into map.csv.  Short reasons are enough in the CSV: the
+ * first failure's full message goes to the summary. */
+static int map_point(sc_cli_run *r, map_job *j, FILE *f, double d) {
+  sc_map_value v;
+  sc_msg em;
+  int st = sc_map_iterate(r->map, d, j->n, SC_EVAL_DERIV | SC_EVAL_ITINERARY,
+                          &v, &em);
+  sc_csv_double(f, d);
+  fputc(',', f);
+  if (st == SC_OK) {
+    sc_csv_double(f, v.f);
+    fputc(',', f);
+    sc_csv_double(f, v.dfdd);
+    fprintf(f, ",%s,ok\n", sc_cli_csv_text(v.itinerary));
+    add_point(j->pieces, d, v.f, v.itinerary);
+    j->flo = j->flo < v.f ? j->flo : v.f;
+    j->fhi = j->fhi > v.f ? j->fhi : v.f;
+    j->nok++;
+  } else if (st == SC_EUNDEF || st == SC_ENOCONV || st == SC_ENONFINITE) {
+    if (!j->nundef)
+      snprintf(j->first_reason, sizeof j->first_reason, "at %.17g: %.400s", d,
+               em.text);
+    j->nundef++;
+    fprintf(f, "nan,nan,,%s\n", sc_cli_csv_text(em.text));
+    add_point(j->pieces, d, NAN, "undefined");
+  } else if (st == SC_ENOMEM) {
+    return sc_fail(r->msg, st, "map at %s = %.17g: %s",
+                   sc_map_type(r->map)->state_name, d, em.text);
+  } else {
+    /* The model refused this point (an extreme d, parameters it cannot
+     * handle): one point is lost, not the run; the row says why, the
+     * summary and a note count them. */
+    if (!j->nfailed)
+      snprintf(j->first_failure, sizeof j->first_failure,
+               "at %.17g: %s: %.400s", d, sc_strerror(st), em.text);
+    j->nfailed++;
+    fprintf(f, "nan,nan,,%s\n", sc_cli_csv_text(em.text));
+    add_point(j->pieces, d, NAN, "failed");
+  }
+  return SC_OK;
+}
+
+static int map_compute(sc_cli_run *r, void *job) {
+  map_job *j = job;
+  sc_file *csv = NULL;
   int st = sc_cli_open(r, "map.csv", &csv);
   if (st) return st;
   FILE *f = sc_file_stream(csv);
   fputs("d,f,df,itinerary,status\n", f);
-  size_t nundef = 0, nok = 0;
-  double flo = HUGE_VAL, fhi = -HUGE_VAL;
-  char first_reason[SC_MSG_LEN] = "";
-  char first_failure[SC_MSG_LEN] = "";
-  size_t nfailed = 0;
-  sc_map_value v;
-  sc_msg em;
-  map_pieces *pieces = calloc(1, sizeof *pieces);
-  if (!pieces) {
-    sc_file_abort(csv);
-    return sc_fail(r->msg, SC_ENOMEM, "map: out of memory");
-  }
   sc_progress bar;
-  sc_progress_start(&bar, "points", (long)steps, 0,
+  sc_progress_start(&bar, "points", (long)j->steps, 0,
                     sc_progress_wanted(r->quiet));
-  for (size_t i = 0; i < steps; i++) {
-    if (sc_cli_interrupted()) {
-      sc_progress_finish(&bar);
-      sc_file_abort(csv);
-      free(pieces);
-      return sc_fail(r->msg, SC_ECALLBACK, "interrupted");
-    }
-    double d = sc_grid_point(from, to, steps, i);
-    st = sc_map_iterate(m, d, n, SC_EVAL_DERIV | SC_EVAL_ITINERARY, &v, &em);
-    sc_csv_double(f, d);
-    fputc(',', f);
-    if (st == SC_OK) {
-      sc_csv_double(f, v.f);
-      fputc(',', f);
-      sc_csv_double(f, v.dfdd);
-      fprintf(f, ",%s,ok\n", sc_cli_csv_text(v.itinerary));
-      add_point(pieces, d, v.f, v.itinerary);
-      flo = flo < v.f ? flo : v.f;
-      fhi = fhi > v.f ? fhi : v.f;
-      nok++;
-    } else if (st == SC_EUNDEF || st == SC_ENOCONV || st == SC_ENONFINITE) {
-      if (!nundef)
-        snprintf(first_reason, sizeof first_reason, "at %.17g: %.400s", d,
-                 em.text);
-      nundef++;
-      fprintf(f, "nan,nan,,%s\n", sc_cli_csv_text(em.text));
-      add_point(pieces, d, NAN, "undefined");
-    } else if (st == SC_ENOMEM) {
-      sc_progress_finish(&bar);
-      sc_file_abort(csv);
-      free(pieces);
-      return sc_fail(r->msg, st, "map at %s = %.17g: %s",
-                     sc_map_type(m)->state_name, d, em.text);
-    } else {
-      /* The model refused this point (an extreme d, parameters it cannot
-       * handle): one point is lost, not the run; the row says why, the
-       * summary and a note count them. */
-      if (!nfailed)
-        snprintf(first_failure, sizeof first_failure, "at %.17g: %s: %.400s",
-                 d, sc_strerror(st), em.text);
-      nfailed++;
-      fprintf(f, "nan,nan,,%s\n", sc_cli_csv_text(em.text));
-      add_point(pieces, d, NAN, "failed");
-    }
+  for (size_t i = 0; i < j->steps && !st; i++) {
+    if ((st = sc_cli_stop(r))) break;
+    st = map_point(r, j, f, sc_grid_point(j->from, j->to, j->steps, i));
     sc_progress_update(&bar, (long)i + 1);
   }
   sc_progress_finish(&bar);
-  if ((st = sc_cli_commit(r, "map.csv", csv)) ||
-      (st = sc_cli_summary_begin(r, &sum))) {
-    free(pieces);
-    return st;
-  }
-  f = sc_file_stream(sum);
+  return st ? st : sc_cli_commit(r, "map.csv", csv);
+}
+
+static int map_summary(sc_cli_run *r, void *job, FILE *f) {
+  const map_job *j = job;
+  int n = j->n;
   fprintf(f, "  f^%d evaluated at %zu points: %zu defined, %zu undefined\n", n,
-          steps, nok, nundef);
-  if (nok) fprintf(f, "  range of f^%d: [%.17g, %.17g]\n", n, flo, fhi);
-  if (nundef) fprintf(f, "  first undefined point %s\n", first_reason);
-  if (nfailed) {
-    fprintf(f, "  %zu points refused by the model; first %s\n", nfailed,
-            first_failure);
-    sc_cli_note(r, "map: %zu of %zu points refused by the model; first %s",
-                nfailed, steps, first_failure);
-  }
+          j->steps, j->nok, j->nundef);
+  if (j->nok) fprintf(f, "  range of f^%d: [%.17g, %.17g]\n", n, j->flo, j->fhi);
+  if (j->nundef) fprintf(f, "  first undefined point %s\n", j->first_reason);
+  if (j->nfailed)
+    fprintf(f, "  %zu points refused by the model; first %s\n", j->nfailed,
+            j->first_failure);
   fputs("  pieces of constant itinerary (grid points; f^n on them):\n", f);
-  for (size_t i = 0; i < pieces->n; i++) {
-    const map_piece *p = &pieces->p[i];
-    fprintf(f, "    %s from %.10g to %.10g (%zu points): %s", sc_map_type(m)->state_name,
-            p->from, p->to, p->npts, p->itinerary);
+  for (size_t i = 0; i < j->pieces->n; i++) {
+    const map_piece *p = &j->pieces->p[i];
+    fprintf(f, "    %s from %.10g to %.10g (%zu points): %s",
+            sc_map_type(r->map)->state_name, p->from, p->to, p->npts,
+            p->itinerary);
     if (!isnan(p->flo)) fprintf(f, "; f^%d in [%.10g, %.10g]", n, p->flo, p->fhi);
     fputc('\n', f);
   }
-  if (pieces->extra)
-    fprintf(f, "    ... and %zu more pieces\n", pieces->extra);
-  free(pieces);
-  if (strcmp(sc_map_type(m)->name, "bk2") == 0) {
-    double a = sc_map_get_param(m, (size_t)sc_map_param_index(m, "alpha"));
-    double b = sc_map_get_param(m, (size_t)sc_map_param_index(m, "beta"));
-    fprintf(f, "  d* = (beta - 1)/(1 + 2 alpha) = %.17g\n", sc_bk2_dstar(a, b));
-  }
-  if ((st = sc_cli_commit(r, "summary.txt", sum))) return st;
+  if (j->pieces->extra)
+    fprintf(f, "    ... and %zu more pieces\n", j->pieces->extra);
+  if (j->bk2)
+    fprintf(f, "  d* = (beta - 1)/(1 + 2 alpha) = %.17g\n", j->dstar);
+  return SC_OK;
+}
 
-  if ((st = sc_cli_open(r, "map.gp", &gp))) return st;
-  f = sc_file_stream(gp);
-  char title[512], ylabel[64], xlabel[128];
+static int map_plots(sc_cli_run *r, void *job) {
+  const map_job *j = job;
+  sc_map *m = r->map;
+  char title[512], ylabel[64];
   const char *state = sc_map_type(m)->state_name;
-  snprintf(xlabel, sizeof xlabel, "%s", sc_plot_label(m, state));
-  if (n == 1) snprintf(ylabel, sizeof ylabel, "f(%s)", state);
-  else snprintf(ylabel, sizeof ylabel, "f^{%d}(%s)", n, state);
+  if (j->n == 1) snprintf(ylabel, sizeof ylabel, "f(%s)", state);
+  else snprintf(ylabel, sizeof ylabel, "f^{%d}(%s)", j->n, state);
   sc_plot_title(m, NULL, title, sizeof title);
-  sc_plot_head(f, "map.png", title, xlabel, ylabel);
+  sc_file *gp = NULL;
+  int st = sc_cli_plot_begin(r, "map", title, sc_plot_label(m, state), ylabel,
+                             &gp);
+  if (st) return st;
+  FILE *f = sc_file_stream(gp);
   fputs("set key inside left top box opaque\n", f);
-  if (from != to)
-    fprintf(f, "set xrange [%.17g:%.17g]\n", fmin(from, to), fmax(from, to));
-  if (strcmp(sc_map_type(m)->name, "bk2") == 0) {
-    double a = sc_map_get_param(m, (size_t)sc_map_param_index(m, "alpha"));
-    double b = sc_map_get_param(m, (size_t)sc_map_param_index(m, "beta"));
+  if (j->from != j->to)
+    fprintf(f, "set xrange [%.17g:%.17g]\n", fmin(j->from, j->to),
+            fmax(j->from, j->to));
+  if (j->bk2) {
     fputs("# d*: both blocks reach their threshold together\n", f);
-    fprintf(f, "dstar = %.17g\n", sc_bk2_dstar(a, b));
+    fprintf(f, "dstar = %.17g\n", j->dstar);
     fputs("set arrow 1 from dstar, graph 0 to dstar, graph 1 nohead "
           "dt 2 lc rgb '#888888'\n",
           f);
@@ -190,7 +206,7 @@ static int map_run(sc_cli_run *r) {
           f);
   }
   fputs("# points, not lines, so that jumps of the map stay open\n", f);
-  if (strcmp(sc_map_type(m)->name, "bk2") == 0) {
+  if (j->bk2) {
     fputs("# column 4 is the itinerary: without '12' only one block slips at "
           "a time\n# (single-block slips: f' = 1, docs/model.md)\n"
           "single(s) = strstrt(s, '12') == 0\n",
@@ -210,14 +226,26 @@ static int map_run(sc_cli_run *r) {
             "plot 'map.csv' using 1:2 skip 1 with points pt 7 ps 0.35 "
             "lc rgb '#1f4e9e' title '%s', \\\n"
             "     x with lines dt 2 lc rgb '#999999' title 'diagonal'\n",
-            n == 1 ? "f" : "f^n");
+            j->n == 1 ? "f" : "f^n");
   }
-  if ((st = sc_cli_commit(r, "map.gp", gp))) return st;
-  if ((st = sc_cli_add_plot(r, "map.gp", "map.png"))) return st;
-  if (nundef)
-    sc_cli_note(r, "map undefined at %zu of %zu points (first %s)", nundef,
-                steps, first_reason);
+  return sc_cli_plot_end(r, "map", gp);
+}
+
+static int map_report(sc_cli_run *r, void *job) {
+  const map_job *j = job;
+  if (j->nfailed)
+    sc_cli_note(r, "map: %zu of %zu points refused by the model; first %s",
+                j->nfailed, j->steps, j->first_failure);
+  if (j->nundef)
+    sc_cli_note(r, "map undefined at %zu of %zu points (first %s)", j->nundef,
+                j->steps, j->first_reason);
   return SC_OK;
+}
+
+static void map_release(sc_cli_run *r, void *job) {
+  map_job *j = job;
+  (void)r;
+  free(j->pieces);
 }
 
 const sc_cli_task sc_cli_task_map = {
@@ -229,5 +257,11 @@ const sc_cli_task sc_cli_task_map = {
              .check = NULL},
     .outputs = "map.csv (d,f,df,itinerary,status), summary.txt, map.gp, "
                "map.png",
-    .run = map_run,
+    .job_size = sizeof(map_job),
+    .prepare = map_prepare,
+    .compute = map_compute,
+    .summary = map_summary,
+    .plots = map_plots,
+    .report = map_report,
+    .release = map_release,
 };

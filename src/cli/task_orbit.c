@@ -102,15 +102,156 @@ static double stuck_velocity(const sc_map *m) {
   return drv && strcmp(drv, "frozen") == 0 ? 0 : param(m, "v", 0);
 }
 
-static int write_trajectory_plots(sc_cli_run *r, const traj_ctx *c) {
+/* One orbit run: the iterates, the tail of their multipliers and
+ * itineraries (a ring), where the map failed, the trajectory's extent. */
+typedef struct {
+  long n;        /* iterations */
+  double *d;     /* d[0..n]; d[0..k] are defined */
+  long k;        /* iterates done */
+  double dfdd[ORBIT_TAIL];
+  int neutral[ORBIT_TAIL];
+  char (*itin)[SC_ITIN_LEN];
+  int fail;      /* the map's status at iterate k (SC_OK: all defined) */
+  sc_msg em;     /* and its message */
+  traj_ctx traj; /* rows and bounds of trajectory.csv */
+} orbit_job;
+
+static int orbit_prepare(sc_cli_run *r, void *job) {
+  orbit_job *j = job;
+  j->n = sc_scene_int(r->scene, "iterations");
+  j->d = malloc((size_t)(j->n + 1) * sizeof *j->d);
+  j->itin = calloc(ORBIT_TAIL, sizeof *j->itin);
+  if (!j->d || !j->itin)
+    return sc_fail(r->msg, SC_ENOMEM, "orbit: out of memory");
+  j->d[0] = sc_scene_real(r->scene, "d0");
+  return SC_OK;
+}
+
+/* The iterates into orbit.csv, up to the first where the map fails. */
+static int orbit_iterate(sc_cli_run *r, orbit_job *j) {
+  sc_file *csv = NULL;
+  int st = sc_cli_open(r, "orbit.csv", &csv);
+  if (st) return st;
+  FILE *f = sc_file_stream(csv);
+  fputs("k,d,itinerary\n", f);
+  sc_map_value v;
+  double *d = j->d;
+  for (j->k = 0; j->k < j->n; j->k++) {
+    long k = j->k;
+    if ((st = sc_cli_stop(r))) return st;
+    j->fail = sc_map_eval(r->map, d[k], SC_EVAL_DERIV | SC_EVAL_ITINERARY, &v,
+                          &j->em);
+    if (j->fail == SC_ENONFINITE) {
+      /* f' does not exist here (an event with zero slope, or d* with the
+       * driver frozen): the iterate does; the multiplier is then unknown */
+      j->fail = sc_map_eval(r->map, d[k], SC_EVAL_ITINERARY, &v, &j->em);
+      v.dfdd = NAN;
+    }
+    fprintf(f, "%ld,", k);
+    sc_csv_double(f, d[k]);
+    if (j->fail) {
+      fputs(",undefined\n", f);
+      break;
+    }
+    fprintf(f, ",%s\n", sc_cli_csv_text(v.itinerary));
+    size_t slot = (size_t)k % ORBIT_TAIL;
+    j->dfdd[slot] = v.dfdd;
+    j->neutral[slot] = v.neutral;
+    memcpy(j->itin[slot], v.itinerary, SC_ITIN_LEN);
+    d[k + 1] = v.f;
+  }
+  if (!j->fail) {
+    fprintf(f, "%ld,", j->n);
+    sc_csv_double(f, d[j->n]);
+    fputs(",\n", f);
+  }
+  return sc_cli_commit(r, "orbit.csv", csv);
+}
+
+/* The continuous motion over the last trajectory-iterates iterates into
+ * trajectory.csv. */
+static int orbit_trajectory(sc_cli_run *r, orbit_job *j) {
+  const sc_scene *s = r->scene;
+  long mt = sc_scene_int(s, "trajectory-iterates");
+  if (mt == 0) mt = j->n;
+  traj_ctx *c = &j->traj;
+  *c = (traj_ctx){NULL, 0, HUGE_VAL, -HUGE_VAL, HUGE_VAL, -HUGE_VAL};
+  sc_file *tr = NULL;
+  int st = sc_cli_open(r, "trajectory.csv", &tr);
+  if (st) return st;
+  c->f = sc_file_stream(tr);
+  fputs("tau,y1,y2,u1,u2,mode\n", c->f);
+  double from = j->d[j->n - mt];
+  sc_msg em;
+  st = sc_map_trajectory(r->map, from, (int)mt, sc_scene_real(s, "dtau"),
+                         on_sample, c, &em);
+  if (!st) return sc_cli_commit(r, "trajectory.csv", tr);
+  if (sc_cli_interrupted()) return sc_cli_stop(r);
+  if (c->rows > TRAJ_MAX_ROWS)
+    return sc_fail(r->msg, SC_EINVAL,
+                   "trajectory longer than %ld rows (long stick phases: V "
+                   "is small): raise dtau or lower trajectory-iterates",
+                   TRAJ_MAX_ROWS);
+  return sc_fail(r->msg, st, "trajectory from d = %.17g: %s", from, em.text);
+}
+
+static int orbit_compute(sc_cli_run *r, void *job) {
+  orbit_job *j = job;
+  int st = orbit_iterate(r, j);
+  if (!st && !j->fail && sc_scene_flag(r->scene, "trajectory"))
+    st = orbit_trajectory(r, j);
+  return st;
+}
+
+/* Findings: the period of the tail and, for a periodic orbit, its
+ * points, itineraries and multiplier (product of f' over one period). */
+static int orbit_summary(sc_cli_run *r, void *job, FILE *f) {
+  const orbit_job *j = job;
+  const double *d = j->d;
+  long n = j->n, last = j->k; /* d[0..last] are defined */
+  if (j->fail) {
+    fprintf(f, "  the map is undefined at iterate %ld (d = %.17g): %s\n",
+            last, d[last], j->em.text);
+  } else {
+    /* The second half of the orbit at most: the first is transient. */
+    long nt = (last + 1) / 2 < ORBIT_TAIL ? (last + 1) / 2 : ORBIT_TAIL;
+    if (nt < 1) nt = 1;
+    int p = sc_sweep_period(d + last + 1 - nt, (size_t)nt,
+                            sc_map_accuracy(r->map)->period_rtol,
+                            SC_SWEEP_PERIOD_MAX);
+    fprintf(f, "  final state after %ld iterates: %.17g\n", n, d[n]);
+    if (p > 0) {
+      double mult = 1;
+      int neut = 1;
+      fprintf(f, "  period of the last %ld iterates: %d\n", nt, p);
+      for (long k = n - p; k < n; k++) {
+        size_t slot = (size_t)k % ORBIT_TAIL;
+        mult *= j->dfdd[slot];
+        neut = neut && j->neutral[slot];
+        fprintf(f, "    d = %.17g  itinerary %s  f' = %.17g\n", d[k],
+                j->itin[slot], j->dfdd[slot]);
+      }
+      fprintf(f, "  multiplier (product of f' over one period): %.17g%s\n",
+              neut ? 1.0 : mult,
+              neut ? " (neutral: single-block slips only)"
+                   : fabs(mult) < 1 ? " (stable)" : " (unstable)");
+    } else {
+      fprintf(f, "  no period up to %d found in the last %ld iterates "
+                 "(chaos, a longer period, or a transient)\n",
+              SC_SWEEP_PERIOD_MAX, nt);
+    }
+  }
+  fprintf(f, "  map evaluations: %lu\n", sc_map_nevals(r->map));
+  return SC_OK;
+}
+
+/* Motion in the plane (Y1, Y2) over the global stick region. */
+static int phase_plot(sc_cli_run *r, const traj_ctx *c, const char *title) {
   sc_map *m = r->map;
-  char title[512];
-  sc_plot_title(m, NULL, title, sizeof title);
   sc_file *gp = NULL;
-  int st = sc_cli_open(r, "phase.gp", &gp);
+  int st = sc_cli_plot_begin(r, "phase", title, "Y_1", "Y_2", &gp);
   if (st) return st;
   FILE *f = sc_file_stream(gp);
-  sc_plot_head(f, "phase.png", title, "Y_1", "Y_2");
   double a = param(m, "alpha", 1), b = param(m, "beta", 1);
   double dx = fmax(c->y1hi - c->y1lo, c->y2hi - c->y2lo);
   dx = dx > 0 ? 0.08 * dx : 0.1;
@@ -148,183 +289,65 @@ static int write_trajectory_plots(sc_cli_run *r, const traj_ctx *c) {
         "     keyentry with points pt 7 ps 1.5 lc rgb '#2ca02c' "
         "title 'both slip'\n",
         f);
-  if ((st = sc_cli_commit(r, "phase.gp", gp))) return st;
-  if ((st = sc_cli_add_plot(r, "phase.gp", "phase.png"))) return st;
+  return sc_cli_plot_end(r, "phase", gp);
+}
 
-  if ((st = sc_cli_open(r, "velocity.gp", &gp))) return st;
-  f = sc_file_stream(gp);
-  sc_plot_head(f, "velocity.png", title, "tau", "U_i - V_s");
+/* The blocks' velocities relative to a stuck block's. */
+static int velocity_plot(sc_cli_run *r, const char *title) {
+  sc_file *gp = NULL;
+  int st = sc_cli_plot_begin(r, "velocity", title, "tau", "U_i - V_s", &gp);
+  if (st) return st;
+  FILE *f = sc_file_stream(gp);
   fputs("set key inside right top box opaque\n", f);
   fputs("# V_s: velocity of a stuck block during a slip (V with the "
         "driver moving, 0 frozen);\n# in a global stick phase both blocks "
         "move with V.\n",
         f);
-  fprintf(f, "Vs = %.17g\n", stuck_velocity(m));
+  fprintf(f, "Vs = %.17g\n", stuck_velocity(r->map));
   fputs("plot 'trajectory.csv' skip 1 using 1:($4 - Vs) with lines lw 1.5 "
         "lc rgb '#d62728' title 'U_1 - V_s', \\\n"
         "     '' skip 1 using 1:($5 - Vs) with lines lw 1.5 lc rgb '#1f4e9e' "
         "title 'U_2 - V_s'\n",
         f);
-  if ((st = sc_cli_commit(r, "velocity.gp", gp))) return st;
-  return sc_cli_add_plot(r, "velocity.gp", "velocity.png");
+  return sc_cli_plot_end(r, "velocity", gp);
 }
 
-static int orbit_run(sc_cli_run *r) {
-  const sc_scene *s = r->scene;
+/* The orbit d_k against k; the trajectory's plots when it has rows. */
+static int orbit_plots(sc_cli_run *r, void *job) {
+  const orbit_job *j = job;
   sc_map *m = r->map;
-  long n = sc_scene_int(s, "iterations");
-  double *d = malloc((size_t)(n + 1) * sizeof *d);
-  if (!d) return sc_fail(r->msg, SC_ENOMEM, "orbit: out of memory");
-  static const size_t tail_cap = ORBIT_TAIL;
-  double dfdd[ORBIT_TAIL];
-  int neutral[ORBIT_TAIL];
-  char (*itin)[SC_ITIN_LEN] = calloc(tail_cap, sizeof *itin);
-  if (!itin) {
-    free(d);
-    return sc_fail(r->msg, SC_ENOMEM, "orbit: out of memory");
-  }
-  sc_file *csv = NULL, *sum = NULL, *gp = NULL, *tr = NULL;
-  int fail = SC_OK;
-  sc_msg em;
-  int st = sc_cli_open(r, "orbit.csv", &csv);
-  if (st) goto done;
-  FILE *f = sc_file_stream(csv);
-  fputs("k,d,itinerary\n", f);
-  d[0] = sc_scene_real(s, "d0");
-  long k;
-  sc_map_value v;
-  for (k = 0; k < n; k++) {
-    if (sc_cli_interrupted()) {
-      st = sc_fail(r->msg, SC_ECALLBACK, "interrupted");
-      goto done;
-    }
-    fail = sc_map_eval(m, d[k], SC_EVAL_DERIV | SC_EVAL_ITINERARY, &v, &em);
-    if (fail == SC_ENONFINITE) {
-      /* f' does not exist here (an event with zero slope, or d* with the
-       * driver frozen): the iterate does; the multiplier is then unknown */
-      fail = sc_map_eval(m, d[k], SC_EVAL_ITINERARY, &v, &em);
-      v.dfdd = NAN;
-    }
-    fprintf(f, "%ld,", k);
-    sc_csv_double(f, d[k]);
-    if (fail) {
-      fputs(",undefined\n", f);
-      break;
-    }
-    fprintf(f, ",%s\n", sc_cli_csv_text(v.itinerary));
-    size_t slot = (size_t)k % tail_cap;
-    dfdd[slot] = v.dfdd;
-    neutral[slot] = v.neutral;
-    memcpy(itin[slot], v.itinerary, SC_ITIN_LEN);
-    d[k + 1] = v.f;
-  }
-  if (!fail) {
-    fprintf(f, "%ld,", n);
-    sc_csv_double(f, d[n]);
-    fputs(",\n", f);
-  }
-  st = sc_cli_commit(r, "orbit.csv", csv);
-  csv = NULL;
-  if (st) goto done;
-
-  /* Findings: the period of the tail and, for a periodic orbit, its
-   * points, itineraries and multiplier (product of f' over one period). */
-  if ((st = sc_cli_summary_begin(r, &sum))) goto done;
-  f = sc_file_stream(sum);
-  long last = k; /* d[0..last] are defined */
-  if (fail) {
-    fprintf(f, "  the map is undefined at iterate %ld (d = %.17g): %s\n", k,
-            d[k], em.text);
-  } else {
-    /* The second half of the orbit at most: the first is transient. */
-    long nt = (last + 1) / 2 < ORBIT_TAIL ? (last + 1) / 2 : ORBIT_TAIL;
-    if (nt < 1) nt = 1;
-    const double *tail = d + last + 1 - nt;
-    int p = sc_sweep_period(tail, (size_t)nt,
-                            sc_map_accuracy(m)->period_rtol,
-                            SC_SWEEP_PERIOD_MAX);
-    fprintf(f, "  final state after %ld iterates: %.17g\n", n, d[n]);
-    if (p > 0) {
-      double mult = 1;
-      int neut = 1;
-      fprintf(f, "  period of the last %ld iterates: %d\n", nt, p);
-      for (long j = n - p; j < n; j++) {
-        size_t slot = (size_t)j % tail_cap;
-        mult *= dfdd[slot];
-        neut = neut && neutral[slot];
-        fprintf(f, "    d = %.17g  itinerary %s  f' = %.17g\n", d[j],
-                itin[slot], dfdd[slot]);
-      }
-      fprintf(f, "  multiplier (product of f' over one period): %.17g%s\n",
-              neut ? 1.0 : mult,
-              neut ? " (neutral: single-block slips only)"
-                   : fabs(mult) < 1 ? " (stable)" : " (unstable)");
-    } else {
-      fprintf(f, "  no period up to %d found in the last %ld iterates "
-                 "(chaos, a longer period, or a transient)\n",
-              SC_SWEEP_PERIOD_MAX, nt);
-    }
-  }
-  fprintf(f, "  map evaluations: %lu\n", sc_map_nevals(m));
-  st = sc_cli_commit(r, "summary.txt", sum);
-  sum = NULL;
-  if (st) goto done;
-
-  /* The orbit d_k against k. */
-  if ((st = sc_cli_open(r, "orbit.gp", &gp))) goto done;
-  f = sc_file_stream(gp);
   char title[512];
   sc_plot_title(m, NULL, title, sizeof title);
-  sc_plot_head(f, "orbit.png", title, "k (iterate)",
-               sc_plot_label(m, sc_map_type(m)->state_name));
+  sc_file *gp = NULL;
+  int st = sc_cli_plot_begin(r, "orbit", title, "k (iterate)",
+                             sc_plot_label(m, sc_map_type(m)->state_name),
+                             &gp);
+  if (st) return st;
+  FILE *f = sc_file_stream(gp);
   fputs("set key inside right top box opaque\n", f);
   fputs("plot 'orbit.csv' skip 1 using 1:2 with linespoints pt 7 ps 0.6 "
         "lw 0.5 lc rgb '#1f4e9e' title 'orbit'\n",
         f);
-  st = sc_cli_commit(r, "orbit.gp", gp);
-  gp = NULL;
-  if (st) goto done;
-  if ((st = sc_cli_add_plot(r, "orbit.gp", "orbit.png"))) goto done;
+  if ((st = sc_cli_plot_end(r, "orbit", gp))) return st;
+  if (!j->traj.rows) return SC_OK;
+  if ((st = phase_plot(r, &j->traj, title))) return st;
+  return velocity_plot(r, title);
+}
 
-  if (fail) {
-    st = sc_fail(r->msg, fail, "orbit: map undefined at iterate %ld from "
-                               "%.17g: %s",
-                 k, d[k], em.text);
-    goto done;
-  }
-  if (sc_scene_flag(s, "trajectory")) {
-    long mt = sc_scene_int(s, "trajectory-iterates");
-    if (mt == 0) mt = n;
-    traj_ctx c = {NULL, 0, HUGE_VAL, -HUGE_VAL, HUGE_VAL, -HUGE_VAL};
-    if ((st = sc_cli_open(r, "trajectory.csv", &tr))) goto done;
-    c.f = sc_file_stream(tr);
-    fputs("tau,y1,y2,u1,u2,mode\n", c.f);
-    st = sc_map_trajectory(m, d[n - mt], (int)mt, sc_scene_real(s, "dtau"),
-                           on_sample, &c, &em);
-    if (st) {
-      if (sc_cli_interrupted()) sc_fail(r->msg, SC_ECALLBACK, "interrupted");
-      else if (c.rows > TRAJ_MAX_ROWS)
-        sc_fail(r->msg, SC_EINVAL,
-                "trajectory longer than %ld rows (long stick phases: V is "
-                "small): raise dtau or lower trajectory-iterates",
-                TRAJ_MAX_ROWS);
-      else sc_fail(r->msg, st, "trajectory from d = %.17g: %s", d[n - mt],
-                   em.text);
-      goto done;
-    }
-    st = sc_cli_commit(r, "trajectory.csv", tr);
-    tr = NULL;
-    if (st) goto done;
-    if (c.rows) st = write_trajectory_plots(r, &c);
-  }
-done:
-  sc_file_abort(csv);
-  sc_file_abort(sum);
-  sc_file_abort(gp);
-  sc_file_abort(tr);
-  free(itin);
-  free(d);
-  return st;
+/* The files are written: an orbit that left the map's domain fails now. */
+static int orbit_report(sc_cli_run *r, void *job) {
+  const orbit_job *j = job;
+  if (!j->fail) return SC_OK;
+  return sc_fail(r->msg, j->fail, "orbit: map undefined at iterate %ld from "
+                                  "%.17g: %s",
+                 j->k, j->d[j->k], j->em.text);
+}
+
+static void orbit_release(sc_cli_run *r, void *job) {
+  orbit_job *j = job;
+  (void)r;
+  free(j->itin);
+  free(j->d);
 }
 
 const sc_cli_task sc_cli_task_orbit = {
@@ -337,5 +360,11 @@ const sc_cli_task sc_cli_task_orbit = {
     .outputs = "orbit.csv (k,d,itinerary), summary.txt, orbit.gp/png; with "
                "trajectory = yes also trajectory.csv "
                "(tau,y1,y2,u1,u2,mode), phase.gp/png, velocity.gp/png",
-    .run = orbit_run,
+    .job_size = sizeof(orbit_job),
+    .prepare = orbit_prepare,
+    .compute = orbit_compute,
+    .summary = orbit_summary,
+    .plots = orbit_plots,
+    .report = orbit_report,
+    .release = orbit_release,
 };

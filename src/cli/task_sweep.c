@@ -39,21 +39,8 @@ static const sc_key_info sweep_keys[] = {
 #define SWEEP_MAX_VALUES 536870912.0
 
 static int sweep_check(const sc_scene *s, sc_msg *msg) {
-  const sc_map *m = sc_scene_map(s);
-  const char *name = sc_scene_text(s, "parameter");
-  const sc_param_info *pi = &sc_map_type(m)->params[sc_map_param_index(m, name)];
-  /* The range is the model table's (never a copy of it). */
-  sc_key_info range = {pi->name, SC_KEY_REAL, 0, NULL, pi->lo, pi->hi,
-                       pi->lo_open, pi->hi_open, NULL, NULL};
-  char text[128];
-  sc_key_range_text(&range, text, sizeof text);
-  const char *ends[] = {"from", "to"};
-  for (int k = 0; k < 2; k++) {
-    if (sc_param_check(pi, sc_scene_real(s, ends[k]), NULL))
-      return sc_scene_fail_key(s, "task", ends[k], msg,
-                               "%s = %s out of range of %s (valid: %s)",
-                               ends[k], sc_scene_text(s, ends[k]), name, text);
-  }
+  int st = sc_cli_check_param_ends(s, msg);
+  if (st) return st;
   const char *xs = sc_scene_text(s, "x-scale");
   if (xs && strcmp(xs, "log") == 0 &&
       sc_grid_check("x-scale", sc_scene_real(s, "from"), sc_scene_real(s, "to"),
@@ -124,57 +111,64 @@ static void write_findings(FILE *f, const sc_sweep *sw, const char *pname) {
   fputc('\n', f);
 }
 
-static int sweep_run(sc_cli_run *r) {
-  const sc_scene *s = r->scene;
-  sc_map *m = r->map;
-  const char *pname = sc_scene_text(s, "parameter");
-  sc_sweep_spec sp = {0};
-  sp.param = (size_t)sc_map_param_index(m, pname);
-  sp.from = sc_scene_real(s, "from");
-  sp.to = sc_scene_real(s, "to");
-  sp.steps = (size_t)sc_scene_int(s, "steps");
-  sp.x_scale = strcmp(sc_scene_text(s, "x-scale"), "log") == 0 ? SC_GRID_LOG
-                                                               : SC_GRID_LINEAR;
-  sp.iterations = (int)sc_scene_int(s, "iterations");
-  sp.keep = (int)sc_scene_int(s, "keep");
-  sp.d0 = sc_scene_real(s, "d0");
-  const char *dir = sc_scene_text(s, "direction");
-  if (!dir) sp.direction = sp.to >= sp.from ? SC_SWEEP_UP : SC_SWEEP_DOWN;
-  else if (strcmp(dir, "both") == 0) sp.direction = SC_SWEEP_BOTH;
-  else if (strcmp(dir, "down") == 0) sp.direction = SC_SWEEP_DOWN;
-  else sp.direction = SC_SWEEP_UP;
-  sp.seed = strcmp(sc_scene_text(s, "seed"), "previous") == 0
-                ? SC_SEED_PREVIOUS
-                : SC_SEED_FIXED;
+/* One sweep run: its spec, the sweep, its progress bar. */
+typedef struct {
+  const char *pname; /* the parameter swept */
+  sc_sweep_spec sp;
+  sc_sweep *sw;
   sc_progress bar;
-  sp.progress = on_progress;
-  sp.progress_ctx = &bar;
+} sweep_job;
 
-  sc_sweep *sw = NULL;
-  int st = sc_sweep_alloc(m, &sp, &sw, r->msg);
-  if (st) return st;
-  sc_progress_start(&bar, "values", (long)sc_sweep_npoints(sw), 0,
+static int sweep_prepare(sc_cli_run *r, void *job) {
+  sweep_job *j = job;
+  const sc_scene *s = r->scene;
+  sc_sweep_spec *sp = &j->sp;
+  j->pname = sc_scene_text(s, "parameter");
+  sp->param = (size_t)sc_map_param_index(r->map, j->pname);
+  sp->from = sc_scene_real(s, "from");
+  sp->to = sc_scene_real(s, "to");
+  sp->steps = (size_t)sc_scene_int(s, "steps");
+  sp->x_scale = strcmp(sc_scene_text(s, "x-scale"), "log") == 0
+                    ? SC_GRID_LOG
+                    : SC_GRID_LINEAR;
+  sp->iterations = (int)sc_scene_int(s, "iterations");
+  sp->keep = (int)sc_scene_int(s, "keep");
+  sp->d0 = sc_scene_real(s, "d0");
+  const char *dir = sc_scene_text(s, "direction");
+  if (!dir) sp->direction = sp->to >= sp->from ? SC_SWEEP_UP : SC_SWEEP_DOWN;
+  else if (strcmp(dir, "both") == 0) sp->direction = SC_SWEEP_BOTH;
+  else if (strcmp(dir, "down") == 0) sp->direction = SC_SWEEP_DOWN;
+  else sp->direction = SC_SWEEP_UP;
+  sp->seed = strcmp(sc_scene_text(s, "seed"), "previous") == 0
+                 ? SC_SEED_PREVIOUS
+                 : SC_SEED_FIXED;
+  sp->progress = on_progress;
+  sp->progress_ctx = &j->bar;
+  return sc_sweep_alloc(r->map, sp, &j->sw, r->msg);
+}
+
+static int sweep_compute(sc_cli_run *r, void *job) {
+  sweep_job *j = job;
+  sc_progress_start(&j->bar, "values", (long)sc_sweep_npoints(j->sw), 0,
                     sc_progress_wanted(r->quiet));
-  st = sc_sweep_run(sw, r->msg);
-  sc_progress_finish(&bar);
+  int st = sc_sweep_run(j->sw, r->msg);
+  sc_progress_finish(&j->bar);
   if (st == SC_ECALLBACK) sc_fail(r->msg, st, "interrupted");
-  if (st) {
-    sc_sweep_free(sw);
-    return st;
-  }
+  return st;
+}
 
-  sc_file *csv = NULL, *sum = NULL, *gp = NULL;
-  if ((st = sc_cli_open(r, "sweep.csv", &csv))) goto done;
+static int sweep_write(sc_cli_run *r, void *job) {
+  const sweep_job *j = job;
+  sc_file *csv = NULL;
+  int st = sc_cli_open(r, "sweep.csv", &csv);
+  if (st) return st;
   FILE *f = sc_file_stream(csv);
-  fprintf(f, "%s,d,period,direction\n", pname);
-  size_t n = sc_sweep_npoints(sw);
+  fprintf(f, "%s,d,period,direction\n", j->pname);
+  size_t n = sc_sweep_npoints(j->sw);
   sc_sweep_point pt;
   for (size_t i = 0; i < n; i++) {
-    if (sc_cli_interrupted()) {
-      st = sc_fail(r->msg, SC_ECALLBACK, "interrupted");
-      goto done;
-    }
-    sc_sweep_get_point(sw, i, &pt);
+    if ((st = sc_cli_stop(r))) return st;
+    sc_sweep_get_point(j->sw, i, &pt);
     if (pt.status != SC_OK) {
       sc_csv_double(f, pt.p);
       fprintf(f, ",nan,%d,%s\n", SC_SWEEP_UNDEFINED, dir_name(pt.direction));
@@ -187,31 +181,37 @@ static int sweep_run(sc_cli_run *r) {
       fprintf(f, ",%d,%s\n", pt.period, dir_name(pt.direction));
     }
   }
-  st = sc_cli_commit(r, "sweep.csv", csv);
-  csv = NULL;
-  if (st) goto done;
+  return sc_cli_commit(r, "sweep.csv", csv);
+}
 
-  if ((st = sc_cli_summary_begin(r, &sum))) goto done;
-  fprintf(sc_file_stream(sum), "  passes: %s; seed: %s\n",
-          sp.direction == SC_SWEEP_BOTH ? "up then down"
-                                        : dir_name(sp.direction),
-          sp.seed == SC_SEED_PREVIOUS ? "previous" : "fixed");
-  write_findings(sc_file_stream(sum), sw, pname);
-  fprintf(sc_file_stream(sum), "  map evaluations: %lu\n", sc_sweep_nevals(sw));
-  st = sc_cli_commit(r, "summary.txt", sum);
-  sum = NULL;
-  if (st) goto done;
+static int sweep_summary(sc_cli_run *r, void *job, FILE *f) {
+  const sweep_job *j = job;
+  (void)r;
+  fprintf(f, "  passes: %s; seed: %s\n",
+          j->sp.direction == SC_SWEEP_BOTH ? "up then down"
+                                           : dir_name(j->sp.direction),
+          j->sp.seed == SC_SEED_PREVIOUS ? "previous" : "fixed");
+  write_findings(f, j->sw, j->pname);
+  fprintf(f, "  map evaluations: %lu\n", sc_sweep_nevals(j->sw));
+  return SC_OK;
+}
 
-  if ((st = sc_cli_open(r, "sweep.gp", &gp))) goto done;
-  f = sc_file_stream(gp);
+static int sweep_plots(sc_cli_run *r, void *job) {
+  const sweep_job *j = job;
+  const sc_sweep_spec *sp = &j->sp;
+  sc_map *m = r->map;
   char title[512], key[2][96];
-  const char *xl = sc_plot_label(m, pname);
-  sc_plot_title(m, pname, title, sizeof title);
-  sc_plot_head(f, "sweep.png", title, xl,
-               sc_plot_label(m, sc_map_type(m)->state_name));
-  fprintf(f, "set xrange [%.17g:%.17g]\n", fmin(sp.from, sp.to),
-          fmax(sp.from, sp.to));
-  if (sp.x_scale == SC_GRID_LOG) fputs("set logscale x\n", f);
+  const char *xl = sc_plot_label(m, j->pname);
+  sc_plot_title(m, j->pname, title, sizeof title);
+  sc_file *gp = NULL;
+  int st = sc_cli_plot_begin(r, "sweep", title, xl,
+                             sc_plot_label(m, sc_map_type(m)->state_name),
+                             &gp);
+  if (st) return st;
+  FILE *f = sc_file_stream(gp);
+  fprintf(f, "set xrange [%.17g:%.17g]\n", fmin(sp->from, sp->to),
+          fmax(sp->from, sp->to));
+  if (sp->x_scale == SC_GRID_LOG) fputs("set logscale x\n", f);
   snprintf(key[0], sizeof key[0], "increasing %s", xl);
   snprintf(key[1], sizeof key[1], "decreasing %s", xl);
   fputs("set key inside right top box opaque\n", f);
@@ -222,20 +222,18 @@ static int sweep_run(sc_cli_run *r) {
   fputs("up(c)   = strcol(4) eq 'up'   ? column(c) : NaN\n", f);
   fputs("down(c) = strcol(4) eq 'down' ? column(c) : NaN\n", f);
   /* The dots are tiny: the key shows large ones (keyentry). */
-  const char *upc = sp.direction == SC_SWEEP_BOTH ? "#6fa8dc" : "#1f4e9e";
+  const char *upc = sp->direction == SC_SWEEP_BOTH ? "#6fa8dc" : "#1f4e9e";
   fputs("plot ", f);
-  int first = 1;
-  if (sp.direction != SC_SWEEP_DOWN) {
+  if (sp->direction != SC_SWEEP_DOWN) {
     fprintf(f,
             "'sweep.csv' skip 1 using 1:(up(2)) with points pt 7 ps %s "
             "lc rgb '%s' notitle, \\\n"
             "     keyentry with points pt 7 ps 1.5 lc rgb '%s' title ",
-            sp.direction == SC_SWEEP_BOTH ? "0.5" : "0.25", upc, upc);
+            sp->direction == SC_SWEEP_BOTH ? "0.5" : "0.25", upc, upc);
     sc_plot_quote(f, key[0]);
-    first = 0;
   }
-  if (sp.direction != SC_SWEEP_UP) {
-    if (!first) fputs(", \\\n     ", f);
+  if (sp->direction != SC_SWEEP_UP) {
+    if (sp->direction != SC_SWEEP_DOWN) fputs(", \\\n     ", f);
     fputs("'sweep.csv' skip 1 using 1:(down(2)) with points pt 7 ps 0.22 "
           "lc rgb '#c00000' notitle, \\\n"
           "     keyentry with points pt 7 ps 1.5 lc rgb '#c00000' title ",
@@ -243,19 +241,21 @@ static int sweep_run(sc_cli_run *r) {
     sc_plot_quote(f, key[1]);
   }
   fputc('\n', f);
-  st = sc_cli_commit(r, "sweep.gp", gp);
-  gp = NULL;
-  if (st) goto done;
-  st = sc_cli_add_plot(r, "sweep.gp", "sweep.png");
-  if (sc_sweep_nundefined(sw))
+  return sc_cli_plot_end(r, "sweep", gp);
+}
+
+static int sweep_report(sc_cli_run *r, void *job) {
+  const sweep_job *j = job;
+  if (sc_sweep_nundefined(j->sw))
     sc_cli_note(r, "map undefined at %zu parameter values (first: %s)",
-                sc_sweep_nundefined(sw), sc_sweep_undefined_reason(sw));
-done:
-  sc_file_abort(csv);
-  sc_file_abort(sum);
-  sc_file_abort(gp);
-  sc_sweep_free(sw);
-  return st;
+                sc_sweep_nundefined(j->sw), sc_sweep_undefined_reason(j->sw));
+  return SC_OK;
+}
+
+static void sweep_release(sc_cli_run *r, void *job) {
+  sweep_job *j = job;
+  (void)r;
+  sc_sweep_free(j->sw);
 }
 
 const sc_cli_task sc_cli_task_sweep = {
@@ -267,5 +267,12 @@ const sc_cli_task sc_cli_task_sweep = {
              .check = sweep_check},
     .outputs = "sweep.csv (PARAMETER,d,period,direction), summary.txt, "
                "sweep.gp, sweep.png",
-    .run = sweep_run,
+    .job_size = sizeof(sweep_job),
+    .prepare = sweep_prepare,
+    .compute = sweep_compute,
+    .write = sweep_write,
+    .summary = sweep_summary,
+    .plots = sweep_plots,
+    .report = sweep_report,
+    .release = sweep_release,
 };

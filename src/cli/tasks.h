@@ -1,16 +1,22 @@
-/* The tasks of the `slipcont` program, and what a task may use while it
- * runs.
+/* The tasks of the `slipcont` program, the one run skeleton they share,
+ * and what a task may use while it runs.
  *
  * Registration contract (how to add a task kind, e.g. `chart`):
  *
- * 1. Write src/cli/task_chart.c defining one constant
+ * 1. Write src/cli/task_chart.c defining its job (a struct holding the
+ *    settings read from the scene and what one step hands to the next)
+ *    and one constant
  *
  *        const sc_cli_task sc_cli_task_chart = {
  *            .type = {.kind = "chart", .doc = "...", .keys = chart_keys,
  *                     .nkeys = sizeof chart_keys / sizeof chart_keys[0],
  *                     .check = chart_check},
  *            .outputs = "chart.csv (x,y,period), chart.gp/png",
- *            .run = chart_run,
+ *            .job_size = sizeof(chart_job),
+ *            .prepare = chart_prepare, .compute = chart_compute,
+ *            .write = chart_write, .summary = chart_summary,
+ *            .plots = chart_plots, .report = chart_report,
+ *            .release = chart_release,
  *        };
  *
  *    - `.type.kind` is the value of `[task] kind` (it may contain '-',
@@ -26,14 +32,16 @@
  *      model's table with sc_param_check(), never hard-code them) and
  *      reports with sc_scene_fail_key() so that the message names the
  *      file, line and key.  It must not compute or write anything.
- *    - `.run` does the work (see sc_cli_run below): it writes every file
- *      through sc_cli_open()/sc_cli_commit() (atomic), writes
- *      summary.txt with sc_cli_summary_begin(), declares each gnuplot
- *      script with sc_cli_add_plot() (main renders them afterwards when
- *      `[output] plot = yes`), prints to stderr only through
- *      sc_cli_note() and a progress bar (progress.h), stops cleanly when
- *      sc_cli_interrupted() says so, and returns SC_OK or an error
- *      status with r->msg filled (the program then exits with status 1).
+ *    - The steps (sc_cli_task below) do the work; sc_cli_task_run() is
+ *      the one driver that runs them.  Every file is written through
+ *      sc_cli_open()/sc_cli_commit() (atomic; the driver aborts what a
+ *      failed step left open), gnuplot scripts through
+ *      sc_cli_plot_begin()/sc_cli_plot_end() (main renders them
+ *      afterwards when `[output] plot = yes`), stderr only through
+ *      sc_cli_note() and a progress bar (progress.h).  Long loops stop
+ *      when sc_cli_interrupted() says so (sc_cli_stop()); a step returns
+ *      SC_OK or an error status with r->msg filled (the program then
+ *      exits with status 1).
  * 2. Add one line `X(chart)` to SC_CLI_TASK_LIST in src/cli/tasks.c.
  * 3. Add src/cli/task_chart.c to src/cli/sources.cmake.
  * 4. Regenerate the key tables of docs/guide.md
@@ -51,6 +59,8 @@
 
 /** Most plots one task may declare. */
 #define SC_CLI_MAXPLOTS 8
+/** Most files one task may have open at a time. */
+#define SC_CLI_MAXOPEN 8
 
 /** Everything a task may use while it runs. */
 typedef struct sc_cli_run {
@@ -58,22 +68,81 @@ typedef struct sc_cli_run {
   sc_map *map;           /**< its model instance (sc_scene_map()) */
   const char *dir;       /**< output folder: exists and is writable */
   int quiet;             /**< 1: no progress or notes on stderr */
-  sc_msg *msg;           /**< where run() explains a failure */
+  sc_msg *msg;           /**< where a step explains a failure */
   size_t nplots;         /**< plots declared so far */
   char plot_script[SC_CLI_MAXPLOTS][64]; /**< "sweep.gp" */
   char plot_png[SC_CLI_MAXPLOTS][64];    /**< "sweep.png" */
   char written[1024];    /**< names of the files written, for the notes */
+  sc_file *open[SC_CLI_MAXOPEN]; /**< files opened, not yet committed */
+  size_t nopen;          /**< entries of open[] */
+  int compute_only;      /**< set by prepare in a process that only helps
+                              compute (an MPI rank other than 0): the
+                              driver then runs only compute and release */
   long stop_after_rows;  /**< chart: stop with a checkpoint after this
                               many rows, as a kill would (0: never); the
                               option --stop-after-rows, for tests */
+  const char *interrupt_before; /**< a step's name: the driver raises
+                              SIGINT just before it (NULL: never); the
+                              option --interrupt-before, for tests */
 } sc_cli_run;
 
-/** A task kind of the program: see the contract above. */
+/**
+ * A task kind of the program: its keys and the steps of its run.
+ *
+ * The one run skeleton.  sc_cli_task_run() allocates the job (job_size
+ * bytes, zeroed) and calls the steps in this order, each at most once;
+ * any step may be NULL:
+ *
+ *   prepare  read the scene's settings into the job, allocate; no file
+ *   compute  the computation (a long one may stream its data files)
+ *   write    the data files from what compute kept in the job
+ *   summary  the findings under "results:" in summary.txt: the driver
+ *            opens the file, writes its head (the scene, every setting),
+ *            calls this with the stream, and commits
+ *   plots    the gnuplot scripts (sc_cli_plot_begin()/sc_cli_plot_end())
+ *   report   the closing notes on stderr, and the run's status: a
+ *            failure found by compute whose files were still written
+ *            (orbit: the map is undefined at an iterate) is returned here
+ *   release  free the job's memory and restore the map; called exactly
+ *            once whatever happened, also on a job that prepare filled
+ *            only in part (pointers are NULL until set)
+ *
+ * Before each step the driver checks sc_cli_interrupted(): after a
+ * SIGINT or SIGTERM no further step runs and the run fails with
+ * "interrupted".  The first step that fails ends the run; the driver then
+ * aborts every file still open (sc_file_abort(): no temporary is left)
+ * and returns its status.
+ */
 typedef struct sc_cli_task {
   sc_task_type type;   /**< kind, doc, keys, check (io.h) */
   const char *outputs; /**< the files it writes, one line */
-  int (*run)(sc_cli_run *r);
+  size_t job_size;     /**< bytes of the task's job (0: none) */
+  int (*prepare)(sc_cli_run *r, void *job);
+  int (*compute)(sc_cli_run *r, void *job);
+  int (*write)(sc_cli_run *r, void *job);
+  int (*summary)(sc_cli_run *r, void *job, FILE *f);
+  int (*plots)(sc_cli_run *r, void *job);
+  int (*report)(sc_cli_run *r, void *job);
+  void (*release)(sc_cli_run *r, void *job);
 } sc_cli_task;
+
+/** The names of the steps in their order, "prepare" to "report" (the
+ * names --interrupt-before accepts; release always runs and is not
+ * listed); sets @p n. */
+const char *const *sc_cli_step_names(size_t *n);
+
+/**
+ * The one driver: run task @p t on @p r (see sc_cli_task).  Returns
+ * SC_OK, the status of the step that failed (message in r->msg),
+ * SC_ECALLBACK "interrupted" after a signal, SC_ENOMEM for the job, or
+ * SC_EINTERNAL when a task ends with a file still open.
+ */
+int sc_cli_task_run(const sc_cli_task *t, sc_cli_run *r);
+
+/** For a task's check: `[task] from` and `to` inside the range of the
+ * model parameter named by `[task] parameter` (the model's table, with
+ * sc_param_check()); the message names the key's line. */
+int sc_cli_check_param_ends(const sc_scene *s, sc_msg *msg);
 
 /**
  * The graph of f^n over [from, to] on @p steps points into the CSV file
@@ -95,18 +164,32 @@ const sc_cli_task *sc_cli_task_find(const char *kind);
 const sc_task_type *const *sc_cli_task_types(size_t *n);
 
 /** Open `dir/name` atomically (sc_file_open()); message into r->msg.
- * The temporary is unlinked if a signal ends the process early. */
+ * The file is open until sc_cli_commit() or sc_cli_abort(); the driver
+ * aborts it if a step fails.  The temporary is unlinked if a signal ends
+ * the process early. */
 int sc_cli_open(sc_cli_run *r, const char *name, sc_file **f);
-/** Commit a file opened with sc_cli_open() and remember its name. */
+/** Commit a file opened with sc_cli_open() (freed in every case) and
+ * add @p name to the files named in the closing note (NULL: not named,
+ * e.g. a checkpoint that is removed at the end). */
 int sc_cli_commit(sc_cli_run *r, const char *name, sc_file *f);
+/** Abort a file opened with sc_cli_open(); NULL is accepted. */
+void sc_cli_abort(sc_cli_run *r, sc_file *f);
 
 /**
  * Open summary.txt and write its head: the scene, the overrides, and
- * every effective setting of every section (defaults included).  The task
- * then writes its findings under "results:" and commits with
- * sc_cli_commit(r, "summary.txt", f).
+ * every effective setting of every section (defaults included).  The
+ * driver calls it for the summary step; the task's summary step writes
+ * its findings under "results:".
  */
 int sc_cli_summary_begin(sc_cli_run *r, sc_file **f);
+
+/** Open the gnuplot script STEM.gp and write its head (sc_plot_head())
+ * for STEM.png with @p title and the axis labels. */
+int sc_cli_plot_begin(sc_cli_run *r, const char *stem, const char *title,
+                      const char *xlabel, const char *ylabel, sc_file **gp);
+/** Commit STEM.gp opened by sc_cli_plot_begin() and declare it with
+ * STEM.png (sc_cli_add_plot()). */
+int sc_cli_plot_end(sc_cli_run *r, const char *stem, sc_file *gp);
 
 /** Declare a gnuplot script (already written) and the PNG it makes. */
 int sc_cli_add_plot(sc_cli_run *r, const char *script, const char *png);
@@ -121,17 +204,21 @@ void sc_cli_note(const sc_cli_run *r, const char *fmt, ...)
 /**
  * The one signal mechanism of the program.  1 once SIGINT or SIGTERM has
  * arrived during a run (main installs the handler with
- * sc_cli_catch_signals() before calling run()).  A task checks it in its
- * loops (and progress callbacks return it, so that library loops stop);
- * when set it aborts the files it was writing (sc_file_abort(): no
- * temporary is left) and returns SC_ECALLBACK with "interrupted" in
- * r->msg.  A task that has not returned SC_CLI_STOP_GRACE_S seconds
- * after the signal (a library call that cannot be stopped), or a second
- * signal, ends the process at once with status 128 + the signal number,
- * after unlinking the temporaries opened with sc_cli_open(): files are
- * left complete or not at all.  Progress bars: src/cli/progress.h.
+ * sc_cli_catch_signals() before calling sc_cli_task_run()).  The driver
+ * checks it between steps; a step checks it in its loops (sc_cli_stop();
+ * progress callbacks return it, so that library loops stop) and returns
+ * SC_ECALLBACK with "interrupted" in r->msg; the driver aborts the files
+ * still open (no temporary is left).  A task that has not returned
+ * SC_CLI_STOP_GRACE_S seconds after the signal (a library call that
+ * cannot be stopped), or a second signal, ends the process at once with
+ * status 128 + the signal number, after unlinking the temporaries opened
+ * with sc_cli_open(): files are left complete or not at all.  Progress
+ * bars: src/cli/progress.h.
  */
 int sc_cli_interrupted(void);
+/** SC_OK, or SC_ECALLBACK with "interrupted" in r->msg once a signal has
+ * arrived: `if ((st = sc_cli_stop(r))) return st;` in a step's loop. */
+int sc_cli_stop(sc_cli_run *r);
 /** Install the SIGINT/SIGTERM handler behind sc_cli_interrupted(). */
 void sc_cli_catch_signals(void);
 /** The task has returned: no more forced end (main calls it). */
