@@ -142,6 +142,24 @@ run_sc check "$TMP/row.ini" --set task.starts="3.9 0.2 99999999999"
 expect_rc "a start period above max-period" 2
 expect_err "a start period above max-period" "(valid: [1, max-period = 8])"
 
+# The brute-force sweep needs a first orbit: with d0 at `at` inside the
+# range it starts from d0, with starts only from the branch's first point
+# (both failed with "d0 = nan is not finite" before).
+sed -e 's/^starts = auto/at = 3.9\
+d0 = 0.2\
+period = 1/' -e 's/^auto-.*//' -e 's/^sweep = no/sweep = yes\
+sweep-steps = 20/' "$TMP/auto.ini" >"$TMP/at-sweep.ini"
+run_sc run "$TMP/at-sweep.ini" --out "$TMP/at-sweep" --quiet
+expect_rc "branch at 3.9 with its sweep" 0
+check "at-sweep: the sweep has 20 values" \
+  awk -F, 'NR > 1 { p[$1] = 1 } END { n = 0; for (k in p) n++; exit !(n == 20) }' \
+  "$TMP/at-sweep/branch-sweep.csv"
+sed -e 's/^at = 3.9/starts = 3.9 0.2 1/' -e '/^d0 = /d' "$TMP/at-sweep.ini" \
+  >"$TMP/starts-sweep.ini"
+run_sc run "$TMP/starts-sweep.ini" --out "$TMP/starts-sweep" --quiet
+expect_rc "branch from starts only, with its sweep" 0
+check "starts-sweep: the sweep was drawn" test -s "$TMP/starts-sweep/branch-sweep.csv"
+
 # The border examples: the motion at a located point of each kind
 # (docs/branches.md shows their velocity.png).  Driver frozen: V_s = 0.
 # GR: block 1's velocity in the two-block slip rises back to 0 and no

@@ -687,6 +687,18 @@ static int branch_prepare(sc_cli_run *r, void *job) {
   return sc_orbit_branch_alloc(r->map, &j->sp, &j->ob, r->msg);
 }
 
+/* Where the brute-force sweep starts its first orbit (any point serves:
+ * its transient is dropped): d0 when the scene gives it, else the first
+ * point of the branch (starts = ..., auto), else 0. */
+static double sweep_seed(const branch_job *j) {
+  if (isfinite(j->d0)) return j->d0;
+  sc_orbit_point_info pt;
+  if (sc_orbit_branch_npoints(j->ob) > 0 &&
+      sc_orbit_branch_point(j->ob, 0, &pt) == SC_OK && isfinite(pt.d))
+    return pt.d;
+  return 0;
+}
+
 /* The starts, the continuation, then the brute-force sweep. */
 static int branch_compute(sc_cli_run *r, void *job) {
   branch_job *j = job;
@@ -704,7 +716,7 @@ static int branch_compute(sc_cli_run *r, void *job) {
   if (st || !sc_scene_flag(r->scene, "sweep")) return st;
   t0 = sc_progress_now();
   sc_map_set_param(r->map, j->param, j->saved, NULL);
-  st = run_sweep(r, j->param, j->sp.from, j->sp.to, j->sp.d0, &j->sw);
+  st = run_sweep(r, j->param, j->sp.from, j->sp.to, sweep_seed(j), &j->sw);
   j->tsweep = sc_progress_now() - t0;
   return st;
 }
