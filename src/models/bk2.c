@@ -682,6 +682,29 @@ static void set_onset_gap(sc_guard *g, double gap) {
   g->c0 += gap - g0;
 }
 
+/* A re-stick guard U_i - Vs that starts within rounding of zero and
+ * falls: block i began to slip just before this phase (U_i = Vs within
+ * the rounding of the state, ~ eps V, and moving away from it), so the
+ * root at 0 is a downward crossing, never a re-stick (events are upward
+ * crossings): it is skipped as a fresh block's is.  The search's own
+ * start test uses its rounding at 0 only, and its march a larger bound
+ * that grows with the step, which took such a start for a root (at V =
+ * 100, a block triggered 8e-8 into the other's slip: U_i - Vs = -8e-14
+ * against a rounding of 4e-13; the block re-stuck beyond its threshold:
+ * D5 in docs/accuracy.md).  The window is START_ROUND_ULPS of the terms'
+ * size, a few times the search's step-grown bound. */
+#define START_ROUND_ULPS 64.0
+static int falls_from_zero(const sc_guard *g) {
+  double g0, g1, size = fabs(g->c0), wsize = fabs(g->c1);
+  sc_guard_eval(g, 0, &g0, &g1, NULL);
+  for (int k = 0; k < g->n; k++) {
+    size += fabs(g->a[k]) + fabs(g->b[k]);
+    wsize += g->w[k] * (fabs(g->a[k]) + fabs(g->b[k]));
+  }
+  return fabs(g0) <= START_ROUND_ULPS * DBL_EPSILON * size &&
+         g1 < -ROOT_ROUND_ULPS * DBL_EPSILON * wsize;
+}
+
 /* The first event of a phase among its guards g (kinds kind), searched
  * up to tmax: later guards only up to the earliest root so far (plus its
  * tie tolerance), the first re-stick after a GSP from the per-parameter
@@ -699,7 +722,7 @@ static int first_event(const bk2_inst *b, int mode, int fresh,
   double atol = b->acc.event_atol, rtol = b->acc.event_rtol;
   int first = -1;
   for (int i = 0; i < ng; i++) {
-    int skip = kind[i] < 3 && (fresh & kind[i]);
+    int skip = kind[i] < 3 && ((fresh & kind[i]) || falls_from_zero(&g[i]));
     double lim = first < 0 ? tmax
                            : r[first].t + 2 * (atol + rtol * r[first].t +
                                                root_window(&g[first], &r[first]));
