@@ -761,6 +761,25 @@ static int first_event(const bk2_inst *b, int mode, int fresh,
   return SC_OK;
 }
 
+/* The slope of the stuck block's threshold guard where it reaches zero,
+ * for a trigger the search took at the onset itself: the guard's exact
+ * value there, gap = (1 + 2 alpha)(d - d*) < 0 up to sign, lies within
+ * the rounding of its terms (next to d* with V_s ~ 0: a double root at
+ * d*), so the root is somewhere in the first ~sqrt(rounding / g'') of
+ * the phase and g'(0) ~ (1 + alpha) V_s is not its slope.  The event
+ * time is still within rounding (f keeps its promise), but f' = -dg/dd /
+ * slope needs the slope at the root: from g = gap + g1 t + g2 t^2 / 2,
+ * sqrt(g1^2 - 2 g2 gap) (the cubic term is below rounding over so short a
+ * time).  NaN (f' refused with a message) if that quadratic never
+ * reaches zero.  Derivatives only: the value-only path takes the same
+ * event at the same time. */
+static double onset_trigger_slope(const sc_guard *g, double gap) {
+  double g1, g2;
+  sc_guard_eval(g, 0, NULL, &g1, &g2);
+  double s2 = g1 * g1 - 2 * g2 * gap;
+  return s2 > 0 ? sqrt(s2) : NAN;
+}
+
 /* One slip phase with exact flows: find its end (the first event, or the
  * event the code forces), the next mode, and the state there.  `fresh`
  * bit i-1: block i started slipping at this phase's start (U_i = Vs by
@@ -790,6 +809,9 @@ static int exact_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
     int st = first_event(b, mode, fresh, g, kind, ng, tmax, r, &first, &both,
                          &ev->steps, msg);
     if (st) return st;
+    if (ev->onset && kind[first] == BK2_EV_THRESHOLD && r[first].t == 0 &&
+        ev->onset_gap < 0)
+      r[first].slope = onset_trigger_slope(&g[first], ev->onset_gap);
   } else {
     /* Follow the code: the forced guard's first rise through zero after
      * its first `skip` local maxima; the other guards are not taken. */
