@@ -108,10 +108,15 @@ static const known_case known[] = {
      "D2: near-synchronous re-sticks ordered wrongly", 0},
     /* D3, f' = NaN with SC_OK where an event slope rounds to 0, is fixed:
      * that evaluation now fails with SC_ENONFINITE and a message (a
-     * refusal).  With V = 1e-12 next to d*, a finite f' 1e5 times too
-     * large remains: */
-    {"f' outside the promise", 1, 0, 1000, 1e-12, 0, 1e-13,
-     "D3: f' wrong next to d* with V_s ~ 0", 1},
+     * refusal).  Its variant with V = 1e-12 next to d* (a trigger taken
+     * at the onset, within rounding, with the slope (1 + alpha) V there:
+     * f' 1e5 times too large) is fixed: the slope is the one at the root
+     * of the guard's quadratic expansion. */
+    /* D5 (alpha = 1e-3, beta = 10, phi = 1 + 1e-6, V = 100, 3e-6 to 9e-6
+     * below d*: a block triggered 8e-8 into the other's slip re-stuck at
+     * once, then stayed stuck 629 beyond its threshold) is fixed: a
+     * re-stick guard that starts within rounding of zero and falls skips
+     * its start root. */
     {NULL, 0, 0, 0, 0, 0, 0, NULL, 0},
 };
 

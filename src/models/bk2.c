@@ -453,6 +453,29 @@ static void set_onset_gap(sc_guard *g, double gap) {
   g->c0 += gap - g0;
 }
 
+/* A re-stick guard U_i - Vs that starts within rounding of zero and
+ * falls: block i began to slip just before this phase (U_i = Vs within
+ * the rounding of the state, ~ eps V, and moving away from it), so the
+ * root at 0 is a downward crossing, never a re-stick (events are upward
+ * crossings): it is skipped as a fresh block's is.  The search's own
+ * start test uses its rounding at 0 only, and its march a larger bound
+ * that grows with the step, which took such a start for a root (at V =
+ * 100, a block triggered 8e-8 into the other's slip: U_i - Vs = -8e-14
+ * against a rounding of 4e-13; the block re-stuck beyond its threshold:
+ * D5 in docs/accuracy.md).  The window is START_ROUND_ULPS of the terms'
+ * size, a few times the search's step-grown bound. */
+#define START_ROUND_ULPS 64.0
+static int falls_from_zero(const sc_guard *g) {
+  double g0, g1, size = fabs(g->c0), wsize = fabs(g->c1);
+  sc_guard_eval(g, 0, &g0, &g1, NULL);
+  for (int k = 0; k < g->n; k++) {
+    size += fabs(g->a[k]) + fabs(g->b[k]);
+    wsize += g->w[k] * (fabs(g->a[k]) + fabs(g->b[k]));
+  }
+  return fabs(g0) <= START_ROUND_ULPS * DBL_EPSILON * size &&
+         g1 < -ROOT_ROUND_ULPS * DBL_EPSILON * wsize;
+}
+
 /* The first event of a phase among its guards g (kinds kind), searched
  * up to tmax: later guards only up to the earliest root so far (plus its
  * tie tolerance), the first re-stick after a GSP from the per-parameter
@@ -470,7 +493,7 @@ static int first_event(const bk2_inst *b, int mode, int fresh,
   double atol = b->acc.event_atol, rtol = b->acc.event_rtol;
   int first = -1;
   for (int i = 0; i < ng; i++) {
-    int skip = kind[i] < 3 && (fresh & kind[i]);
+    int skip = kind[i] < 3 && ((fresh & kind[i]) || falls_from_zero(&g[i]));
     double lim = first < 0 ? tmax
                            : r[first].t + 2 * (atol + rtol * r[first].t +
                                                root_window(&g[first], &r[first]));
@@ -509,6 +532,25 @@ static int first_event(const bk2_inst *b, int mode, int fresh,
   return SC_OK;
 }
 
+/* The slope of the stuck block's threshold guard where it reaches zero,
+ * for a trigger the search took at the onset itself: the guard's exact
+ * value there, gap = (1 + 2 alpha)(d - d*) < 0 up to sign, lies within
+ * the rounding of its terms (next to d* with V_s ~ 0: a double root at
+ * d*), so the root is somewhere in the first ~sqrt(rounding / g'') of
+ * the phase and g'(0) ~ (1 + alpha) V_s is not its slope.  The event
+ * time is still within rounding (f keeps its promise), but f' = -dg/dd /
+ * slope needs the slope at the root: from g = gap + g1 t + g2 t^2 / 2,
+ * sqrt(g1^2 - 2 g2 gap) (the cubic term is below rounding over so short a
+ * time).  NaN (f' refused with a message) if that quadratic never
+ * reaches zero.  Derivatives only: the value-only path takes the same
+ * event at the same time. */
+static double onset_trigger_slope(const sc_guard *g, double gap) {
+  double g1, g2;
+  sc_guard_eval(g, 0, NULL, &g1, &g2);
+  double s2 = g1 * g1 - 2 * g2 * gap;
+  return s2 > 0 ? sqrt(s2) : NAN;
+}
+
 /* One slip phase with exact flows: find its end (the first event, or the
  * event the code forces), the next mode, and the state there.  `fresh`
  * bit i-1: block i started slipping at this phase's start (U_i = Vs by
@@ -538,6 +580,9 @@ static int exact_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
     int st = first_event(b, mode, fresh, g, kind, ng, tmax, r, &first, &both,
                          &ev->steps, msg);
     if (st) return st;
+    if (ev->onset && kind[first] == BK2_EV_THRESHOLD && r[first].t == 0 &&
+        ev->onset_gap < 0)
+      r[first].slope = onset_trigger_slope(&g[first], ev->onset_gap);
   } else {
     /* Follow the code: the forced guard's first rise through zero after
      * its first `skip` local maxima; the other guards are not taken. */
