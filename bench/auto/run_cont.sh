@@ -1,18 +1,18 @@
 #!/bin/sh
 # Side-by-side timing of slipcont and AUTO-07p on the logistic flips and
 # the period-3 fold (docs/performance.md).  Run from the repository root
-# after building build-cont-nw (or set BUILD); needs the Debian package
+# after building `build` (or set BUILD); needs the Debian package
 # auto-07p and gfortran.
 set -e
-BUILD=${BUILD:-build-cont-nw}
+BUILD=${BUILD:-build}
 ROOT=$(pwd)
 WORK=$(mktemp -d)
-gcc -O2 -std=c11 -I"$ROOT/include" continuation/bench_auto/cont_bench.c \
+gcc -O2 -std=c11 -I"$ROOT/include" bench/auto/cont_bench.c \
   "$BUILD/libslipcont.a" -lklu -lamd -lcolamd -lbtf -lsuitesparseconfig \
-  -llapack -lblas -lgsl -lgslcblas -linih -fopenmp -lm -o "$WORK/cont_bench"
+  -llapack -lblas -lgsl -lgslcblas -linih -lquadmath -fopenmp -lm -o "$WORK/cont_bench"
 "$WORK/cont_bench"
-cp continuation/bench_auto/*.f90 continuation/bench_auto/c.* \
-   continuation/bench_auto/*.auto "$WORK"
+cp bench/auto/logistic.f90 bench/auto/logistic3.f90 bench/auto/c.cascade \
+   bench/auto/c.fold bench/auto/cascade.auto bench/auto/fold.auto "$WORK"
 cd "$WORK"
 export PYTHONPATH=/usr/lib/auto-07p/python
 auto-07p cascade.auto > cascade.log 2>&1

@@ -6,12 +6,12 @@ set -e
 BUILD=${BUILD:-build}
 ROOT=$(pwd)
 WORK=$(mktemp -d)
-gcc -O2 -std=c11 -I"$ROOT/include" continuation/bench_auto/curve_bench.c \
+gcc -O2 -std=c11 -I"$ROOT/include" bench/auto/curve_bench.c \
   "$BUILD/libslipcont.a" -lklu -lamd -lcolamd -lbtf -lsuitesparseconfig \
-  -llapack -lblas -lgsl -lgslcblas -linih -fopenmp -lm -o "$WORK/curve_bench"
+  -llapack -lblas -lgsl -lgslcblas -linih -lquadmath -fopenmp -lm -o "$WORK/curve_bench"
 "$WORK/curve_bench"
-cp continuation/bench_auto/cubic.f90 continuation/bench_auto/c.cubic \
-   continuation/bench_auto/curve.auto "$WORK"
+cp bench/auto/cubic.f90 bench/auto/c.curve \
+   bench/auto/curve.auto "$WORK"
 cd "$WORK"
 export PYTHONPATH=/usr/lib/auto-07p/python
 auto-07p curve.auto > curve.log 2>&1
