@@ -160,97 +160,124 @@ static inline void small_sincos(double x, double *s, double *c) {
        z * (1.0 / 20922789888000))))))));
 }
 
-/* g and g' at t near t0, where cos and sin of every term are c0[], s0[]:
- * by angle addition with the small angles w (t - t0). */
-static inline void eval_near(const sc_guard *g, int n, double t0,
+/* cos and sin of x for |x| <= GUARD_TINY_ANGLE: Taylor through x^7 and
+ * x^8 (the truncation is below 1e-22 of x), for the refinement's
+ * iterates, which are that close to its anchor once it has converged. */
+#define GUARD_TINY_ANGLE 0.015625
+static inline void tiny_sincos(double x, double *s, double *c) {
+  double z = x * x;
+  *s = x * (1 + z * (-1.0 / 6 + z * (1.0 / 120 + z * (-1.0 / 5040))));
+  *c = 1 + z * (-0.5 + z * (1.0 / 24 + z * (-1.0 / 720 + z * (1.0 / 40320))));
+}
+
+/* cos and sin of the angle x of one term near the anchor: the shortest
+ * series that is exact to rounding, libm beyond GUARD_SMALL_ANGLE. */
+static inline void near_sincos(double x, double *s, double *c) {
+  double ax = fabs(x);
+  if (ax <= GUARD_TINY_ANGLE) tiny_sincos(x, s, c);
+  else if (ax <= GUARD_SMALL_ANGLE) small_sincos(x, s, c);
+  else *s = sin(x), *c = cos(x);
+}
+
+/* g, g', g'' at t near the anchor, where the arguments are wt0[] (the
+ * rounded products w t0) and cos and sin of them c0[], s0[]: by angle
+ * addition with the small angles fl(w t) - wt0 (a difference of two
+ * rounded products, exact when they are close), so that cos and sin here
+ * are those of the rounded argument fl(w t), as libm's cos(w * t), to an
+ * ulp or two of their value; they go into cs[], sn[].  (Far from the
+ * anchor, libm.) */
+static inline void eval_near(const sc_guard *g, int n, const double *wt0,
                              const double *c0, const double *s0, double t,
-                             double *v, double *d, double *d2) {
-  double x = t - t0, g0 = g->c0 + g->c1 * t, g1 = g->c1, g2 = 0;
+                             double *v, double *d, double *d2, double *cs,
+                             double *sn) {
+  double g0 = g->c0 + g->c1 * t, g1 = g->c1, g2 = 0;
   for (int k = 0; k < n; k++) {
-    double w = g->w[k], sx, cx;
-    if (fabs(w * x) <= GUARD_SMALL_ANGLE) {
-      small_sincos(w * x, &sx, &cx);
+    double w = g->w[k], sx, cx, ck, sk, x = w * t - wt0[k];
+    if (fabs(x) <= GUARD_SMALL_ANGLE) {
+      near_sincos(x, &sx, &cx);
+      ck = c0[k] * cx - s0[k] * sx, sk = s0[k] * cx + c0[k] * sx;
     } else {
-      double sn, cs;
-      sn = sin(w * t), cs = cos(w * t);
-      double a = g->a[k] * cs + g->b[k] * sn;
-      g0 += a, g2 -= w * w * a;
-      g1 += w * (g->b[k] * cs - g->a[k] * sn);
-      continue;
+      sk = sin(w * t), ck = cos(w * t);
     }
-    double cs = c0[k] * cx - s0[k] * sx, sn = s0[k] * cx + c0[k] * sx;
-    double a = g->a[k] * cs + g->b[k] * sn;
+    cs[k] = ck, sn[k] = sk;
+    double a = g->a[k] * ck + g->b[k] * sk;
     g0 += a, g2 -= w * w * a;
-    g1 += w * (g->b[k] * cs - g->a[k] * sn);
+    g1 += w * (g->b[k] * ck - g->a[k] * sk);
   }
   *v = g0, *d = g1, *d2 = g2;
 }
 
 /* Bracketed Halley/Newton on [lo, hi] where g(lo), g(hi) differ in sign
- * and g is monotone: start from the root of the Hermite cubic; stop when g
- * is within rounding of zero, when a step inside the bracket is below the
+ * and g is monotone (g' of one sign).  The start is the inverse cubic
+ * Hermite interpolant: t as a cubic in g through (glo, lo) and (ghi, hi)
+ * with slopes 1/g', evaluated at g = 0 (three independent divisions, no
+ * iteration); it is within O(h^4) of the root, so that one or two steps
+ * of Halley's iteration reach the tolerance.  Stop when g is within
+ * rounding of zero, when a step inside the bracket is below the
  * tolerance (convergence is at least quadratic there, so the step bounds
  * the error, and the slope at the last point is the root's to O(step)),
- * or when the Taylor bound on the next error is below it. */
+ * or when the Taylor bound on the next error is below it.  Each step has
+ * one division on its critical path.  cos and sin of every term at the
+ * returned root go to out->cs, out->sn (a few ulps: the flow at the event
+ * takes them instead of calling libm). */
 static inline void refine_n(const sc_guard *g, int n, const guard_size *z,
                             double M3, double lo, double glo, double dlo,
                             double hi, double ghi, double dhi, double atol,
                             double rtol, sc_root *out) {
-  double t0, c0[SC_GUARD_MAXFREQ], s0[SC_GUARD_MAXFREQ];
-  /* Start from the root of the cubic Hermite interpolant of g and g' at
-   * both ends (a few Newton steps on the cubic, no trigonometry), which
-   * is far closer than the secant point: one or two Newton steps on g
-   * then suffice. */
-  double h = hi - lo, t = lo - glo * h / (ghi - glo);
-  if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);
+  double t0, c0[SC_GUARD_MAXFREQ], s0[SC_GUARD_MAXFREQ], wt0[SC_GUARD_MAXFREQ];
+  double h = hi - lo, rH = 1 / (ghi - glo), u = -glo * rH, t;
   {
-    double c1 = dlo, dg = ghi - glo;
-    double c2 = (3 * dg / h - 2 * dlo - dhi) / h;
-    double c3 = (dlo + dhi - 2 * dg / h) / (h * h);
-    double s = t - lo;
-    for (int it = 0; it < 4; it++) {
-      double p = glo + s * (c1 + s * (c2 + s * c3));
-      double dp = c1 + s * (2 * c2 + 3 * s * c3);
-      double sn = dp != 0 ? s - p / dp : s;
-      if (!(sn > 0 && sn < h)) break;
-      s = sn;
-    }
-    t = lo + s;
+    double u2 = u * u, u3 = u2 * u, ilo = 1 / dlo, ihi = 1 / dhi;
+    double H = ghi - glo;
+    t = lo + h * (3 * u2 - 2 * u3) +
+        H * ((u3 - 2 * u2 + u) * ilo + (u3 - u2) * ihi);
+    if (!(t > lo && t < hi)) t = lo + h * u; /* the secant's point */
+    if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);
   }
   /* cos and sin at the start from libm, once: the iterates stay close to
    * it, where angle addition with small angles is exact to a few ulps. */
   t0 = t;
-  for (int k = 0; k < n; k++)
-    c0[k] = cos(g->w[k] * t0), s0[k] = sin(g->w[k] * t0);
-  double v = 0, d = 0, d2 = 0, bracket = hi - lo;
+  for (int k = 0; k < n; k++) {
+    wt0[k] = g->w[k] * t0;
+    c0[k] = cos(wt0[k]), s0[k] = sin(wt0[k]);
+  }
+  double v = 0, d = 0, d2 = 0, bracket = hi - lo, te = t0, est = 0;
+  double cs[SC_GUARD_MAXFREQ], sn[SC_GUARD_MAXFREQ];
+  int how = 0; /* 1: |g| within rounding, 2: step below tol, 3: Taylor */
   for (int it = 0; it < GUARD_MAX_REFINE; it++) {
-    eval_near(g, n, t0, c0, s0, t, &v, &d, &d2);
+    eval_near(g, n, wt0, c0, s0, t, &v, &d, &d2, cs, sn);
+    te = t;
     if (fabs(v) <= round_at(z, t)) {
-      bracket = 0;
+      how = 1;
       break;
     }
     if ((v > 0) == (glo > 0)) lo = t, glo = v;
     else hi = t;
-    /* Halley's step (Newton's where its correction is not small) */
-    double nt = v / d, corr = 1 - 0.5 * nt * d2 / d;
-    double tn = t - (corr > 0.5 && corr < 2 ? nt / corr : nt);
+    /* Halley's step t - 2 g g' / (2 g'^2 - g g''), Newton's where its
+     * correction factor (2 g'^2 - g g'') / (2 g'^2) is outside (1/2, 2) */
+    double dd = d * d, den = 2 * dd - v * d2, num = 2 * v * d;
+    if (!(den > dd && den < 4 * dd)) num = v, den = d;
+    double tn = t - num / den;
     if (d != 0 && tn > lo && tn < hi) {
-      double dl = fabs(tn - t);
-      if (dl <= tol_at(tn, atol, rtol)) {
+      double dl = fabs(tn - t), tol = tol_at(tn, atol, rtol);
+      if (dl <= tol) {
         bracket = dl;
         t = tn;
+        how = 2;
         break;
       }
       /* Taylor: the root r has g(t) + g'(t)(r - t) + g''(xi)(r - t)^2/2
        * = 0, so Newton's point is within |g''| (r - t)^2 / (2 |g'|) of r,
        * with |r - t| <= 2 dl once that bound is below dl, and Halley's
-       * within as much again: if the bound is below the tolerance, stop
-       * without evaluating g again (slope moved to tn to first order). */
-      double est = 2 * (fabs(d2) + 2 * M3 * dl) * dl * dl / fabs(d) * 2;
-      if (est <= tol_at(tn, atol, rtol) && est < 0.25 * dl) {
-        bracket = est;
+       * within as much again: if the bound est is below the tolerance,
+       * stop without evaluating g again (slope moved to tn to first
+       * order).  Tested multiplied out: est |g'| against tol |g'|. */
+      double estd = 4 * (fabs(d2) + 2 * M3 * dl) * dl * dl, ad = fabs(d);
+      if (estd <= tol * ad && estd < 0.25 * dl * ad) {
+        est = estd / ad;
         d += d2 * (tn - t);
         t = tn;
+        how = 3;
         break;
       }
       t = tn;
@@ -260,6 +287,18 @@ static inline void refine_n(const sc_guard *g, int n, const guard_size *z,
     bracket = hi - lo;
     if (bracket <= tol_at(hi, atol, rtol)) break;
   }
+  if (how == 3) bracket = est;
+  else if (how == 1) bracket = 0;
+  /* cos and sin at the returned t: from the last evaluation's, rotated */
+  if (t != te) {
+    for (int k = 0; k < n; k++) {
+      double sx, cx, ck = cs[k], sk = sn[k];
+      near_sincos(g->w[k] * t - g->w[k] * te, &sx, &cx);
+      cs[k] = ck * cx - sk * sx, sn[k] = sk * cx + ck * sx;
+    }
+  }
+  for (int k = 0; k < n; k++) out->cs[k] = cs[k], out->sn[k] = sn[k];
+  out->ntrig = n;
   out->t = t;
   out->bracket = bracket;
   out->found = 1;
@@ -700,6 +739,7 @@ int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
   out->slope = 0;
   out->curv = 0;
   out->steps = 0;
+  out->ntrig = 0;
   if (!g || g->n < 0 || g->n > SC_GUARD_MAXFREQ || !isfinite(g->c0) ||
       !isfinite(g->c1) || !(tmax > 0) || !isfinite(tmax) || !(atol > 0) ||
       !(rtol >= 0))
