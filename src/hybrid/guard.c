@@ -499,12 +499,14 @@ static int march(const guard_ctx *c, double t, double tend, guard_terms *e,
  * march decided. */
 #define GUARD_ROT_ULPS 4.0
 
-/* Minimum of the Bernstein coefficients of the cubic with values p0, p1
- * and slopes times the interval q0, q1 at the ends: a lower bound of the
- * cubic over the interval (its graph lies in their convex hull). */
-static inline double bern_min(double p0, double q0, double p1, double q1) {
-  double b1 = p0 + q0 / 3, b2 = p1 - q1 / 3;
-  return min2(min2(p0, p1), min2(b1, b2));
+/* Three times the minimum of the Bernstein coefficients of the cubic
+ * with values p0, p1 and slopes times the interval q0, q1 at the ends
+ * (p0, p0 + q0/3, p1 - q1/3, p1): three times a lower bound of the cubic
+ * over the interval (its graph lies in their convex hull).  Scaled by 3,
+ * so that no division is on the march's path; compared with 3 margins. */
+static inline double bern_min3(double p0, double q0, double p1, double q1) {
+  double a0 = 3 * p0, a1 = 3 * p1;
+  return min2(min2(a0, a1), min2(a0 + q0, a1 - q1));
 }
 
 /* Exact minimum over s in [0, h] of the cubic Hermite interpolant of
@@ -663,8 +665,8 @@ static inline int grid_march_n(const guard_ctx *c, int n, double wmax,
      * minimum, whose own arithmetic rounds too) */
     if (same) {
       double marg = rem0 + E + h * E1;
-      if (bern_min(sigma * g0, sigma * ve[1] * h, sigma * G0,
-                   sigma * vf[1] * h) > marg ||
+      if (bern_min3(sigma * g0, sigma * ve[1] * h, sigma * G0,
+                    sigma * vf[1] * h) > 3 * marg ||
           hermite_min(sigma * g0, sigma * ve[1], sigma * G0, sigma * vf[1],
                       h) > 2 * marg)
         decided = 1;
@@ -672,9 +674,9 @@ static inline int grid_march_n(const guard_ctx *c, int n, double wmax,
     /* (B) g' keeps one sign: g strictly monotone on [t, tn] */
     if (!decided && sigma != 0) {
       double s1 = ve[1] > 0 ? 1 : -1;
-      double dmin = bern_min(s1 * ve[1], s1 * ve[2] * h, s1 * vf[1],
-                             s1 * vf[2] * h);
-      if (dmin > rem1 + E1 + h * E2) {
+      double dmin3 = bern_min3(s1 * ve[1], s1 * ve[2] * h, s1 * vf[1],
+                               s1 * vf[2] * h);
+      if (dmin3 > 3 * (rem1 + E1 + h * E2)) {
         if (same || (at_start_root && s1 == sigma && s1 * G0 > E)) {
           decided = 1; /* monotone, no sign change past the start */
         } else if (!at_start_root && sigma * G0 <= 0 && fabs(G0) > E) {
