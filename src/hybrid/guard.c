@@ -26,6 +26,7 @@
 #include <math.h>
 
 #include "hybrid/hybrid_impl.h"
+#include "hybrid/trig.h"
 #include "slipcont/hybrid.h"
 
 /* Rounding bound on one evaluation of g: a few ulps of each term's size,
@@ -146,18 +147,24 @@ static double amplitude_bound(const sc_guard *g, const guard_terms *e,
 }
 
 /* cos and sin of x for |x| <= GUARD_SMALL_ANGLE by their Taylor
- * polynomials in x^2 (through x^15 and x^16: the truncation is below
+ * polynomials in z = x^2 (through x^15 and x^16: the truncation is below
  * 1e-18, the rounding a few ulps, as libm's), several times cheaper than
- * a libm call. */
+ * a libm call.  Estrin's scheme (pairs, then z^2, z^4): the march and the
+ * refinement wait for these values, and a Horner chain of eight
+ * multiply-adds is twice as long. */
 #define GUARD_SMALL_ANGLE 0.6
 static inline void small_sincos(double x, double *s, double *c) {
-  double z = x * x;
-  *s = x * (1 + z * (-1.0 / 6 + z * (1.0 / 120 + z * (-1.0 / 5040 +
-       z * (1.0 / 362880 + z * (-1.0 / 39916800 + z * (1.0 / 6227020800 +
-       z * (-1.0 / 1307674368000))))))));
-  *c = 1 + z * (-0.5 + z * (1.0 / 24 + z * (-1.0 / 720 + z * (1.0 / 40320 +
-       z * (-1.0 / 3628800 + z * (1.0 / 479001600 + z * (-1.0 / 87178291200 +
-       z * (1.0 / 20922789888000))))))));
+  double z = x * x, z2 = z * z, z4 = z2 * z2;
+  double s01 = -1.0 / 6 + z * (1.0 / 120);
+  double s23 = -1.0 / 5040 + z * (1.0 / 362880);
+  double s45 = -1.0 / 39916800 + z * (1.0 / 6227020800);
+  double S = (s01 + z2 * s23) + z4 * (s45 + z2 * (-1.0 / 1307674368000));
+  double c01 = -0.5 + z * (1.0 / 24), c23 = -1.0 / 720 + z * (1.0 / 40320);
+  double c45 = -1.0 / 3628800 + z * (1.0 / 479001600);
+  double c67 = -1.0 / 87178291200 + z * (1.0 / 20922789888000);
+  double C = (c01 + z2 * c23) + z4 * (c45 + z2 * c67);
+  *s = x + x * (z * S);
+  *c = 1 + z * C;
 }
 
 /* cos and sin of x for |x| <= GUARD_TINY_ANGLE: Taylor through x^7 and
@@ -171,21 +178,22 @@ static inline void tiny_sincos(double x, double *s, double *c) {
 }
 
 /* cos and sin of the angle x of one term near the anchor: the shortest
- * series that is exact to rounding, libm beyond GUARD_SMALL_ANGLE. */
+ * series that is exact to rounding, sc_fast_sincos beyond
+ * GUARD_SMALL_ANGLE. */
 static inline void near_sincos(double x, double *s, double *c) {
   double ax = fabs(x);
   if (ax <= GUARD_TINY_ANGLE) tiny_sincos(x, s, c);
   else if (ax <= GUARD_SMALL_ANGLE) small_sincos(x, s, c);
-  else *s = sin(x), *c = cos(x);
+  else sc_fast_sincos(x, s, c);
 }
 
 /* g, g', g'' at t near the anchor, where the arguments are wt0[] (the
  * rounded products w t0) and cos and sin of them c0[], s0[]: by angle
  * addition with the small angles fl(w t) - wt0 (a difference of two
  * rounded products, exact when they are close), so that cos and sin here
- * are those of the rounded argument fl(w t), as libm's cos(w * t), to an
- * ulp or two of their value; they go into cs[], sn[].  (Far from the
- * anchor, libm.) */
+ * are those of the rounded argument fl(w t), as libm's cos(w * t), to a
+ * few ulps of their value; they go into cs[], sn[].  (Far from the
+ * anchor, sc_fast_sincos of fl(w t).) */
 static inline void eval_near(const sc_guard *g, int n, const double *wt0,
                              const double *c0, const double *s0, double t,
                              double *v, double *d, double *d2, double *cs,
@@ -197,7 +205,7 @@ static inline void eval_near(const sc_guard *g, int n, const double *wt0,
       near_sincos(x, &sx, &cx);
       ck = c0[k] * cx - s0[k] * sx, sk = s0[k] * cx + c0[k] * sx;
     } else {
-      sk = sin(w * t), ck = cos(w * t);
+      sc_fast_sincos(w * t, &sk, &ck);
     }
     cs[k] = ck, sn[k] = sk;
     double a = g->a[k] * ck + g->b[k] * sk;
@@ -234,12 +242,13 @@ static inline void refine_n(const sc_guard *g, int n, const guard_size *z,
     if (!(t > lo && t < hi)) t = lo + h * u; /* the secant's point */
     if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);
   }
-  /* cos and sin at the start from libm, once: the iterates stay close to
-   * it, where angle addition with small angles is exact to a few ulps. */
+  /* cos and sin at the start, once (sc_fast_sincos, within 2 ulps; the
+   * guard's rounding bound allows 8): the iterates stay close to it,
+   * where angle addition with small angles is exact to a few ulps. */
   t0 = t;
   for (int k = 0; k < n; k++) {
     wt0[k] = g->w[k] * t0;
-    c0[k] = cos(wt0[k]), s0[k] = sin(wt0[k]);
+    sc_fast_sincos(wt0[k], &s0[k], &c0[k]);
   }
   double v = 0, d = 0, d2 = 0, bracket = hi - lo, te = t0, est = 0;
   double cs[SC_GUARD_MAXFREQ], sn[SC_GUARD_MAXFREQ];
@@ -495,8 +504,8 @@ static int march(const guard_ctx *c, double t, double tend, guard_terms *e,
 /* Each rotation adds at most GUARD_ROT_ULPS ulps to the error of cos and
  * sin (two products and a sum, with the rotation's own cos and sin within
  * half an ulp, and |(cos, sin)| within a few ulps of 1); the values
- * restart exact from sincos at 0 and after every interval the adaptive
- * march decided. */
+ * restart exact at 0, and within SC_FAST_TRIG_ULPS after every interval
+ * the adaptive march decided. */
 #define GUARD_ROT_ULPS 4.0
 
 /* Three times the minimum of the Bernstein coefficients of the cubic
@@ -550,13 +559,11 @@ static inline void vals_from(const sc_guard *g, int n, double t,
   v[0] = g0, v[1] = g1, v[2] = g2;
 }
 
-/* cos and sin of every term at t, from libm. */
+/* cos and sin of every term at t (sc_fast_sincos: within
+ * SC_FAST_TRIG_ULPS of the exact values). */
 static inline void anchor(const sc_guard *g, double t, double *cs,
                           double *sn) {
-  for (int k = 0; k < g->n; k++) {
-    cs[k] = cos(g->w[k] * t);
-    sn[k] = sin(g->w[k] * t);
-  }
+  for (int k = 0; k < g->n; k++) sc_fast_sincos(g->w[k] * t, &sn[k], &cs[k]);
 }
 
 /* Steps of the grid march: dt, 2 dt, 4 dt (a third of the fastest
@@ -564,12 +571,12 @@ static inline void anchor(const sc_guard *g, double t, double *cs,
 #define GUARD_GRID_LEVELS 3
 
 /* cos, sin of w h for every term into c[], s[]: the Taylor series for
- * small angles, libm otherwise. */
+ * small angles, sc_fast_sincos otherwise. */
 static void rotation(const sc_guard *g, double h, double *c, double *s) {
   for (int k = 0; k < g->n; k++) {
     double x = g->w[k] * h;
     if (x <= GUARD_SMALL_ANGLE) small_sincos(x, &s[k], &c[k]);
-    else s[k] = sin(x), c[k] = cos(x);
+    else sc_fast_sincos(x, &s[k], &c[k]);
   }
 }
 
@@ -713,7 +720,7 @@ static inline int grid_march_n(const guard_ctx *c, int n, double wmax,
     q++;
     anchor(g, t, cs, sn);
     vals_from(g, n, t, cs, sn, ve);
-    rerr = 0;
+    rerr = SC_FAST_TRIG_ULPS;
     m = 0;
   }
   return 0;
