@@ -23,6 +23,7 @@
 
 typedef struct {
   double x[MAXPT], y[MAXPT], d[MAXPT], mult[MAXPT];
+  char itin[MAXPT][SC_ITIN_LEN]; /* the itinerary the curve reports there */
   long n;
   sc_curve_special sp[32];
   int nsp;
@@ -33,6 +34,8 @@ static int on_point(void *ctx, const sc_curve_point *p) {
   if (c->n < MAXPT) {
     c->x[c->n] = p->x, c->y[c->n] = p->y, c->d[c->n] = p->d;
     c->mult[c->n] = p->multiplier;
+    snprintf(c->itin[c->n], sizeof c->itin[c->n], "%s",
+             p->itinerary ? p->itinerary : "");
     c->n++;
   }
   return 0;
@@ -65,10 +68,14 @@ static const sc_curve_special *find(const collect *c, const char *label) {
 /* The period-4 orbit through d at (alpha, beta), recomputed by the map
  * layer: |f^4(d) - d| and the smallest |m| of its grazing borders, on
  * either side of the border (the natural itinerary, and each of its
- * grazing borders' own codes: at the border they are the same orbit). */
-static void residuals_kind(sc_map *m, double alpha, double beta, double d,
-                           sc_border_kind kind, double *F, double *mgr,
-                           double *mult) {
+ * grazing borders' own codes: at the border they are the same orbit).
+ * force: NULL, or the codes to follow instead of the natural itinerary;
+ * codes_out, itin (SC_ITIN_LEN chars): NULL, or where the codes and the
+ * itinerary followed go. */
+static void residuals_full(sc_map *m, double alpha, double beta, double d,
+                           sc_border_kind kind, const sc_itin_code *force,
+                           double *F, double *mgr, double *mult,
+                           sc_itin_code *codes_out, char *itin) {
   sc_map_set_param_by_name(m, "alpha", alpha, NULL);
   sc_map_set_param_by_name(m, "beta", beta, NULL);
   sc_border bb[256];
@@ -76,8 +83,12 @@ static void residuals_kind(sc_map *m, double alpha, double beta, double d,
   sc_itin_code codes[4], alt[4];
   sc_map_value v;
   *F = *mgr = HUGE_VAL;
-  if (sc_map_iterate_ex(m, d, 4, SC_EVAL_DERIV, NULL, codes, &bl, &v, NULL))
+  if (itin) itin[0] = '\0';
+  if (sc_map_iterate_ex(m, d, 4, SC_EVAL_DERIV | SC_EVAL_ITINERARY, force,
+                        codes, &bl, &v, NULL))
     return;
+  if (codes_out) memcpy(codes_out, codes, sizeof codes);
+  if (itin) snprintf(itin, SC_ITIN_LEN, "%s", v.itinerary);
   *F = fabs(v.f - d);
   *mult = v.dfdd;
   size_t nb = bl.n < bl.cap ? bl.n : bl.cap;
@@ -100,6 +111,12 @@ static void residuals_kind(sc_map *m, double alpha, double beta, double d,
       *mult = va.dfdd;
     }
   }
+}
+
+static void residuals_kind(sc_map *m, double alpha, double beta, double d,
+                           sc_border_kind kind, double *F, double *mgr,
+                           double *mult) {
+  residuals_full(m, alpha, beta, d, kind, NULL, F, mgr, mult, NULL, NULL);
 }
 
 static void residuals(sc_map *m, double alpha, double beta, double d,
@@ -182,15 +199,44 @@ static void test_graze4(void) {
   /* recomputed on a map of its own */
   sc_map *m2 = fig58(3, 2.5);
   double worstF = 0, worstM = 0;
+  /* A point where the curve stops at another border of the orbit (here
+   * BR: two re-sticks at once) is within that border's tie window, where
+   * the natural itinerary may take either side.  There the orbit is
+   * recomputed along the codes the curve followed (those of its last
+   * point whose natural itinerary was the curve's), and must take the
+   * curve's itinerary. */
+  sc_itin_code last[4];
+  int have = 0, forced = 0, unlike = 0;
   for (long i = 0; i < c.n; i++) {
     double F, mg, mu;
-    residuals(m2, c.x[i], c.y[i], c.d[i], &F, &mg, &mu);
+    sc_itin_code codes[4];
+    char itin[SC_ITIN_LEN];
+    residuals_full(m2, c.x[i], c.y[i], c.d[i], SC_BORDER_GRAZING, NULL, &F,
+                   &mg, &mu, codes, itin);
+    if (strcmp(itin, c.itin[i]) == 0) {
+      memcpy(last, codes, sizeof last);
+      have = 1;
+    } else if (have) {
+      forced++;
+      residuals_full(m2, c.x[i], c.y[i], c.d[i], SC_BORDER_GRAZING, last,
+                     &F, &mg, &mu, NULL, itin);
+      if (strcmp(itin, c.itin[i]) != 0) unlike++;
+      printf("  point %ld: natural itinerary not the curve's (%s); along "
+             "the curve's codes %s: |F| %.3g, |m_GR| %.3g\n",
+             i, c.itin[i], itin, F, mg);
+    } else {
+      unlike++;
+    }
     worstF = fmax(worstF, F);
     worstM = fmax(worstM, mg);
   }
   /* 1e-10: the curves' requirement (docs/curves.md) */
   tu_true(worstF <= 1e-10, "%s: %.3g (tolerance %.3g)", "graze curve: max |f^4(d) - d|", worstF, 1e-10);
   tu_true(worstM <= 1e-10, "%s: %.3g (tolerance %.3g)", "graze curve: max |m_GR|", worstM, 1e-10);
+  tu_true(unlike == 0 && forced <= 2,
+          "graze curve: every point recomputed along the curve's itinerary "
+          "(%d of them at another border's tie; %d not)",
+          forced, unlike);
   /* the flip of the orbit on the grazing border */
   const sc_curve_special *pd = find(&c, "PD");
   tu_true(pd != NULL, "%s", "graze curve: a PD located");

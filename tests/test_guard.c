@@ -1,9 +1,14 @@
 /* Certified first-root location (src/hybrid/guard.c) against an
  * independent dense search, on random guards and on constructed
- * near-tangent cases that reach zero by 1e-12 or miss it by 1e-12. */
+ * near-tangent cases that reach zero by 1e-12 or miss it by 1e-12; the
+ * cos and sin a root hands over (sc_root's cs, sn) against libm at the
+ * root; the search's own sin and cos (src/hybrid/trig.h) against libm. */
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 
+#include "hybrid/hybrid_impl.h"
+#include "hybrid/trig.h"
 #include "slipcont/hybrid.h"
 #include "test_util.h"
 
@@ -64,10 +69,37 @@ static double dense_first_root(const sc_guard *g, double tmax, int skip) {
   }
 }
 
+/* sc_fast_sincos against libm: within SC_FAST_TRIG_ULPS ulps of 1 on
+ * random arguments in [-1000, 1000], next to multiples of pi/2 (where the
+ * reduction cancels) and at 0; libm's own values beyond its range. */
+static void test_fast_sincos(void) {
+  double worst = 0;
+  for (int i = 0; i < 1000000; i++) {
+    double x = i % 4 == 0   ? uni(-1000, 1000)
+               : i % 4 == 1 ? uni(-2, 2)
+               : i % 4 == 2 ? uni(-40, 40)
+                            : (double)(i % 1000 - 500) * (SC_PI / 2) *
+                                  (1 + uni(-1e-15, 1e-15));
+    double s, c;
+    sc_fast_sincos(x, &s, &c);
+    worst = fmax(worst, fmax(fabs(s - sin(x)), fabs(c - cos(x))));
+  }
+  tu_true(worst <= SC_FAST_TRIG_ULPS * DBL_EPSILON,
+          "fast sincos: largest difference from libm %.3g (bound %.3g)",
+          worst, SC_FAST_TRIG_ULPS * DBL_EPSILON);
+  double s, c;
+  sc_fast_sincos(0, &s, &c);
+  tu_true(s == 0 && c == 1, "fast sincos at 0: (%g, %g)", s, c);
+  sc_fast_sincos(3e7, &s, &c);
+  tu_true(s == sin(3e7) && c == cos(3e7), "fast sincos beyond its range: libm");
+}
+
 int main(void) {
+  test_fast_sincos();
   /* Random guards of the shape bk2 produces: a constant, sometimes a
    * linear term, two incommensurate frequencies. */
-  int misses = 0, wrong = 0, n = 300;
+  int misses = 0, wrong = 0, n = 300, ntrig = 0;
+  double trig_err = 0;
   for (int i = 0; i < n; i++) {
     sc_guard g = {0};
     g.n = 2;
@@ -84,7 +116,20 @@ int main(void) {
     if (ref >= 0 && !r.found) misses++;
     else if (ref >= 0 && fabs(r.t - ref) > 1e-9) wrong++;
     else if (ref < 0 && r.found && fabs(geval(&g, r.t)) > 1e-12) wrong++;
+    /* cos and sin handed over: those of the rounded argument w t */
+    if (r.found && r.ntrig) {
+      ntrig++;
+      for (int k = 0; k < r.ntrig; k++)
+        trig_err = fmax(trig_err, fmax(fabs(r.cs[k] - cos(g.w[k] * r.t)),
+                                       fabs(r.sn[k] - sin(g.w[k] * r.t))));
+    }
   }
+  tu_true(ntrig >= n / 4, "random guards: %d roots hand over cos and sin",
+          ntrig);
+  tu_true(trig_err <= 8 * DBL_EPSILON,
+          "random guards: handed-over cos and sin within %.3g of libm's at "
+          "the root (8 ulps)",
+          trig_err);
   tu_int("random guards: roots missed against the dense search", misses, 0);
   tu_int("random guards: roots located elsewhere", wrong, 0);
 

@@ -26,6 +26,7 @@
 #include <math.h>
 
 #include "hybrid/hybrid_impl.h"
+#include "hybrid/trig.h"
 #include "slipcont/hybrid.h"
 
 /* Rounding bound on one evaluation of g: a few ulps of each term's size,
@@ -146,111 +147,146 @@ static double amplitude_bound(const sc_guard *g, const guard_terms *e,
 }
 
 /* cos and sin of x for |x| <= GUARD_SMALL_ANGLE by their Taylor
- * polynomials in x^2 (through x^15 and x^16: the truncation is below
+ * polynomials in z = x^2 (through x^15 and x^16: the truncation is below
  * 1e-18, the rounding a few ulps, as libm's), several times cheaper than
- * a libm call. */
+ * a libm call.  Estrin's scheme (pairs, then z^2, z^4): the march and the
+ * refinement wait for these values, and a Horner chain of eight
+ * multiply-adds is twice as long. */
 #define GUARD_SMALL_ANGLE 0.6
 static inline void small_sincos(double x, double *s, double *c) {
-  double z = x * x;
-  *s = x * (1 + z * (-1.0 / 6 + z * (1.0 / 120 + z * (-1.0 / 5040 +
-       z * (1.0 / 362880 + z * (-1.0 / 39916800 + z * (1.0 / 6227020800 +
-       z * (-1.0 / 1307674368000))))))));
-  *c = 1 + z * (-0.5 + z * (1.0 / 24 + z * (-1.0 / 720 + z * (1.0 / 40320 +
-       z * (-1.0 / 3628800 + z * (1.0 / 479001600 + z * (-1.0 / 87178291200 +
-       z * (1.0 / 20922789888000))))))));
+  double z = x * x, z2 = z * z, z4 = z2 * z2;
+  double s01 = -1.0 / 6 + z * (1.0 / 120);
+  double s23 = -1.0 / 5040 + z * (1.0 / 362880);
+  double s45 = -1.0 / 39916800 + z * (1.0 / 6227020800);
+  double S = (s01 + z2 * s23) + z4 * (s45 + z2 * (-1.0 / 1307674368000));
+  double c01 = -0.5 + z * (1.0 / 24), c23 = -1.0 / 720 + z * (1.0 / 40320);
+  double c45 = -1.0 / 3628800 + z * (1.0 / 479001600);
+  double c67 = -1.0 / 87178291200 + z * (1.0 / 20922789888000);
+  double C = (c01 + z2 * c23) + z4 * (c45 + z2 * c67);
+  *s = x + x * (z * S);
+  *c = 1 + z * C;
 }
 
-/* g and g' at t near t0, where cos and sin of every term are c0[], s0[]:
- * by angle addition with the small angles w (t - t0). */
-static inline void eval_near(const sc_guard *g, int n, double t0,
+/* cos and sin of x for |x| <= GUARD_TINY_ANGLE: Taylor through x^7 and
+ * x^8 (the truncation is below 1e-22 of x), for the refinement's
+ * iterates, which are that close to its anchor once it has converged. */
+#define GUARD_TINY_ANGLE 0.015625
+static inline void tiny_sincos(double x, double *s, double *c) {
+  double z = x * x;
+  *s = x * (1 + z * (-1.0 / 6 + z * (1.0 / 120 + z * (-1.0 / 5040))));
+  *c = 1 + z * (-0.5 + z * (1.0 / 24 + z * (-1.0 / 720 + z * (1.0 / 40320))));
+}
+
+/* cos and sin of the angle x of one term near the anchor: the shortest
+ * series that is exact to rounding, sc_fast_sincos beyond
+ * GUARD_SMALL_ANGLE. */
+static inline void near_sincos(double x, double *s, double *c) {
+  double ax = fabs(x);
+  if (ax <= GUARD_TINY_ANGLE) tiny_sincos(x, s, c);
+  else if (ax <= GUARD_SMALL_ANGLE) small_sincos(x, s, c);
+  else sc_fast_sincos(x, s, c);
+}
+
+/* g, g', g'' at t near the anchor, where the arguments are wt0[] (the
+ * rounded products w t0) and cos and sin of them c0[], s0[]: by angle
+ * addition with the small angles fl(w t) - wt0 (a difference of two
+ * rounded products, exact when they are close), so that cos and sin here
+ * are those of the rounded argument fl(w t), as libm's cos(w * t), to a
+ * few ulps of their value; they go into cs[], sn[].  (Far from the
+ * anchor, sc_fast_sincos of fl(w t).) */
+static inline void eval_near(const sc_guard *g, int n, const double *wt0,
                              const double *c0, const double *s0, double t,
-                             double *v, double *d, double *d2) {
-  double x = t - t0, g0 = g->c0 + g->c1 * t, g1 = g->c1, g2 = 0;
+                             double *v, double *d, double *d2, double *cs,
+                             double *sn) {
+  double g0 = g->c0 + g->c1 * t, g1 = g->c1, g2 = 0;
   for (int k = 0; k < n; k++) {
-    double w = g->w[k], sx, cx;
-    if (fabs(w * x) <= GUARD_SMALL_ANGLE) {
-      small_sincos(w * x, &sx, &cx);
+    double w = g->w[k], sx, cx, ck, sk, x = w * t - wt0[k];
+    if (fabs(x) <= GUARD_SMALL_ANGLE) {
+      near_sincos(x, &sx, &cx);
+      ck = c0[k] * cx - s0[k] * sx, sk = s0[k] * cx + c0[k] * sx;
     } else {
-      double sn, cs;
-      sn = sin(w * t), cs = cos(w * t);
-      double a = g->a[k] * cs + g->b[k] * sn;
-      g0 += a, g2 -= w * w * a;
-      g1 += w * (g->b[k] * cs - g->a[k] * sn);
-      continue;
+      sc_fast_sincos(w * t, &sk, &ck);
     }
-    double cs = c0[k] * cx - s0[k] * sx, sn = s0[k] * cx + c0[k] * sx;
-    double a = g->a[k] * cs + g->b[k] * sn;
+    cs[k] = ck, sn[k] = sk;
+    double a = g->a[k] * ck + g->b[k] * sk;
     g0 += a, g2 -= w * w * a;
-    g1 += w * (g->b[k] * cs - g->a[k] * sn);
+    g1 += w * (g->b[k] * ck - g->a[k] * sk);
   }
   *v = g0, *d = g1, *d2 = g2;
 }
 
 /* Bracketed Halley/Newton on [lo, hi] where g(lo), g(hi) differ in sign
- * and g is monotone: start from the root of the Hermite cubic; stop when g
- * is within rounding of zero, when a step inside the bracket is below the
+ * and g is monotone (g' of one sign).  The start is the inverse cubic
+ * Hermite interpolant: t as a cubic in g through (glo, lo) and (ghi, hi)
+ * with slopes 1/g', evaluated at g = 0 (three independent divisions, no
+ * iteration); it is within O(h^4) of the root, so that one or two steps
+ * of Halley's iteration reach the tolerance.  Stop when g is within
+ * rounding of zero, when a step inside the bracket is below the
  * tolerance (convergence is at least quadratic there, so the step bounds
  * the error, and the slope at the last point is the root's to O(step)),
- * or when the Taylor bound on the next error is below it. */
+ * or when the Taylor bound on the next error is below it.  Each step has
+ * one division on its critical path.  cos and sin of every term at the
+ * returned root go to out->cs, out->sn (a few ulps: the flow at the event
+ * takes them instead of calling libm). */
 static inline void refine_n(const sc_guard *g, int n, const guard_size *z,
                             double M3, double lo, double glo, double dlo,
                             double hi, double ghi, double dhi, double atol,
                             double rtol, sc_root *out) {
-  double t0, c0[SC_GUARD_MAXFREQ], s0[SC_GUARD_MAXFREQ];
-  /* Start from the root of the cubic Hermite interpolant of g and g' at
-   * both ends (a few Newton steps on the cubic, no trigonometry), which
-   * is far closer than the secant point: one or two Newton steps on g
-   * then suffice. */
-  double h = hi - lo, t = lo - glo * h / (ghi - glo);
-  if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);
+  double t0, c0[SC_GUARD_MAXFREQ], s0[SC_GUARD_MAXFREQ], wt0[SC_GUARD_MAXFREQ];
+  double h = hi - lo, rH = 1 / (ghi - glo), u = -glo * rH, t;
   {
-    double c1 = dlo, dg = ghi - glo;
-    double c2 = (3 * dg / h - 2 * dlo - dhi) / h;
-    double c3 = (dlo + dhi - 2 * dg / h) / (h * h);
-    double s = t - lo;
-    for (int it = 0; it < 4; it++) {
-      double p = glo + s * (c1 + s * (c2 + s * c3));
-      double dp = c1 + s * (2 * c2 + 3 * s * c3);
-      double sn = dp != 0 ? s - p / dp : s;
-      if (!(sn > 0 && sn < h)) break;
-      s = sn;
-    }
-    t = lo + s;
+    double u2 = u * u, u3 = u2 * u, ilo = 1 / dlo, ihi = 1 / dhi;
+    double H = ghi - glo;
+    t = lo + h * (3 * u2 - 2 * u3) +
+        H * ((u3 - 2 * u2 + u) * ilo + (u3 - u2) * ihi);
+    if (!(t > lo && t < hi)) t = lo + h * u; /* the secant's point */
+    if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);
   }
-  /* cos and sin at the start from libm, once: the iterates stay close to
-   * it, where angle addition with small angles is exact to a few ulps. */
+  /* cos and sin at the start, once (sc_fast_sincos, within 2 ulps; the
+   * guard's rounding bound allows 8): the iterates stay close to it,
+   * where angle addition with small angles is exact to a few ulps. */
   t0 = t;
-  for (int k = 0; k < n; k++)
-    c0[k] = cos(g->w[k] * t0), s0[k] = sin(g->w[k] * t0);
-  double v = 0, d = 0, d2 = 0, bracket = hi - lo;
+  for (int k = 0; k < n; k++) {
+    wt0[k] = g->w[k] * t0;
+    sc_fast_sincos(wt0[k], &s0[k], &c0[k]);
+  }
+  double v = 0, d = 0, d2 = 0, bracket = hi - lo, te = t0, est = 0;
+  double cs[SC_GUARD_MAXFREQ], sn[SC_GUARD_MAXFREQ];
+  int how = 0; /* 1: |g| within rounding, 2: step below tol, 3: Taylor */
   for (int it = 0; it < GUARD_MAX_REFINE; it++) {
-    eval_near(g, n, t0, c0, s0, t, &v, &d, &d2);
+    eval_near(g, n, wt0, c0, s0, t, &v, &d, &d2, cs, sn);
+    te = t;
     if (fabs(v) <= round_at(z, t)) {
-      bracket = 0;
+      how = 1;
       break;
     }
     if ((v > 0) == (glo > 0)) lo = t, glo = v;
     else hi = t;
-    /* Halley's step (Newton's where its correction is not small) */
-    double nt = v / d, corr = 1 - 0.5 * nt * d2 / d;
-    double tn = t - (corr > 0.5 && corr < 2 ? nt / corr : nt);
+    /* Halley's step t - 2 g g' / (2 g'^2 - g g''), Newton's where its
+     * correction factor (2 g'^2 - g g'') / (2 g'^2) is outside (1/2, 2) */
+    double dd = d * d, den = 2 * dd - v * d2, num = 2 * v * d;
+    if (!(den > dd && den < 4 * dd)) num = v, den = d;
+    double tn = t - num / den;
     if (d != 0 && tn > lo && tn < hi) {
-      double dl = fabs(tn - t);
-      if (dl <= tol_at(tn, atol, rtol)) {
+      double dl = fabs(tn - t), tol = tol_at(tn, atol, rtol);
+      if (dl <= tol) {
         bracket = dl;
         t = tn;
+        how = 2;
         break;
       }
       /* Taylor: the root r has g(t) + g'(t)(r - t) + g''(xi)(r - t)^2/2
        * = 0, so Newton's point is within |g''| (r - t)^2 / (2 |g'|) of r,
        * with |r - t| <= 2 dl once that bound is below dl, and Halley's
-       * within as much again: if the bound is below the tolerance, stop
-       * without evaluating g again (slope moved to tn to first order). */
-      double est = 2 * (fabs(d2) + 2 * M3 * dl) * dl * dl / fabs(d) * 2;
-      if (est <= tol_at(tn, atol, rtol) && est < 0.25 * dl) {
-        bracket = est;
+       * within as much again: if the bound est is below the tolerance,
+       * stop without evaluating g again (slope moved to tn to first
+       * order).  Tested multiplied out: est |g'| against tol |g'|. */
+      double estd = 4 * (fabs(d2) + 2 * M3 * dl) * dl * dl, ad = fabs(d);
+      if (estd <= tol * ad && estd < 0.25 * dl * ad) {
+        est = estd / ad;
         d += d2 * (tn - t);
         t = tn;
+        how = 3;
         break;
       }
       t = tn;
@@ -260,6 +296,18 @@ static inline void refine_n(const sc_guard *g, int n, const guard_size *z,
     bracket = hi - lo;
     if (bracket <= tol_at(hi, atol, rtol)) break;
   }
+  if (how == 3) bracket = est;
+  else if (how == 1) bracket = 0;
+  /* cos and sin at the returned t: from the last evaluation's, rotated */
+  if (t != te) {
+    for (int k = 0; k < n; k++) {
+      double sx, cx, ck = cs[k], sk = sn[k];
+      near_sincos(g->w[k] * t - g->w[k] * te, &sx, &cx);
+      cs[k] = ck * cx - sk * sx, sn[k] = sk * cx + ck * sx;
+    }
+  }
+  for (int k = 0; k < n; k++) out->cs[k] = cs[k], out->sn[k] = sn[k];
+  out->ntrig = n;
   out->t = t;
   out->bracket = bracket;
   out->found = 1;
@@ -456,16 +504,18 @@ static int march(const guard_ctx *c, double t, double tend, guard_terms *e,
 /* Each rotation adds at most GUARD_ROT_ULPS ulps to the error of cos and
  * sin (two products and a sum, with the rotation's own cos and sin within
  * half an ulp, and |(cos, sin)| within a few ulps of 1); the values
- * restart exact from sincos at 0 and after every interval the adaptive
- * march decided. */
+ * restart exact at 0, and within SC_FAST_TRIG_ULPS after every interval
+ * the adaptive march decided. */
 #define GUARD_ROT_ULPS 4.0
 
-/* Minimum of the Bernstein coefficients of the cubic with values p0, p1
- * and slopes times the interval q0, q1 at the ends: a lower bound of the
- * cubic over the interval (its graph lies in their convex hull). */
-static inline double bern_min(double p0, double q0, double p1, double q1) {
-  double b1 = p0 + q0 / 3, b2 = p1 - q1 / 3;
-  return min2(min2(p0, p1), min2(b1, b2));
+/* Three times the minimum of the Bernstein coefficients of the cubic
+ * with values p0, p1 and slopes times the interval q0, q1 at the ends
+ * (p0, p0 + q0/3, p1 - q1/3, p1): three times a lower bound of the cubic
+ * over the interval (its graph lies in their convex hull).  Scaled by 3,
+ * so that no division is on the march's path; compared with 3 margins. */
+static inline double bern_min3(double p0, double q0, double p1, double q1) {
+  double a0 = 3 * p0, a1 = 3 * p1;
+  return min2(min2(a0, a1), min2(a0 + q0, a1 - q1));
 }
 
 /* Exact minimum over s in [0, h] of the cubic Hermite interpolant of
@@ -509,13 +559,11 @@ static inline void vals_from(const sc_guard *g, int n, double t,
   v[0] = g0, v[1] = g1, v[2] = g2;
 }
 
-/* cos and sin of every term at t, from libm. */
+/* cos and sin of every term at t (sc_fast_sincos: within
+ * SC_FAST_TRIG_ULPS of the exact values). */
 static inline void anchor(const sc_guard *g, double t, double *cs,
                           double *sn) {
-  for (int k = 0; k < g->n; k++) {
-    cs[k] = cos(g->w[k] * t);
-    sn[k] = sin(g->w[k] * t);
-  }
+  for (int k = 0; k < g->n; k++) sc_fast_sincos(g->w[k] * t, &sn[k], &cs[k]);
 }
 
 /* Steps of the grid march: dt, 2 dt, 4 dt (a third of the fastest
@@ -523,12 +571,12 @@ static inline void anchor(const sc_guard *g, double t, double *cs,
 #define GUARD_GRID_LEVELS 3
 
 /* cos, sin of w h for every term into c[], s[]: the Taylor series for
- * small angles, libm otherwise. */
+ * small angles, sc_fast_sincos otherwise. */
 static void rotation(const sc_guard *g, double h, double *c, double *s) {
   for (int k = 0; k < g->n; k++) {
     double x = g->w[k] * h;
     if (x <= GUARD_SMALL_ANGLE) small_sincos(x, &s[k], &c[k]);
-    else s[k] = sin(x), c[k] = cos(x);
+    else sc_fast_sincos(x, &s[k], &c[k]);
   }
 }
 
@@ -624,8 +672,8 @@ static inline int grid_march_n(const guard_ctx *c, int n, double wmax,
      * minimum, whose own arithmetic rounds too) */
     if (same) {
       double marg = rem0 + E + h * E1;
-      if (bern_min(sigma * g0, sigma * ve[1] * h, sigma * G0,
-                   sigma * vf[1] * h) > marg ||
+      if (bern_min3(sigma * g0, sigma * ve[1] * h, sigma * G0,
+                    sigma * vf[1] * h) > 3 * marg ||
           hermite_min(sigma * g0, sigma * ve[1], sigma * G0, sigma * vf[1],
                       h) > 2 * marg)
         decided = 1;
@@ -633,9 +681,9 @@ static inline int grid_march_n(const guard_ctx *c, int n, double wmax,
     /* (B) g' keeps one sign: g strictly monotone on [t, tn] */
     if (!decided && sigma != 0) {
       double s1 = ve[1] > 0 ? 1 : -1;
-      double dmin = bern_min(s1 * ve[1], s1 * ve[2] * h, s1 * vf[1],
-                             s1 * vf[2] * h);
-      if (dmin > rem1 + E1 + h * E2) {
+      double dmin3 = bern_min3(s1 * ve[1], s1 * ve[2] * h, s1 * vf[1],
+                               s1 * vf[2] * h);
+      if (dmin3 > 3 * (rem1 + E1 + h * E2)) {
         if (same || (at_start_root && s1 == sigma && s1 * G0 > E)) {
           decided = 1; /* monotone, no sign change past the start */
         } else if (!at_start_root && sigma * G0 <= 0 && fabs(G0) > E) {
@@ -672,7 +720,7 @@ static inline int grid_march_n(const guard_ctx *c, int n, double wmax,
     q++;
     anchor(g, t, cs, sn);
     vals_from(g, n, t, cs, sn, ve);
-    rerr = 0;
+    rerr = SC_FAST_TRIG_ULPS;
     m = 0;
   }
   return 0;
@@ -700,6 +748,7 @@ int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
   out->slope = 0;
   out->curv = 0;
   out->steps = 0;
+  out->ntrig = 0;
   if (!g || g->n < 0 || g->n > SC_GUARD_MAXFREQ || !isfinite(g->c0) ||
       !isfinite(g->c1) || !(tmax > 0) || !isfinite(tmax) || !(atol > 0) ||
       !(rtol >= 0))

@@ -43,11 +43,28 @@ static osc osc_make(sc_dual q0, sc_dual p0, sc_dual F0, sc_dual F1, sc_dual w,
   return o;
 }
 
-/* q(t), q'(t) and q''(t) at a plain time t (derivatives at fixed t). */
+/* sin and cos of the dual w t whose values are given (sv, cv): those
+ * the root search left at an event (sc_root's cs, sn), in place of libm's
+ * (sc_dsincos), with the same derivative parts. */
+static void dsincos_given(sc_dual a, double sv, double cv, int nd, sc_dual *s,
+                          sc_dual *c) {
+  *s = a;
+  *c = a;
+  s->v = sv;
+  c->v = cv;
+  for (int k = 0; k < nd; k++) {
+    s->d[k] = cv * a.d[k];
+    c->d[k] = -sv * a.d[k];
+  }
+}
+
+/* q(t), q'(t) and q''(t) at a plain time t (derivatives at fixed t);
+ * cs: NULL, or cos and sin of w t (cs[0], cs[1]) from the root search. */
 static void osc_at(const osc *o, double t, int nd, sc_dual *q, sc_dual *p,
-                   double *acc) {
+                   double *acc, const double *cs) {
   sc_dual wt = sc_dscale(o->w, t, nd), s, c;
-  sc_dsincos(wt, nd, &s, &c);
+  if (cs) dsincos_given(wt, cs[1], cs[0], nd, &s, &c);
+  else sc_dsincos(wt, nd, &s, &c);
   sc_dual Ac = sc_dmul(o->A, c, nd), Bs = sc_dmul(o->B, s, nd);
   *q = sc_dadd(sc_daxpy(o->s0, t, o->s1, nd), sc_dadd(Ac, Bs, nd), nd);
   *p = sc_dadd(o->s1,
@@ -111,20 +128,33 @@ static mode_flow flow_make(const bk2_dpar *P, int mode, const bk2_state *x0) {
   return f;
 }
 
-/* State at time t of the mode, and the accelerations (values). */
+/* cos and sin of oscillator k's w t at the root r of a guard of this
+ * flow, when the search left them (a guard's term k is oscillator k, the
+ * same frequency: guard_restick, guard_threshold): {cos, sin} into
+ * cs[2k], cs[2k+1]; returns cs, or NULL (libm at t then). */
+static const double *event_trig(const sc_root *r, int mode, double *cs) {
+  int need = mode == SC_BK2_SLIP12 ? 2 : 1;
+  if (!r || r->ntrig < need) return NULL;
+  for (int k = 0; k < need; k++) cs[2 * k] = r->cs[k], cs[2 * k + 1] = r->sn[k];
+  return cs;
+}
+
+/* State at time t of the mode, and the accelerations (values); r: NULL,
+ * or the root at t whose cos and sin the flow takes (event_trig). */
 static void flow_at(const bk2_dpar *P, const mode_flow *f, double t,
-                    bk2_state *x, double acc[2]) {
+                    bk2_state *x, double acc[2], const sc_root *r) {
   int nd = P->nd;
   sc_dual q, p;
-  double a;
+  double a, tb[4];
+  const double *cs = event_trig(r, f->mode, tb);
   if (f->mode == SC_BK2_SLIP1) {
-    osc_at(&f->o1, t, nd, &q, &p, &a);
+    osc_at(&f->o1, t, nd, &q, &p, &a, cs);
     x->y1 = q, x->u1 = p;
     x->y2 = sc_daxpy(f->x0.y2, t, P->vs, nd);
     x->u2 = P->vs;
     acc[0] = a, acc[1] = 0;
   } else if (f->mode == SC_BK2_SLIP2) {
-    osc_at(&f->o1, t, nd, &q, &p, &a);
+    osc_at(&f->o1, t, nd, &q, &p, &a, cs);
     x->y2 = q, x->u2 = p;
     x->y1 = sc_daxpy(f->x0.y1, t, P->vs, nd);
     x->u1 = P->vs;
@@ -132,8 +162,8 @@ static void flow_at(const bk2_dpar *P, const mode_flow *f, double t,
   } else {
     sc_dual q2, p2;
     double a2;
-    osc_at(&f->o1, t, nd, &q, &p, &a);
-    osc_at(&f->o2, t, nd, &q2, &p2, &a2);
+    osc_at(&f->o1, t, nd, &q, &p, &a, cs);
+    osc_at(&f->o2, t, nd, &q2, &p2, &a2, cs ? cs + 2 : NULL);
     x->y1 = sc_dscale(sc_dadd(q, q2, nd), 0.5, nd);
     x->y2 = sc_dscale(sc_dsub(q, q2, nd), 0.5, nd);
     x->u1 = sc_dscale(sc_dadd(p, p2, nd), 0.5, nd);
@@ -228,6 +258,7 @@ static int next_root(const sc_guard *g, double t0, double tmax, int skip,
     return -1;
   if (!r->found) return 0;
   r->t += t0;
+  if (t0 > 0) r->ntrig = 0; /* its cos and sin are of t - t0 */
   return 1;
 }
 
@@ -280,7 +311,7 @@ static sc_dual guard_dual(const bk2_dpar *P, const mode_flow *f, int kind,
   int nd = P->nd;
   bk2_state xs;
   double a2[2];
-  flow_at(P, f, t, &xs, a2);
+  flow_at(P, f, t, &xs, a2, NULL);
   kind = BK2_GUARD_OF(kind);
   if (kind == BK2_EV_RESTICK1) return sc_dsub(xs.u1, P->vs, nd);
   if (kind == BK2_EV_RESTICK2) return sc_dsub(xs.u2, P->vs, nd);
@@ -402,6 +433,7 @@ void sc_bk2_first_restick(bk2_inst *b) {
     int mode = sc_bk2_onset(b, &b->p0, sc_dconst(d, 0), &x);
     mode_flow f = flow_make(&b->p0, mode, &x);
     b->first_g[i - 1] = guard_restick(&b->p0, &f, i);
+    b->first_r[i - 1].ntrig = 0;
     b->first_ok[i - 1] =
         mode == i &&
         b->search(&b->first_g[i - 1], guard_horizon(&b->first_g[i - 1]), 1,
@@ -502,8 +534,10 @@ static int first_event(const bk2_inst *b, int mode, int fresh,
         b->first_r[kind[i] - 1].t <= lim &&
         same_guard(&g[i], &b->first_g[kind[i] - 1]))
       r[i] = b->first_r[kind[i] - 1]; /* the slip from a GSP: d-free */
-    else
+    else {
+      r[i].ntrig = 0; /* (a search that does not leave cos and sin) */
       st = b->search(&g[i], lim, skip, atol, rtol, &r[i]);
+    }
     if (st)
       return sc_fail(msg, SC_EINTERNAL,
                      "bk2: malformed guard in mode %d (parameters out of "
@@ -656,7 +690,7 @@ static int exact_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
     phase_borders(P, &f, fresh, g, kind, ng, first, ekind, atmax, nbefore,
                   &r[first], tmax, atol, rtol, ev);
   double a2[2];
-  flow_at(P, &f, t, x, a2);
+  flow_at(P, &f, t, x, a2, &r[first]);
   *duration = t;
   if (r[first].tangent) ev->tangent = 1;
   int next = atmax ? sc_bk2_take_event_at_max(P, mode, kind[first],
@@ -697,8 +731,11 @@ static inline vosc vosc_make(double q0, double p0, double F0, double F1,
   return o;
 }
 
-static inline void vosc_at(const vosc *o, double t, double *q, double *p) {
-  double wt = o->w * t, s = sin(wt), c = cos(wt);
+static inline void vosc_at(const vosc *o, double t, const double *cs,
+                           double *q, double *p) {
+  double wt = o->w * t, s, c;
+  if (cs) c = cs[0], s = cs[1];
+  else s = sin(wt), c = cos(wt);
   double Ac = o->A * c, Bs = o->B * s;
   *q = (o->s0 + t * o->s1) + (Ac + Bs);
   *p = o->s1 + o->w * (o->B * c - o->A * s);
@@ -736,9 +773,10 @@ static inline vflow vflow_make(const bk2_dpar *P, int mode, const vstate *x0) {
 }
 
 static inline void vflow_at(const bk2_dpar *P, const vflow *f, double t,
-                            vstate *x) {
-  double q, p;
-  vosc_at(&f->o1, t, &q, &p);
+                            const sc_root *r, vstate *x) {
+  double q, p, tb[4];
+  const double *cs = event_trig(r, f->mode, tb);
+  vosc_at(&f->o1, t, cs, &q, &p);
   if (f->mode == SC_BK2_SLIP1) {
     x->y1 = q, x->u1 = p;
     x->y2 = f->x0.y2 + t * P->vs.v;
@@ -749,7 +787,7 @@ static inline void vflow_at(const bk2_dpar *P, const vflow *f, double t,
     x->u1 = P->vs.v;
   } else {
     double q2, p2;
-    vosc_at(&f->o2, t, &q2, &p2);
+    vosc_at(&f->o2, t, cs ? cs + 2 : NULL, &q2, &p2);
     x->y1 = (q + q2) * 0.5;
     x->y2 = (q - q2) * 0.5;
     x->u1 = (p + p2) * 0.5;
@@ -823,7 +861,7 @@ static int value_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
   int st = first_event(b, mode, fresh, g, kind, ng, tmax, r, &first, &both,
                        &steps, msg);
   if (st) return st;
-  vflow_at(P, &f, r[first].t, x);
+  vflow_at(P, &f, r[first].t, &r[first], x);
   if (both) {
     x->u1 = x->u2 = P->vs.v;
     return SC_BK2_STICK;
@@ -902,7 +940,7 @@ static int exact_sample(const bk2_inst *b, const bk2_dpar *P, int mode,
   long n = (long)floor(dur / c->dtau);
   for (long i = 0; i <= n + 1; i++) {
     double t = i <= n ? i * c->dtau : dur;
-    flow_at(P, &f, t, &x, a2);
+    flow_at(P, &f, t, &x, a2, NULL);
     double s[4] = {x.y1.v, x.y2.v, x.u1.v, x.u2.v};
     if (bk2_traj_emit(c, t, s, mode)) return SC_ECALLBACK;
   }
