@@ -684,7 +684,7 @@ static void test_near_dstar(void) {
   sc_map_free(m);
 }
 
-/* Two defects of the extremes (docs/accuracy.md), fixed; the expected
+/* Three defects of the extremes (docs/accuracy.md), fixed; the expected
  * answers are the quad path's.
  * D5: alpha = 1e-3, beta = 10, phi = 1 + 1e-6, V = 100 (driver moving),
  * 3e-6 to 9e-6 below d*: block 2 is triggered ~8e-8 into block 1's slip,
@@ -729,6 +729,29 @@ static void test_extreme_defects(void) {
      * cubic term and the rounding of g', g'' are far below that */
     if (tu_int("D3 at V = 1e-12: status", st, SC_OK))
       tu_rel(what, v.dfdd, quad[k], 1e-6);
+  }
+  sc_map_free(m);
+  /* D7 (long sweep): alpha = beta = 100, phi = 10, V = 1e-12, d one ulp
+   * above d*: block 1's trigger is taken at the onset with the slope
+   * (1 + alpha) V ~ 1e-10 there, whose root window (rounding over slope)
+   * was as long as block 2's whole slip, so the tie rule let block 2's
+   * re-stick go first: itinerary 2, block 1 left 178 beyond its
+   * threshold.  With the slope at the root the trigger is taken, as in
+   * quad (2-12-2, f = 0.32444324985055956); f to the event time of a
+   * trigger within rounding of the onset (~1e-9 here). */
+  m = make(100, 100, 1e-12, "moving");
+  sc_map_set_param_by_name(m, "phi", 10, NULL);
+  double d7 = nextafter(sc_bk2_dstar(100, 100), 1);
+  for (int value_only = 0; value_only < 2; value_only++) {
+    sc_map_value v;
+    memset(&v, 0, sizeof v);
+    unsigned fl = SC_EVAL_ITINERARY | (value_only ? 0 : SC_EVAL_DERIV);
+    int st = sc_map_eval(m, d7, fl, &v, NULL);
+    tu_int("D7: status", st, SC_OK);
+    tu_true(strcmp(v.itinerary, "2-12-2") == 0,
+            "D7 (%s): itinerary %s, quad 2-12-2",
+            value_only ? "values" : "derivatives", v.itinerary);
+    tu_close("D7: f against quad", v.f, 0.32444324985055956, 1e-8);
   }
   sc_map_free(m);
 }

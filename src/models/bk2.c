@@ -508,6 +508,25 @@ static int falls_from_zero(const sc_guard *g) {
          g1 < -ROOT_ROUND_ULPS * DBL_EPSILON * wsize;
 }
 
+/* The slope of the stuck block's threshold guard where it reaches zero,
+ * for a trigger the search took at the onset itself: the guard's exact
+ * value there, gap = (1 + 2 alpha)(d - d*) < 0 up to sign, lies within
+ * the rounding of its terms (next to d* with V_s ~ 0: a double root at
+ * d*), so the root is somewhere in the first ~sqrt(rounding / g'') of
+ * the phase and g'(0) ~ (1 + alpha) V_s is not its slope.  The event
+ * time is still within rounding (f keeps its promise), but f' = -dg/dd /
+ * slope needs the slope at the root: from g = gap + g1 t + g2 t^2 / 2,
+ * sqrt(g1^2 - 2 g2 gap) (the cubic term is below rounding over so short a
+ * time).  NaN (f' refused with a message) if that quadratic never
+ * reaches zero.  Both paths use it (f' and the tie windows of
+ * first_event()), so they take the same event at the same time. */
+static double onset_trigger_slope(const sc_guard *g, double gap) {
+  double g1, g2;
+  sc_guard_eval(g, 0, NULL, &g1, &g2);
+  double s2 = g1 * g1 - 2 * g2 * gap;
+  return s2 > 0 ? sqrt(s2) : NAN;
+}
+
 /* The first event of a phase among its guards g (kinds kind), searched
  * up to tmax: later guards only up to the earliest root so far (plus its
  * tie tolerance), the first re-stick after a GSP from the per-parameter
@@ -516,12 +535,17 @@ static int falls_from_zero(const sc_guard *g) {
  * rounding of its guard over its slope): re-sticks go first
  * (docs/model.md), two re-sticks at once end the slip of both blocks (at
  * V = 100 and alpha = 1000 the synchronous re-sticks of beta = 1 are
- * ~1e-12 apart by rounding alone).  The dual and the value-only paths
- * share it, so they take the same events. */
+ * ~1e-12 apart by rounding alone).  onset_gap: the stuck block's exact
+ * threshold gap at a slip's onset from a GSP (NaN elsewhere): a trigger
+ * taken at the onset itself gets the slope at its true root
+ * (onset_trigger_slope()), also for the tie windows (its slope at 0,
+ * ~ (1 + alpha) V_s, would make the window of a root known to ~1e-13
+ * as long as the whole phase).  The dual and the value-only paths share
+ * it, so they take the same events. */
 static int first_event(const bk2_inst *b, int mode, int fresh,
                        const sc_guard *g, const int *kind, int ng, double tmax,
-                       sc_root *r, int *firstp, int *bothp, long *steps,
-                       sc_msg *msg) {
+                       double onset_gap, sc_root *r, int *firstp, int *bothp,
+                       long *steps, sc_msg *msg) {
   double atol = b->acc.event_atol, rtol = b->acc.event_rtol;
   int first = -1;
   for (int i = 0; i < ng; i++) {
@@ -544,6 +568,9 @@ static int first_event(const bk2_inst *b, int mode, int fresh,
                      "range?)",
                      mode);
     *steps += r[i].steps;
+    if (kind[i] == BK2_EV_THRESHOLD && r[i].found && r[i].t == 0 &&
+        onset_gap < 0)
+      r[i].slope = onset_trigger_slope(&g[i], onset_gap);
     if (r[i].found && (first < 0 || r[i].t < r[first].t)) first = i;
   }
   if (first < 0)
@@ -564,25 +591,6 @@ static int first_event(const bk2_inst *b, int mode, int fresh,
   *firstp = first;
   *bothp = both;
   return SC_OK;
-}
-
-/* The slope of the stuck block's threshold guard where it reaches zero,
- * for a trigger the search took at the onset itself: the guard's exact
- * value there, gap = (1 + 2 alpha)(d - d*) < 0 up to sign, lies within
- * the rounding of its terms (next to d* with V_s ~ 0: a double root at
- * d*), so the root is somewhere in the first ~sqrt(rounding / g'') of
- * the phase and g'(0) ~ (1 + alpha) V_s is not its slope.  The event
- * time is still within rounding (f keeps its promise), but f' = -dg/dd /
- * slope needs the slope at the root: from g = gap + g1 t + g2 t^2 / 2,
- * sqrt(g1^2 - 2 g2 gap) (the cubic term is below rounding over so short a
- * time).  NaN (f' refused with a message) if that quadratic never
- * reaches zero.  Derivatives only: the value-only path takes the same
- * event at the same time. */
-static double onset_trigger_slope(const sc_guard *g, double gap) {
-  double g1, g2;
-  sc_guard_eval(g, 0, NULL, &g1, &g2);
-  double s2 = g1 * g1 - 2 * g2 * gap;
-  return s2 > 0 ? sqrt(s2) : NAN;
 }
 
 /* One slip phase with exact flows: find its end (the first event, or the
@@ -611,12 +619,10 @@ static int exact_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
   for (int i = 0; i < ng; i++) tmax = fmax(tmax, guard_horizon(&g[i]));
   int first = -1, both = 0, atmax = 0;
   if (!ev->force) {
-    int st = first_event(b, mode, fresh, g, kind, ng, tmax, r, &first, &both,
+    int st = first_event(b, mode, fresh, g, kind, ng, tmax,
+                         ev->onset ? ev->onset_gap : NAN, r, &first, &both,
                          &ev->steps, msg);
     if (st) return st;
-    if (ev->onset && kind[first] == BK2_EV_THRESHOLD && r[first].t == 0 &&
-        ev->onset_gap < 0)
-      r[first].slope = onset_trigger_slope(&g[first], ev->onset_gap);
   } else {
     /* Follow the code: the forced guard's first rise through zero after
      * its first `skip` local maxima; the other guards are not taken. */
@@ -858,7 +864,8 @@ static int value_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
   }
   int first = -1, both = 0;
   long steps = 0;
-  int st = first_event(b, mode, fresh, g, kind, ng, tmax, r, &first, &both,
+  int st = first_event(b, mode, fresh, g, kind, ng, tmax, onset_gap, r,
+                       &first, &both,
                        &steps, msg);
   if (st) return st;
   vflow_at(P, &f, r[first].t, &r[first], x);
