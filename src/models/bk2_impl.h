@@ -44,6 +44,9 @@ typedef struct {
   const bk2_flows *flows; /* exact or numerical, chosen by bk2_setup */
   sc_accuracy acc;
   double mu, w1, w2, vs, dstar; /* derived */
+  /* The parameters are beyond what double resolves (bk2_setup): every
+   * double evaluation is refused with the reason. */
+  int unresolved;
   bk2_num *num;                 /* owned; NULL for exact flows */
   bk2_dpar p0;                  /* the parameters without derivatives */
   /* The first-root search of the exact flows: sc_guard_first_root, set

@@ -45,6 +45,19 @@ double sc_bk2_dstar(double alpha, double beta) {
 }
 
 
+/* The kinetic force falls below the threshold by (1 - mu) T_i, and that
+ * margin drives every slip: with the driver moving, a slip's velocities
+ * swing by ~V_s about the belt and miss it by ~((1 - mu) T)^2 / V_s at
+ * their closest, so when (1 - mu) min(1, beta) < sqrt(eps) V_s that miss
+ * is below the rounding of V_s and double cannot tell a re-stick from a
+ * touch (at phi = 1 + 1e-6, V = 100 double took touches for re-sticks
+ * where quad slips on; docs/accuracy.md).  Such parameters are refused in
+ * double, with the limit named; quad resolves them. */
+static int bk2_unresolved(const bk2_inst *b) {
+  if (b->acc.precision == SC_PRECISION_QUAD || !(b->vs > 0)) return 0;
+  return (1 - b->mu) * fmin(1, b->beta) < sqrt(DBL_EPSILON) * b->vs;
+}
+
 static int bk2_setup(void *vinst, const double *p, const int *opt,
                      const sc_accuracy *acc, sc_msg *msg) {
   bk2_inst *b = vinst;
@@ -78,6 +91,7 @@ static int bk2_setup(void *vinst, const double *p, const int *opt,
     return sc_fail(msg, SC_EINVAL,
                    "bk2: precision = quad needs flows = exact (the numerical "
                    "flows are double only)");
+  b->unresolved = bk2_unresolved(b);
   const bk2_flows *fl =
       b->numerical ? &sc_bk2_flows_numerical : &sc_bk2_flows_exact;
   if (b->flows && b->flows != fl) b->flows->release(b); /* set up again */
@@ -303,7 +317,16 @@ static int nonfinite_derivative(const bk2_inst *b, double d, int st,
  * alpha up to 1e6 and its squares far from overflow). */
 #define BK2_D_MAX 1e100
 
-static int d_out_of_reach(double d, sc_msg *msg) {
+static int out_of_reach(const bk2_inst *b, double d, sc_msg *msg) {
+  if (b->unresolved)
+    return sc_fail(msg, SC_EUNDEF,
+                   "bk2: phi = %.17g with v = %g is beyond what double "
+                   "resolves: the slip's force margin (1 - 1/phi) "
+                   "min(1, beta) = %.3g is below sqrt(eps) v = %.3g, so a "
+                   "re-stick cannot be told from a touch (use "
+                   "precision = quad, a larger phi or a smaller v)",
+                   b->phi, b->v, (1 - b->mu) * fmin(1, b->beta),
+                   sqrt(DBL_EPSILON) * b->vs);
   if (fabs(d) <= BK2_D_MAX) return SC_OK;
   return sc_fail(msg, SC_EUNDEF,
                  "bk2: d = %g is beyond what the model resolves (valid: "
@@ -314,7 +337,7 @@ static int d_out_of_reach(double d, sc_msg *msg) {
 static int bk2_eval(void *vinst, double d, unsigned flags, sc_map_value *out,
                     sc_msg *msg) {
   const bk2_inst *b = vinst;
-  if (d_out_of_reach(d, msg)) return SC_EUNDEF;
+  if (out_of_reach(b, d, msg)) return SC_EUNDEF;
   if (b->acc.precision == SC_PRECISION_QUAD) { /* bk2_quad.c */
     if (flags & SC_EVAL_DERIV2)
       return sc_fail(msg, SC_EINVAL,
@@ -347,7 +370,7 @@ static int bk2_eval_ex(void *vinst, double d, unsigned flags,
                        sc_border_list *borders, sc_map_value *out,
                        sc_msg *msg) {
   const bk2_inst *b = vinst;
-  if (d_out_of_reach(d, msg)) return SC_EUNDEF;
+  if (out_of_reach(b, d, msg)) return SC_EUNDEF;
   if (flags & SC_EVAL_DERIV2)
     return sc_bk2_eval_jet_ex(b, d, flags, force, code, borders, out, NULL,
                               msg);
@@ -392,6 +415,7 @@ static int bk2_trajectory(void *vinst, double d, int iterations, double dtau,
                           int (*fn)(void *, double, const double *, int),
                           void *ctx, sc_msg *msg) {
   const bk2_inst *b = vinst;
+  if (out_of_reach(b, d, msg)) return SC_EUNDEF;
   bk2_dpar P;
   sc_bk2_dparams(b, 0, &P);
   traj_ctx c = {b, &P, {0, dtau, fn, ctx}};
