@@ -475,13 +475,32 @@ static int phase_kinds(int mode, int fresh, int kind[2]) {
   return ng;
 }
 
+/* g and g' at t = 0, as sc_guard_eval(g, 0, ...) computes them, with the
+ * same operations in the same order (so bit for bit the same), but with
+ * sin(w 0) = w 0 (a signed zero) and cos(w 0) = 1 written out in place of
+ * two libm calls a term: every phase takes them once or twice.  A
+ * frequency that is not finite goes to sc_guard_eval (its NaNs). */
+static void guard_at_zero(const sc_guard *g, double *g0, double *g1) {
+  double v = g->c0 + g->c1 * 0.0, d1 = g->c1;
+  for (int k = 0; k < g->n; k++) {
+    double w = g->w[k], s = w * 0.0, c = 1.0;
+    if (!isfinite(w)) {
+      sc_guard_eval(g, 0, g0, g1, NULL);
+      return;
+    }
+    v += g->a[k] * c + g->b[k] * s;
+    d1 += w * (g->b[k] * c - g->a[k] * s);
+  }
+  *g0 = v, *g1 = d1;
+}
+
 /* The stuck block's threshold guard at the onset of a slip from a GSP:
  * its value at 0 as the onset formula gives it, (1 + 2 alpha)(d - d*) up
  * to sign, not as rounding builds it from the state (next to d* the sign
  * can flip, and the other block's trigger be missed). */
 static void set_onset_gap(sc_guard *g, double gap) {
-  double g0;
-  sc_guard_eval(g, 0, &g0, NULL, NULL);
+  double g0, g1;
+  guard_at_zero(g, &g0, &g1);
   g->c0 += gap - g0;
 }
 
@@ -499,7 +518,7 @@ static void set_onset_gap(sc_guard *g, double gap) {
 #define START_ROUND_ULPS 64.0
 static int falls_from_zero(const sc_guard *g) {
   double g0, g1, size = fabs(g->c0), wsize = fabs(g->c1);
-  sc_guard_eval(g, 0, &g0, &g1, NULL);
+  guard_at_zero(g, &g0, &g1);
   for (int k = 0; k < g->n; k++) {
     size += fabs(g->a[k]) + fabs(g->b[k]);
     wsize += g->w[k] * (fabs(g->a[k]) + fabs(g->b[k]));
