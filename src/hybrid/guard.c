@@ -570,6 +570,17 @@ static inline void anchor(const sc_guard *g, double t, double *cs,
  * period at most, where the Hermite remainder is 5% of an amplitude). */
 #define GUARD_GRID_LEVELS 3
 
+/* cos and sin of the fastest term's rotation at each level (pi/6, pi/3,
+ * 2 pi/3), by double angles from those of pi/6: cos 2x = 1 - 2 sin^2 x,
+ * sin 2x = 2 sin x cos x, as for the other terms, folded by the compiler
+ * (in round-to-nearest doubles, as at run time). */
+#define GUARD_C60 (1 - 2 * GUARD_SIN30 * GUARD_SIN30)
+#define GUARD_S60 (2 * GUARD_SIN30 * GUARD_COS30)
+static const double guard_rot_fast[GUARD_GRID_LEVELS][2] = {
+    {GUARD_COS30, GUARD_SIN30},
+    {GUARD_C60, GUARD_S60},
+    {1 - 2 * GUARD_S60 * GUARD_S60, 2 * GUARD_S60 * GUARD_C60}};
+
 /* cos, sin of w h for every term into c[], s[]: the Taylor series for
  * small angles, sc_fast_sincos otherwise. */
 static void rotation(const sc_guard *g, double h, double *c, double *s) {
@@ -585,10 +596,24 @@ static inline int grid_march_n(const guard_ctx *c, int n, double wmax,
                                double tmax, int at_start_root, sc_root *out) {
   const sc_guard *g = c->g;
   double dt = 2 * SC_PI / (GUARD_GRID_PER_PERIOD * wmax);
-  /* rotations through w dt 2^m, made on first use */
+  /* rotations through w dt 2^m, all levels at once (a few products a
+   * term; a test on every step cost more): the fastest term's are
+   * constants, the others' from cos and sin of w dt by double angles */
   double rc[GUARD_GRID_LEVELS][SC_GUARD_MAXFREQ];
   double rs[GUARD_GRID_LEVELS][SC_GUARD_MAXFREQ];
-  int have = 0;
+  for (int k = 0; k < n; k++) {
+    if (g->w[k] == wmax) {
+      for (int l = 0; l < GUARD_GRID_LEVELS; l++)
+        rc[l][k] = guard_rot_fast[l][0], rs[l][k] = guard_rot_fast[l][1];
+      continue;
+    }
+    small_sincos(g->w[k] * dt, &rs[0][k], &rc[0][k]);
+    for (int l = 1; l < GUARD_GRID_LEVELS; l++) {
+      double cc = rc[l - 1][k], ss = rs[l - 1][k];
+      rc[l][k] = 1 - 2 * ss * ss;
+      rs[l][k] = 2 * ss * cc;
+    }
+  }
   double cs[SC_GUARD_MAXFREQ] = {0}, sn[SC_GUARD_MAXFREQ] = {0};
   double M4 = 0, M5 = 0, wamp2 = 0;
   for (int k = 0; k < n; k++) {
@@ -627,22 +652,6 @@ static inline int grid_march_n(const guard_ctx *c, int n, double wmax,
       rot_ulps = GUARD_ROT_ULPS + 4 * GUARD_GRID_LEVELS;
     } else {
       tn = (double)(q + (1L << m)) * dt;
-      while (have <= m) {
-        if (have == 0) {
-          for (int k = 0; k < n; k++) {
-            if (g->w[k] == wmax) rc[0][k] = GUARD_COS30, rs[0][k] = GUARD_SIN30;
-            else small_sincos(g->w[k] * dt, &rs[0][k], &rc[0][k]);
-          }
-        } else {
-          /* double angles: cos 2x = 1 - 2 sin^2 x, sin 2x = 2 sin x cos x */
-          for (int k = 0; k < n; k++) {
-            double cc = rc[have - 1][k], ss = rs[have - 1][k];
-            rc[have][k] = 1 - 2 * ss * ss;
-            rs[have][k] = 2 * ss * cc;
-          }
-        }
-        have++;
-      }
       cr = rc[m], sr = rs[m];
     }
     double ncs[SC_GUARD_MAXFREQ] = {0}, nsn[SC_GUARD_MAXFREQ] = {0};
