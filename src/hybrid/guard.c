@@ -776,14 +776,13 @@ int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
   c.g = g;
   c.z = guard_sizes(g, c.amp); /* once per search */
   c.atol = atol, c.rtol = rtol;
-  guard_terms e; /* at 0: cos = 1, sin = 0 */
-  e.g0 = g->c0, e.g1 = g->c1, e.g2 = 0;
+  /* g, g', g'' at 0 (cos = 1, sin = 0); the terms' own values are not
+   * kept: only the march without sinusoids (n = 0) starts from them */
+  double g0 = g->c0, g1 = g->c1, g2 = 0;
   for (int k = 0; k < g->n; k++) {
-    double w = g->w[k];
-    e.v[k] = g->a[k], e.d[k] = w * g->b[k];
-    e.g0 += e.v[k], e.g1 += e.d[k], e.g2 -= w * w * e.v[k];
+    double w = g->w[k], v = g->a[k];
+    g0 += v, g1 += w * g->b[k], g2 -= w * w * v;
   }
-  double g0 = e.g0, g1 = e.g1, g2 = e.g2;
   if (fabs(g0) <= round_at(&c.z, 0)) {
     int upward = g1 > 0 || (g1 == 0 && g2 > 0);
     if (!skip_start && upward) {
@@ -815,6 +814,10 @@ int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
     c.M3 += c.m3[k];
   }
   if (wmax > 0) grid_march(&c, wmax, tmax, skip_start, out);
-  else march(&c, 0, tmax, &e, skip_start, tmax, out);
+  else {
+    guard_terms e;
+    e.g0 = g0, e.g1 = g1, e.g2 = g2;
+    march(&c, 0, tmax, &e, skip_start, tmax, out);
+  }
   return SC_OK;
 }
