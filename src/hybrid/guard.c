@@ -632,6 +632,14 @@ static inline int grid_march_n(const guard_ctx *c, int n, double wmax,
   double e20 = ue * wamp2, e21 = ue * wmax * wamp2;
   double r0 = DBL_EPSILON * c->z.amp, r1 = DBL_EPSILON * c->z.wamp;
   double r2 = DBL_EPSILON * wamp2;
+  /* per level: the step, its Hermite remainders, its rotation's ulps */
+  double hl[GUARD_GRID_LEVELS], rem0l[GUARD_GRID_LEVELS];
+  double rem1l[GUARD_GRID_LEVELS], ulpl[GUARD_GRID_LEVELS];
+  for (int l = 0; l < GUARD_GRID_LEVELS; l++) {
+    double h = dt * (double)(1 << l), h4 = h * h * h * h / 384;
+    hl[l] = h, rem0l[l] = M4 * h4, rem1l[l] = M5 * h4;
+    ulpl[l] = GUARD_ROT_ULPS + 4 * l;
+  }
   double ve[3], vf[3];
   vals_from(g, n, 0, cs, sn, ve);
   /* t = q dt with one rounding (not a running sum, whose rounding would
@@ -640,21 +648,23 @@ static inline int grid_march_n(const guard_ctx *c, int n, double wmax,
   long q = 0;
   int m = 0;
   while (t < tmax) {
-    double h = dt * (double)(1 << m), tn, ct[SC_GUARD_MAXFREQ],
-           st[SC_GUARD_MAXFREQ];
+    double h, tn, rem0, rem1, ct[SC_GUARD_MAXFREQ], st[SC_GUARD_MAXFREQ];
     const double *cr, *sr;
-    double rot_ulps = GUARD_ROT_ULPS + 4 * m;
-    int tail = !((double)(q + (1L << m)) * dt < tmax);
+    double rot_ulps;
+    tn = (double)(q + (1L << m)) * dt;
+    int tail = !(tn < tmax);
     if (tail) {
       h = tmax - t, tn = tmax;
       rotation(g, h, ct, st);
       cr = ct, sr = st;
       rot_ulps = GUARD_ROT_ULPS + 4 * GUARD_GRID_LEVELS;
+      double h4 = h * h * h * h / 384;
+      rem0 = M4 * h4, rem1 = M5 * h4;
     } else {
-      tn = (double)(q + (1L << m)) * dt;
+      h = hl[m], rem0 = rem0l[m], rem1 = rem1l[m], rot_ulps = ulpl[m];
       cr = rc[m], sr = rs[m];
     }
-    double ncs[SC_GUARD_MAXFREQ] = {0}, nsn[SC_GUARD_MAXFREQ] = {0};
+    double ncs[SC_GUARD_MAXFREQ], nsn[SC_GUARD_MAXFREQ];
     for (int k = 0; k < n; k++) {
       ncs[k] = cs[k] * cr[k] - sn[k] * sr[k];
       nsn[k] = sn[k] * cr[k] + cs[k] * sr[k];
@@ -665,7 +675,6 @@ static inline int grid_march_n(const guard_ctx *c, int n, double wmax,
     double E = e00 + e01 * tn + r0 * nerr;
     double E1 = e10 + e11 * tn + r1 * nerr;
     double E2 = e20 + e21 * tn + r2 * nerr;
-    double h4 = h * h * h * h / 384, rem0 = M4 * h4, rem1 = M5 * h4;
     double g0 = ve[0], G0 = vf[0];
     double sigma;
     int decided = 0;
@@ -706,7 +715,7 @@ static inline int grid_march_n(const guard_ctx *c, int n, double wmax,
       at_start_root = 0;
       t = tn, rerr = nerr;
       if (!tail) q += 1L << m;
-      for (int k = 0; k < SC_GUARD_MAXFREQ; k++) cs[k] = ncs[k], sn[k] = nsn[k];
+      for (int k = 0; k < n; k++) cs[k] = ncs[k], sn[k] = nsn[k];
       ve[0] = vf[0], ve[1] = vf[1], ve[2] = vf[2];
       if (m + 1 < GUARD_GRID_LEVELS) m++;
       continue;
