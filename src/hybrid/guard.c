@@ -570,6 +570,17 @@ static inline void anchor(const sc_guard *g, double t, double *cs,
  * period at most, where the Hermite remainder is 5% of an amplitude). */
 #define GUARD_GRID_LEVELS 3
 
+/* cos and sin of the fastest term's rotation at each level (pi/6, pi/3,
+ * 2 pi/3), by double angles from those of pi/6: cos 2x = 1 - 2 sin^2 x,
+ * sin 2x = 2 sin x cos x, as for the other terms, folded by the compiler
+ * (in round-to-nearest doubles, as at run time). */
+#define GUARD_C60 (1 - 2 * GUARD_SIN30 * GUARD_SIN30)
+#define GUARD_S60 (2 * GUARD_SIN30 * GUARD_COS30)
+static const double guard_rot_fast[GUARD_GRID_LEVELS][2] = {
+    {GUARD_COS30, GUARD_SIN30},
+    {GUARD_C60, GUARD_S60},
+    {1 - 2 * GUARD_S60 * GUARD_S60, 2 * GUARD_S60 * GUARD_C60}};
+
 /* cos, sin of w h for every term into c[], s[]: the Taylor series for
  * small angles, sc_fast_sincos otherwise. */
 static void rotation(const sc_guard *g, double h, double *c, double *s) {
@@ -585,10 +596,24 @@ static inline int grid_march_n(const guard_ctx *c, int n, double wmax,
                                double tmax, int at_start_root, sc_root *out) {
   const sc_guard *g = c->g;
   double dt = 2 * SC_PI / (GUARD_GRID_PER_PERIOD * wmax);
-  /* rotations through w dt 2^m, made on first use */
+  /* rotations through w dt 2^m, all levels at once (a few products a
+   * term; a test on every step cost more): the fastest term's are
+   * constants, the others' from cos and sin of w dt by double angles */
   double rc[GUARD_GRID_LEVELS][SC_GUARD_MAXFREQ];
   double rs[GUARD_GRID_LEVELS][SC_GUARD_MAXFREQ];
-  int have = 0;
+  for (int k = 0; k < n; k++) {
+    if (g->w[k] == wmax) {
+      for (int l = 0; l < GUARD_GRID_LEVELS; l++)
+        rc[l][k] = guard_rot_fast[l][0], rs[l][k] = guard_rot_fast[l][1];
+      continue;
+    }
+    small_sincos(g->w[k] * dt, &rs[0][k], &rc[0][k]);
+    for (int l = 1; l < GUARD_GRID_LEVELS; l++) {
+      double cc = rc[l - 1][k], ss = rs[l - 1][k];
+      rc[l][k] = 1 - 2 * ss * ss;
+      rs[l][k] = 2 * ss * cc;
+    }
+  }
   double cs[SC_GUARD_MAXFREQ] = {0}, sn[SC_GUARD_MAXFREQ] = {0};
   double M4 = 0, M5 = 0, wamp2 = 0;
   for (int k = 0; k < n; k++) {
@@ -607,6 +632,14 @@ static inline int grid_march_n(const guard_ctx *c, int n, double wmax,
   double e20 = ue * wamp2, e21 = ue * wmax * wamp2;
   double r0 = DBL_EPSILON * c->z.amp, r1 = DBL_EPSILON * c->z.wamp;
   double r2 = DBL_EPSILON * wamp2;
+  /* per level: the step, its Hermite remainders, its rotation's ulps */
+  double hl[GUARD_GRID_LEVELS], rem0l[GUARD_GRID_LEVELS];
+  double rem1l[GUARD_GRID_LEVELS], ulpl[GUARD_GRID_LEVELS];
+  for (int l = 0; l < GUARD_GRID_LEVELS; l++) {
+    double h = dt * (double)(1 << l), h4 = h * h * h * h / 384;
+    hl[l] = h, rem0l[l] = M4 * h4, rem1l[l] = M5 * h4;
+    ulpl[l] = GUARD_ROT_ULPS + 4 * l;
+  }
   double ve[3], vf[3];
   vals_from(g, n, 0, cs, sn, ve);
   /* t = q dt with one rounding (not a running sum, whose rounding would
@@ -615,37 +648,23 @@ static inline int grid_march_n(const guard_ctx *c, int n, double wmax,
   long q = 0;
   int m = 0;
   while (t < tmax) {
-    double h = dt * (double)(1 << m), tn, ct[SC_GUARD_MAXFREQ],
-           st[SC_GUARD_MAXFREQ];
+    double h, tn, rem0, rem1, ct[SC_GUARD_MAXFREQ], st[SC_GUARD_MAXFREQ];
     const double *cr, *sr;
-    double rot_ulps = GUARD_ROT_ULPS + 4 * m;
-    int tail = !((double)(q + (1L << m)) * dt < tmax);
+    double rot_ulps;
+    tn = (double)(q + (1L << m)) * dt;
+    int tail = !(tn < tmax);
     if (tail) {
       h = tmax - t, tn = tmax;
       rotation(g, h, ct, st);
       cr = ct, sr = st;
       rot_ulps = GUARD_ROT_ULPS + 4 * GUARD_GRID_LEVELS;
+      double h4 = h * h * h * h / 384;
+      rem0 = M4 * h4, rem1 = M5 * h4;
     } else {
-      tn = (double)(q + (1L << m)) * dt;
-      while (have <= m) {
-        if (have == 0) {
-          for (int k = 0; k < n; k++) {
-            if (g->w[k] == wmax) rc[0][k] = GUARD_COS30, rs[0][k] = GUARD_SIN30;
-            else small_sincos(g->w[k] * dt, &rs[0][k], &rc[0][k]);
-          }
-        } else {
-          /* double angles: cos 2x = 1 - 2 sin^2 x, sin 2x = 2 sin x cos x */
-          for (int k = 0; k < n; k++) {
-            double cc = rc[have - 1][k], ss = rs[have - 1][k];
-            rc[have][k] = 1 - 2 * ss * ss;
-            rs[have][k] = 2 * ss * cc;
-          }
-        }
-        have++;
-      }
+      h = hl[m], rem0 = rem0l[m], rem1 = rem1l[m], rot_ulps = ulpl[m];
       cr = rc[m], sr = rs[m];
     }
-    double ncs[SC_GUARD_MAXFREQ] = {0}, nsn[SC_GUARD_MAXFREQ] = {0};
+    double ncs[SC_GUARD_MAXFREQ], nsn[SC_GUARD_MAXFREQ];
     for (int k = 0; k < n; k++) {
       ncs[k] = cs[k] * cr[k] - sn[k] * sr[k];
       nsn[k] = sn[k] * cr[k] + cs[k] * sr[k];
@@ -656,7 +675,6 @@ static inline int grid_march_n(const guard_ctx *c, int n, double wmax,
     double E = e00 + e01 * tn + r0 * nerr;
     double E1 = e10 + e11 * tn + r1 * nerr;
     double E2 = e20 + e21 * tn + r2 * nerr;
-    double h4 = h * h * h * h / 384, rem0 = M4 * h4, rem1 = M5 * h4;
     double g0 = ve[0], G0 = vf[0];
     double sigma;
     int decided = 0;
@@ -697,7 +715,7 @@ static inline int grid_march_n(const guard_ctx *c, int n, double wmax,
       at_start_root = 0;
       t = tn, rerr = nerr;
       if (!tail) q += 1L << m;
-      for (int k = 0; k < SC_GUARD_MAXFREQ; k++) cs[k] = ncs[k], sn[k] = nsn[k];
+      for (int k = 0; k < n; k++) cs[k] = ncs[k], sn[k] = nsn[k];
       ve[0] = vf[0], ve[1] = vf[1], ve[2] = vf[2];
       if (m + 1 < GUARD_GRID_LEVELS) m++;
       continue;
@@ -767,14 +785,13 @@ int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
   c.g = g;
   c.z = guard_sizes(g, c.amp); /* once per search */
   c.atol = atol, c.rtol = rtol;
-  guard_terms e; /* at 0: cos = 1, sin = 0 */
-  e.g0 = g->c0, e.g1 = g->c1, e.g2 = 0;
+  /* g, g', g'' at 0 (cos = 1, sin = 0); the terms' own values are not
+   * kept: only the march without sinusoids (n = 0) starts from them */
+  double g0 = g->c0, g1 = g->c1, g2 = 0;
   for (int k = 0; k < g->n; k++) {
-    double w = g->w[k];
-    e.v[k] = g->a[k], e.d[k] = w * g->b[k];
-    e.g0 += e.v[k], e.g1 += e.d[k], e.g2 -= w * w * e.v[k];
+    double w = g->w[k], v = g->a[k];
+    g0 += v, g1 += w * g->b[k], g2 -= w * w * v;
   }
-  double g0 = e.g0, g1 = e.g1, g2 = e.g2;
   if (fabs(g0) <= round_at(&c.z, 0)) {
     int upward = g1 > 0 || (g1 == 0 && g2 > 0);
     if (!skip_start && upward) {
@@ -806,6 +823,10 @@ int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
     c.M3 += c.m3[k];
   }
   if (wmax > 0) grid_march(&c, wmax, tmax, skip_start, out);
-  else march(&c, 0, tmax, &e, skip_start, tmax, out);
+  else {
+    guard_terms e;
+    e.g0 = g0, e.g1 = g1, e.g2 = g2;
+    march(&c, 0, tmax, &e, skip_start, tmax, out);
+  }
   return SC_OK;
 }

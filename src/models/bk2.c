@@ -458,6 +458,13 @@ static double root_window(const sc_guard *g, const sc_root *r) {
   return r->bracket + (r->slope != 0 ? E / fabs(r->slope) : 0);
 }
 
+/* root_window of root i, kept in rw[i] (negative: not yet computed). */
+static inline double window_once(const sc_guard *g, const sc_root *r, int i,
+                                 double *rw) {
+  if (rw[i] < 0) rw[i] = root_window(&g[i], &r[i]);
+  return rw[i];
+}
+
 /* The candidate events of a phase of `mode`, in the order they are
  * searched (kinds: 1, 2 re-stick of block i; 3 threshold of the stuck
  * block): later guards are searched only up to the earliest root so far,
@@ -475,13 +482,32 @@ static int phase_kinds(int mode, int fresh, int kind[2]) {
   return ng;
 }
 
+/* g and g' at t = 0, as sc_guard_eval(g, 0, ...) computes them, with the
+ * same operations in the same order (so bit for bit the same), but with
+ * sin(w 0) = w 0 (a signed zero) and cos(w 0) = 1 written out in place of
+ * two libm calls a term: every phase takes them once or twice.  A
+ * frequency that is not finite goes to sc_guard_eval (its NaNs). */
+static void guard_at_zero(const sc_guard *g, double *g0, double *g1) {
+  double v = g->c0 + g->c1 * 0.0, d1 = g->c1;
+  for (int k = 0; k < g->n; k++) {
+    double w = g->w[k], s = w * 0.0, c = 1.0;
+    if (!isfinite(w)) {
+      sc_guard_eval(g, 0, g0, g1, NULL);
+      return;
+    }
+    v += g->a[k] * c + g->b[k] * s;
+    d1 += w * (g->b[k] * c - g->a[k] * s);
+  }
+  *g0 = v, *g1 = d1;
+}
+
 /* The stuck block's threshold guard at the onset of a slip from a GSP:
  * its value at 0 as the onset formula gives it, (1 + 2 alpha)(d - d*) up
  * to sign, not as rounding builds it from the state (next to d* the sign
  * can flip, and the other block's trigger be missed). */
 static void set_onset_gap(sc_guard *g, double gap) {
-  double g0;
-  sc_guard_eval(g, 0, &g0, NULL, NULL);
+  double g0, g1;
+  guard_at_zero(g, &g0, &g1);
   g->c0 += gap - g0;
 }
 
@@ -499,7 +525,7 @@ static void set_onset_gap(sc_guard *g, double gap) {
 #define START_ROUND_ULPS 64.0
 static int falls_from_zero(const sc_guard *g) {
   double g0, g1, size = fabs(g->c0), wsize = fabs(g->c1);
-  sc_guard_eval(g, 0, &g0, &g1, NULL);
+  guard_at_zero(g, &g0, &g1);
   for (int k = 0; k < g->n; k++) {
     size += fabs(g->a[k]) + fabs(g->b[k]);
     wsize += g->w[k] * (fabs(g->a[k]) + fabs(g->b[k]));
@@ -547,12 +573,15 @@ static int first_event(const bk2_inst *b, int mode, int fresh,
                        double onset_gap, sc_root *r, int *firstp, int *bothp,
                        long *steps, sc_msg *msg) {
   double atol = b->acc.event_atol, rtol = b->acc.event_rtol;
+  /* each root's window, computed once when first needed (ng <= 2:
+   * phase_kinds) */
+  double rw[2] = {-1, -1};
   int first = -1;
   for (int i = 0; i < ng; i++) {
     int skip = kind[i] < 3 && ((fresh & kind[i]) || falls_from_zero(&g[i]));
     double lim = first < 0 ? tmax
                            : r[first].t + 2 * (atol + rtol * r[first].t +
-                                               root_window(&g[first], &r[first]));
+                                               window_once(g, r, first, rw));
     int st = SC_OK;
     if (skip && mode != SC_BK2_SLIP12 && b->first_ok[kind[i] - 1] &&
         b->first_r[kind[i] - 1].t <= lim &&
@@ -581,8 +610,8 @@ static int first_event(const bk2_inst *b, int mode, int fresh,
   int both = 0;
   for (int i = 0; i < ng; i++) {
     if (i == first || !r[i].found) continue;
-    double tol = atol + rtol * r[first].t + root_window(&g[first], &r[first]) +
-                 root_window(&g[i], &r[i]);
+    double tol = atol + rtol * r[first].t + window_once(g, r, first, rw) +
+                 window_once(g, r, i, rw);
     if (fabs(r[i].t - r[first].t) <= tol) {
       if (kind[first] == BK2_EV_THRESHOLD) first = i;
       else if (kind[i] < 3) both = 1;
@@ -819,29 +848,32 @@ static inline void vguard_add_qdot(sc_guard *g, const vosc *o, double scale) {
   g->n++;
 }
 
-static inline sc_guard vguard_restick(const bk2_dpar *P, const vflow *f,
-                                      int i) {
-  sc_guard g = {0};
-  g.c0 = -P->vs.v;
+/* The guards are built in place, and only their first n terms are set
+ * (all that is ever read of them): zeroing and copying the whole struct
+ * cost more than building it. */
+static inline void vguard_restick(const bk2_dpar *P, const vflow *f, int i,
+                                  sc_guard *g) {
+  g->c0 = -P->vs.v;
+  g->c1 = 0;
+  g->n = 0;
   if (f->mode != SC_BK2_SLIP12) {
-    vguard_add_qdot(&g, &f->o1, 1);
+    vguard_add_qdot(g, &f->o1, 1);
   } else {
-    vguard_add_qdot(&g, &f->o1, 0.5);
-    vguard_add_qdot(&g, &f->o2, i == 1 ? 0.5 : -0.5);
+    vguard_add_qdot(g, &f->o1, 0.5);
+    vguard_add_qdot(g, &f->o2, i == 1 ? 0.5 : -0.5);
   }
-  return g;
 }
 
-static inline sc_guard vguard_threshold(const bk2_dpar *P, const vflow *f) {
-  sc_guard g = {0};
+static inline void vguard_threshold(const bk2_dpar *P, const vflow *f,
+                                    sc_guard *g) {
   double a = P->alpha.v;
   int j = f->mode == SC_BK2_SLIP1 ? 2 : 1;
   double yj0 = j == 2 ? f->x0.y2 : f->x0.y1;
   double tj = j == 2 ? P->t2.v : 1;
-  g.c0 = (1 + a) * yj0 - tj;
-  g.c1 = (1 + a) * P->vs.v;
-  vguard_add_q(&g, &f->o1, -a);
-  return g;
+  g->c0 = (1 + a) * yj0 - tj;
+  g->c1 = (1 + a) * P->vs.v;
+  g->n = 0;
+  vguard_add_q(g, &f->o1, -a);
 }
 
 /* exact_phase() without a forced code, code bytes or borders, on values. */
@@ -851,8 +883,8 @@ static int value_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
   sc_guard g[2];
   int kind[2], ng = phase_kinds(mode, fresh, kind);
   for (int i = 0; i < ng; i++) {
-    g[i] = kind[i] < 3 ? vguard_restick(P, &f, kind[i])
-                       : vguard_threshold(P, &f);
+    if (kind[i] < 3) vguard_restick(P, &f, kind[i], &g[i]);
+    else vguard_threshold(P, &f, &g[i]);
     if (kind[i] == BK2_EV_THRESHOLD && !isnan(onset_gap))
       set_onset_gap(&g[i], onset_gap);
   }
