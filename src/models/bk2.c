@@ -952,10 +952,7 @@ static int value_iterate(const bk2_inst *b, double d, unsigned flags,
     fresh = bk2_fresh_blocks(mode, next);
     mode = next;
   }
-  return sc_fail(msg, SC_EUNDEF,
-                 "no return to a global stick phase after %d slip phases "
-                 "(max-events): the motion settles on a slip cycle",
-                 b->acc.max_events);
+  return sc_bk2_slip_cycle(b, msg);
 }
 
 

@@ -117,3 +117,12 @@ void sc_bk2_border_add(sc_border_list *l, sc_border_kind kind,
 }
 
 
+
+/* ---- the end of an iterate ---------------------------------------------- */
+
+int sc_bk2_slip_cycle(const bk2_inst *b, sc_msg *msg) {
+  return sc_fail(msg, SC_EUNDEF,
+                 "no return to a global stick phase after %d slip phases "
+                 "(max-events): the motion settles on a slip cycle",
+                 b->acc.max_events);
+}

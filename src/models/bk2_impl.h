@@ -188,6 +188,10 @@ void sc_bk2_patch(bk2_events *ev, int c0, int c1, int drop_next);
 void sc_bk2_border_add(sc_border_list *l, sc_border_kind kind,
                        const sc_dual *m, const char *name);
 
+/* The refusal of an iterate that does not return to a GSP within
+ * max-events slip phases (a slip cycle): SC_EUNDEF with the message. */
+int sc_bk2_slip_cycle(const bk2_inst *b, sc_msg *msg);
+
 /* Called after each slip phase with its mode, start state and duration. */
 typedef int (*bk2_phase_fn)(void *ctx, int mode, const bk2_state *x0,
                             double duration);

@@ -286,10 +286,7 @@ int sc_bk2_iterate_ex(const bk2_inst *b, const bk2_dpar *P, sc_dual d,
     fresh = bk2_fresh_blocks(mode, next);
     mode = next;
   }
-  return sc_fail(msg, SC_EUNDEF,
-                 "no return to a global stick phase after %d slip phases "
-                 "(max-events): the motion settles on a slip cycle",
-                 b->acc.max_events);
+  return sc_bk2_slip_cycle(b, msg);
 }
 
 
