@@ -139,17 +139,20 @@ static int known_index(const char *bad, const pcase *c, double d) {
 
 /* The distances to the borders an evaluation reports: |d - d*|, the
  * threshold gap at the last re-stick (negative: a crossing missed), the
- * smallest grazing margin, and (double only) the smallest |m| of any
- * border of the itinerary (crossing-sliding between an event and another
- * guard's rise, both re-sticks, touches too: r of the f' promise).
+ * smallest grazing margin, (double only) the smallest |m| of any border
+ * of the itinerary (r of the f' promise) and of the other kinds
+ * (crossing-sliding between an event and another guard's rise, both
+ * re-sticks, touches: within rounding, a border either side of which
+ * may be taken, as the tie rule does for two re-sticks within their
+ * roots' rounding windows).
  * Double: from the model's borders (models.h); quad: from the quad
  * path's own margins. */
 typedef struct {
-  double dstar_dist, gsp_gap, graze_margin, any;
+  double dstar_dist, gsp_gap, graze_margin, any, other;
 } margins;
 
 static margins margins_double(sc_map *m, double d) {
-  margins r = {HUGE_VAL, HUGE_VAL, HUGE_VAL, HUGE_VAL};
+  margins r = {HUGE_VAL, HUGE_VAL, HUGE_VAL, HUGE_VAL, HUGE_VAL};
   sc_border bl[256];
   sc_border_list l = {bl, 256, 0};
   sc_map_value v;
@@ -157,6 +160,10 @@ static margins margins_double(sc_map *m, double d) {
   for (size_t i = 0; i < l.n && i < l.cap; i++) {
     double x = bl[i].value;
     r.any = fmin(r.any, fabs(x));
+    if (bl[i].kind == SC_BORDER_BOTH || bl[i].kind == SC_BORDER_TOUCH ||
+        (bl[i].kind == SC_BORDER_CROSSING &&
+         strncmp(bl[i].name, "threshold gap", 13) != 0))
+      r.other = fmin(r.other, fabs(x));
     if (bl[i].kind == SC_BORDER_SWITCHING) r.dstar_dist = fmin(r.dstar_dist, fabs(x));
     if (bl[i].kind == SC_BORDER_GRAZING) r.graze_margin = fmin(r.graze_margin, fabs(x));
     if (bl[i].kind == SC_BORDER_CROSSING && strncmp(bl[i].name, "threshold gap", 13) == 0)
@@ -166,7 +173,7 @@ static margins margins_double(sc_map *m, double d) {
 }
 
 static margins margins_quad(const pcase *c, double d) {
-  margins r = {HUGE_VAL, HUGE_VAL, HUGE_VAL, HUGE_VAL};
+  margins r = {HUGE_VAL, HUGE_VAL, HUGE_VAL, HUGE_VAL, HUGE_VAL};
   sc_bk2q_params p = {c->alpha, c->beta, c->phi, c->v, c->frozen, max_events};
   sc_bk2q_value q;
   if (sc_bk2q_eval(&p, d, 0, &q, NULL)) return r;
@@ -195,7 +202,7 @@ static int check_case(sc_map *md, sc_map *mq, const pcase *c, double d,
   double near_v = BORDER_ULPS * eps * (S + c->v);
   int border = border_dist <= 1e-12 * fmax(1, fabs(d)) ||
                md_.dstar_dist <= near || fabs(md_.gsp_gap) <= near_v ||
-               md_.graze_margin <= near_v;
+               md_.graze_margin <= near_v || md_.other <= near_v;
   if (!s2)
     border = border || mq_.dstar_dist <= near ||
              fabs(mq_.gsp_gap) <= near_v || mq_.graze_margin <= near_v;
