@@ -595,6 +595,66 @@ static sc_map *vw_map(double beta, double tol) {
   return m;
 }
 
+/* gamma -> 0: K_i = T_i / (1 + gamma |U_i - V_s|) tends to T_i, the
+ * Coulomb law with kinetic force equal to the threshold, which is the
+ * exact map's limit phi -> 1 (mu = 1/phi -> 1).  Velocity weakening at
+ * gamma = 1e-4 and 1e-5 (numerical flows, 1e-12) against the exact
+ * Coulomb map at phi = 1 + 1e-8 (itself within ~1e-12 of its limit: the
+ * flows are smooth in mu), on three parameter sets with the driver
+ * moving: the same itineraries, and an error that falls with gamma (like
+ * gamma^1.5 here: 4e-9 -> 1.4e-10 on fig 5.6's). */
+static sc_map *limit_map(double alpha, double beta, double v, double gamma) {
+  sc_map *m = make(alpha, beta, v, "moving");
+  sc_accuracy acc;
+  sc_accuracy_preset(&acc, "precise", NULL);
+  sc_map_set_accuracy(m, &acc, NULL);
+  if (gamma > 0) {
+    sc_map_set_option(m, "friction", "velocity-weakening", NULL);
+    sc_map_set_param_by_name(m, "gamma", gamma, NULL);
+  } else {
+    sc_map_set_param_by_name(m, "phi", 1 + 1e-8, NULL);
+  }
+  return m;
+}
+
+static void test_vw_coulomb_limit(void) {
+  const double ps[3][3] = {{2.9, 1, 0.018}, {3.5, 2.5, 0.025},
+                             {1.2, 4, 0.05}};
+  for (int k = 0; k < 3; k++) {
+    sc_map *c = limit_map(ps[k][0], ps[k][1], ps[k][2], 0);
+    sc_map *w4 = limit_map(ps[k][0], ps[k][1], ps[k][2], 1e-4);
+    sc_map *w5 = limit_map(ps[k][0], ps[k][1], ps[k][2], 1e-5);
+    double e4 = 0, e5 = 0;
+    int n = 0, differ = 0;
+    for (int i = 0; i <= 24; i++) {
+      double d = -0.6 + 1.2 * i / 24 + 1e-3;
+      char ic[SC_ITIN_LEN], i4[SC_ITIN_LEN], i5[SC_ITIN_LEN];
+      double fc = feval(c, d, ic), f4 = feval(w4, d, i4), f5 = feval(w5, d, i5);
+      if (isnan(fc) || isnan(f4) || isnan(f5)) continue;
+      n++;
+      if (strcmp(ic, i4) || strcmp(ic, i5)) {
+        differ++;
+        continue;
+      }
+      e4 = fmax(e4, fabs(f4 - fc));
+      e5 = fmax(e5, fabs(f5 - fc));
+    }
+    char what[128];
+    snprintf(what, sizeof what,
+             "gamma -> 0 (alpha %g beta %g V %g): %d points compared", ps[k][0],
+             ps[k][1], ps[k][2], n);
+    tu_true(n >= 20 && differ == 0, "%s, %d itineraries differ", what,
+            differ);
+    tu_true(e5 <= 2e-9, "%s: |f(gamma 1e-5) - f(Coulomb, phi -> 1)| = %.3g",
+            what, e5);
+    tu_true(e4 >= 10 * e5, "%s: the error falls with gamma (%.3g -> %.3g)",
+            what, e4, e5);
+    sc_map_free(c);
+    sc_map_free(w4);
+    sc_map_free(w5);
+  }
+}
+
 static void test_velocity_weakening(void) {
   sc_map *m6 = vw_map(1.7, 1e-6), *m9 = vw_map(1.7, 1e-9),
          *m12 = vw_map(1.7, 1e-12);
@@ -780,6 +840,7 @@ int main(void) {
   test_near_dstar();
   test_borders_numerical();
   test_velocity_weakening();
+  test_vw_coulomb_limit();
   test_properties();
   test_reference();
   test_bad_input();
