@@ -265,6 +265,16 @@ static int confirmed(sc_period *pd, int p, long k) {
   return 0;
 }
 
+/* m[i] = max(m[i], |x - y[i]|) for i < n: the block maxima of every lag
+ * at once (a loop the compiler vectorizes). */
+static void lag_maxima(int n, double x, const double *restrict y,
+                       double *restrict m) {
+  for (int i = 0; i < n; i++) {
+    double dx = fabs(x - y[i]);
+    m[i] = dx > m[i] ? dx : m[i];
+  }
+}
+
 int sc_period_push(sc_period *pd, double x) {
   if (pd->found) return pd->found;
   const long k = pd->n, cap = pd->cap;
@@ -284,12 +294,8 @@ int sc_period_push(sc_period *pd, double x) {
   pd->tolk[slot] = pd->tol;
   /* Block maxima of the settling test, every lag. */
   int maxp = k < pd->maxp ? (int)k : pd->maxp;
-  double *restrict bm = pd->blk_max;
-  const double *restrict xb = xr;
-  for (int p = 1; p <= maxp; p++) {
-    double dx = fabs(x - xb[p]);
-    bm[p] = dx > bm[p] ? dx : bm[p];
-  }
+  lag_maxima(maxp, x, xr + 1, pd->blk_max + 1);
+  double *bm = pd->blk_max;
   /* Lags whose block ends with x_k. */
   uint64_t *wb = pd->wheel_b + (size_t)slot * (size_t)nw;
   for (int w = 0; w < nw; w++) {
