@@ -41,7 +41,7 @@ struct sc_period {
   long slot;     /* ring slot of the newest iterate: n - 1 modulo cap */
   double *rev;   /* the last cap iterates, twice, in reverse: x_{k-i} at
                     rev[cap - 1 - slot + i] for 0 <= i < cap */
-  double *tolk;  /* tol_k, the tolerance after x_k, at tolk[k % cap] */
+  double *tolk;  /* tol_k, the tolerance after x_k, laid out as rev */
   long n;        /* iterates pushed, x0 included */
   double lo, hi; /* extent of the orbit so far */
   double amax;   /* largest |x| so far */
@@ -56,9 +56,8 @@ struct sc_period {
   uint64_t *wheel_b;  /* cap sets: lags whose block ends at that slot */
   /* Settling (sc_period_settling()): per lag p, the largest lag-p
    * difference of the current block of blk[p] iterates and of the one
-   * before, how many blocks in a row the maximum decreased, and the
-   * iterate that ends the current block. */
-  long *blk, *blk_end, *streak;
+   * before, and how many blocks in a row the maximum decreased. */
+  long *blk, *streak;
   double *blk_max, *prev_max;
 };
 
@@ -89,7 +88,7 @@ int sc_period_alloc(int max_period, int confirm, double rtol,
   size_t np = (size_t)max_period + 1, cap = (size_t)pd->cap;
   size_t nw = (size_t)pd->nw;
   pd->rev = calloc(2 * cap, sizeof *pd->rev);
-  pd->tolk = calloc(cap, sizeof *pd->tolk);
+  pd->tolk = calloc(2 * cap, sizeof *pd->tolk);
   pd->lf = calloc(np, sizeof *pd->lf);
   pd->seen = calloc(np, sizeof *pd->seen);
   pd->due_at = calloc(np, sizeof *pd->due_at);
@@ -97,13 +96,12 @@ int sc_period_alloc(int max_period, int confirm, double rtol,
   pd->wheel_c = calloc(cap * nw, sizeof *pd->wheel_c);
   pd->wheel_b = calloc(cap * nw, sizeof *pd->wheel_b);
   pd->blk = calloc(np, sizeof *pd->blk);
-  pd->blk_end = calloc(np, sizeof *pd->blk_end);
   pd->streak = calloc(np, sizeof *pd->streak);
   pd->blk_max = calloc(np, sizeof *pd->blk_max);
   pd->prev_max = calloc(np, sizeof *pd->prev_max);
   if (!pd->rev || !pd->tolk || !pd->lf || !pd->seen || !pd->due_at ||
       !pd->due || !pd->wheel_c || !pd->wheel_b || !pd->blk ||
-      !pd->blk_end || !pd->streak || !pd->blk_max || !pd->prev_max)
+      !pd->streak || !pd->blk_max || !pd->prev_max)
     goto fail;
   for (int p = 1; p <= max_period; p++)
     pd->blk[p] = (long)p * ((SETTLE_BLOCK + p - 1) / p);
@@ -126,7 +124,6 @@ void sc_period_free(sc_period *pd) {
   free(pd->wheel_c);
   free(pd->wheel_b);
   free(pd->blk);
-  free(pd->blk_end);
   free(pd->streak);
   free(pd->blk_max);
   free(pd->prev_max);
@@ -146,12 +143,20 @@ static uint64_t *wheel_at(const sc_period *pd, uint64_t *wheel, long t) {
   return wheel + (size_t)(t % pd->cap) * (size_t)pd->nw;
 }
 
+/* The end of lag p's block pending after iterate k: blocks end with the
+ * iterates p - 1 + m blk[p], m >= 1. */
+static long block_end(const sc_period *pd, int p, long k) {
+  const long b = pd->blk[p];
+  if (k < p + b - 1) return p + b - 1;
+  return k + b - (k - p + 1) % b;
+}
+
 void sc_period_reset(sc_period *pd, double x0) {
   /* Take every lag off the wheels: lag p is in at most one set of each,
    * the one of its pending due time and block end. */
   for (int p = 1; p <= pd->maxp; p++) {
     clear_bit(wheel_at(pd, pd->wheel_c, pd->due_at[p]), p);
-    clear_bit(wheel_at(pd, pd->wheel_b, pd->blk_end[p]), p);
+    clear_bit(wheel_at(pd, pd->wheel_b, block_end(pd, p, pd->n - 1)), p);
   }
   for (int w = 0; w < pd->nw; w++) pd->due[w] = 0;
   pd->slot = 0;
@@ -160,7 +165,7 @@ void sc_period_reset(sc_period *pd, double x0) {
   pd->lo = pd->hi = x0;
   pd->amax = fabs(x0);
   pd->tol = SC_PERIOD_FLOOR_ULPS * DBL_EPSILON * pd->amax;
-  pd->tolk[0] = pd->tol;
+  pd->tolk[pd->cap - 1] = pd->tolk[2 * pd->cap - 1] = pd->tol;
   pd->found = 0;
   for (int p = 0; p <= pd->maxp; p++) {
     pd->streak[p] = 0;
@@ -171,8 +176,7 @@ void sc_period_reset(sc_period *pd, double x0) {
     pd->lf[p] = pd->seen[p] = p - 1;
     pd->due_at[p] = (long)(pd->confirm + 1) * p - 1;
     set_bit(wheel_at(pd, pd->wheel_c, pd->due_at[p]), p);
-    pd->blk_end[p] = p + pd->blk[p] - 1;
-    set_bit(wheel_at(pd, pd->wheel_b, pd->blk_end[p]), p);
+    set_bit(wheel_at(pd, pd->wheel_b, block_end(pd, p, 0)), p);
   }
 }
 
@@ -241,14 +245,14 @@ static int confirmed(sc_period *pd, int p, long k) {
   const long cp = (long)pd->confirm * p;
   const long cap = pd->cap, slot = pd->slot;
   const double *xr = pd->rev + (cap - 1 - slot); /* x_{k-i} = xr[i] */
+  const double *tr = pd->tolk + (cap - 1 - slot); /* tol_{k-i} = tr[i] */
   long stop = pd->seen[p] + 1, lf = pd->lf[p];
   if (stop <= k - cp) { /* only the window matters: it starts after it */
     stop = k - cp + 1;
     lf = k - cp;
   }
   for (long i = 0; i <= k - stop; i++) {
-    long s = slot >= i ? slot - i : slot - i + cap;
-    if (!(fabs(xr[i] - xr[i + p]) <= pd->tolk[s])) {
+    if (!(fabs(xr[i] - xr[i + p]) <= tr[i])) {
       lf = k - i;
       break;
     }
@@ -291,7 +295,7 @@ int sc_period_push(sc_period *pd, double x) {
   /* The extent only grows, so a difference that passed stays passed. */
   pd->tol = pd->rtol * (pd->hi - pd->lo) +
             SC_PERIOD_FLOOR_ULPS * DBL_EPSILON * pd->amax;
-  pd->tolk[slot] = pd->tol;
+  pd->tolk[cap - 1 - slot] = pd->tolk[2 * cap - 1 - slot] = pd->tol;
   /* Block maxima of the settling test, every lag. */
   int maxp = k < pd->maxp ? (int)k : pd->maxp;
   lag_maxima(maxp, x, xr + 1, pd->blk_max + 1);
@@ -307,7 +311,6 @@ int sc_period_push(sc_period *pd, double x) {
       pd->streak[p] = bm[p] < pd->prev_max[p] ? pd->streak[p] + 1 : 0;
       pd->prev_max[p] = bm[p];
       bm[p] = 0;
-      pd->blk_end[p] = k + pd->blk[p];
       long s = slot + pd->blk[p];
       if (s >= cap) s -= cap;
       set_bit(pd->wheel_b + (size_t)s * (size_t)nw, p);
