@@ -3,6 +3,8 @@
  * periods docs/model.md states. */
 #include <float.h>
 #include <math.h>
+#include <stdint.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "slipcont/chart.h"
@@ -230,10 +232,215 @@ static void bk2(void) {
   sc_map_free(m);
 }
 
+/* Reference detector: the rule of chart.h written the plain way, a run
+ * counter and a block maximum per lag updated on every iterate and the
+ * whole orbit kept.  The detector must give the same period at the same
+ * iterate, the same tolerance and the same settling answer. */
+#define REF_LEN 1200
+typedef struct {
+  int maxp, confirm;
+  double rtol, lo, hi, amax, tol;
+  long n;
+  int found;
+  long deferred; /* pushes where the smallest confirmed p was deferred */
+  double x[REF_LEN];
+  long run[SC_PERIOD_MAX + 1], blk[SC_PERIOD_MAX + 1];
+  long pos[SC_PERIOD_MAX + 1], streak[SC_PERIOD_MAX + 1];
+  double bmax[SC_PERIOD_MAX + 1], prev[SC_PERIOD_MAX + 1];
+} ref_period;
+
+static void ref_reset(ref_period *r, double x0) {
+  r->x[0] = x0;
+  r->n = 1;
+  r->lo = r->hi = x0;
+  r->amax = fabs(x0);
+  r->tol = SC_PERIOD_FLOOR_ULPS * DBL_EPSILON * r->amax;
+  r->found = 0;
+  r->deferred = 0;
+  for (int p = 1; p <= r->maxp; p++) {
+    r->run[p] = r->pos[p] = r->streak[p] = 0;
+    r->bmax[p] = r->prev[p] = 0;
+    r->blk[p] = p * ((8 + p - 1) / p);
+  }
+}
+
+static double ref_lag_max(const ref_period *r, int q, long j0, long len) {
+  double m = 0;
+  for (long j = j0; j < j0 + len; j++)
+    m = fmax(m, fabs(r->x[j] - r->x[j - q]));
+  return m;
+}
+
+static int ref_accept(const ref_period *r, int p) {
+  const int c = r->confirm;
+  const long first = r->n - 1 - (long)(c + 1) * p + 1;
+  for (int q = 1; q < p; q++) {
+    if (p % q) continue;
+    if (c < 3) {
+      if (ref_lag_max(r, q, first + (long)c * p, p) <
+          ref_lag_max(r, q, first + p, p) - 2 * r->tol)
+        return 0;
+      continue;
+    }
+    double l1 = ref_lag_max(r, q, first + (long)(c - 2) * p, p);
+    double l2 = ref_lag_max(r, q, first + (long)(c - 1) * p, p);
+    double l3 = ref_lag_max(r, q, first + (long)c * p, p);
+    double d1 = l1 - l2, d2 = l2 - l3;
+    if (d1 > 0 && d2 > 0 && d2 < d1 && l3 - d2 * d2 / (d1 - d2) <= r->tol)
+      return 0;
+    if (fabs(l1 - l3) > 4 * r->tol) return 0;
+  }
+  return 1;
+}
+
+static int ref_push(ref_period *r, double x) {
+  if (r->found) return r->found;
+  long k = r->n++;
+  r->x[k] = x;
+  r->lo = fmin(r->lo, x);
+  r->hi = fmax(r->hi, x);
+  r->amax = fmax(r->amax, fabs(x));
+  r->tol = r->rtol * (r->hi - r->lo) +
+           SC_PERIOD_FLOOR_ULPS * DBL_EPSILON * r->amax;
+  for (int p = 1; p <= r->maxp && p <= k; p++) {
+    double dx = fabs(x - r->x[k - p]);
+    r->run[p] = dx <= r->tol ? r->run[p] + 1 : 0;
+    if (dx > r->bmax[p]) r->bmax[p] = dx;
+    if (++r->pos[p] == r->blk[p]) {
+      r->streak[p] = r->bmax[p] < r->prev[p] ? r->streak[p] + 1 : 0;
+      r->prev[p] = r->bmax[p];
+      r->bmax[p] = 0;
+      r->pos[p] = 0;
+    }
+  }
+  for (int p = 1; p <= r->maxp && p <= k; p++) {
+    if (r->run[p] < (long)r->confirm * p) continue;
+    if (ref_accept(r, p)) r->found = p;
+    else r->deferred++;
+    break;
+  }
+  return r->found;
+}
+
+static int ref_settling(const ref_period *r) {
+  for (int p = 1; p <= r->maxp; p++)
+    if (r->streak[p] >= 4 && 2 * r->streak[p] * r->blk[p] >= r->n - 1 &&
+        r->prev[p] > r->tol)
+      return p;
+  return 0;
+}
+
+static uint64_t rng_state = 0x2385u;
+static double uniform(void) { /* xorshift64*, in [0, 1) */
+  rng_state ^= rng_state >> 12;
+  rng_state ^= rng_state << 25;
+  rng_state ^= rng_state >> 27;
+  return (double)((rng_state * 2685821657736338717u) >> 11) * 0x1p-53;
+}
+static int below(int n) { return (int)(uniform() * n); }
+
+/* One test orbit of len iterates, of kind 0..4: random; a cycle of period
+ * q with noise near the tolerance after a transient; a cycle of period q
+ * approached geometrically, alternately from either side (a period-2q
+ * transient: the near-flip test); the same with the extent jumping up
+ * partway (the tolerance grows: differences must keep the verdict of
+ * their own iterate); values from {0, 1, 2} in segments of random
+ * periods. */
+static void orbit(int kind, int maxp, double rtol, double *x, int len) {
+  double cyc[300];
+  int q = 1 + below(maxp + 3 < 300 ? maxp + 3 : 300);
+  for (int i = 0; i < q; i++) cyc[i] = 2 * uniform() - 1;
+  const double noise[4] = {0, 0.3, 1, 3};
+  const double lambda[5] = {0.3, 0.8, 0.95, 0.99, 0.999};
+  double eps = noise[below(4)] * rtol, lam = lambda[below(5)];
+  int t0 = below(len / 2), sign = below(2);
+  double amp = uniform();
+  for (int k = 0; k < len; k++) {
+    switch (kind) {
+    case 0:
+      x[k] = 2 * uniform() - 1;
+      break;
+    case 1:
+      x[k] = k < t0 ? 2 * uniform() - 1
+                    : cyc[k % q] + eps * (2 * uniform() - 1);
+      break;
+    case 2:
+    case 3: {
+      double s = sign && (k / q) % 2 ? -1 : 1;
+      x[k] = cyc[k % q] + s * amp * pow(lam, k) +
+             eps * (2 * uniform() - 1);
+      if (kind == 3 && k == t0) x[k] = 50 * (1 + uniform());
+      break;
+    }
+    default:
+      if (k == 0 || below(60) == 0) q = 1 + below(maxp + 1);
+      x[k] = k >= q && below(8) ? x[k - q] : (double)below(3);
+      break;
+    }
+  }
+}
+
+static void against_reference(void) {
+  const int maxps[] = {1, 2, 3, 5, 8, 16, 17, 40, 64, 65, 130, 256};
+  const int confirms[] = {1, 2, 3, 4, 5, 8};
+  const double rtols[] = {1e-6, 1e-3};
+  static ref_period ref;
+  static double x[REF_LEN];
+  long orbits = 0, pushes = 0, push_diff = 0, tol_diff = 0, settle_diff = 0;
+  long found = 0, high = 0, unsettled = 0, deferred = 0;
+  sc_msg msg;
+  for (size_t a = 0; a < sizeof maxps / sizeof *maxps; a++)
+    for (size_t b = 0; b < sizeof confirms / sizeof *confirms; b++)
+      for (size_t c = 0; c < 2; c++) {
+        sc_period *pd = NULL;
+        if (sc_period_alloc(maxps[a], confirms[b], rtols[c], &pd, &msg)) {
+          tu_true(0, "alloc: %s", msg.text);
+          continue;
+        }
+        ref.maxp = maxps[a];
+        ref.confirm = confirms[b];
+        ref.rtol = rtols[c];
+        for (int o = 0; o < 40; o++, orbits++) {
+          int len = 50 + below(REF_LEN - 50);
+          orbit(o % 5, maxps[a], rtols[c], x, len);
+          sc_period_reset(pd, x[0]);
+          ref_reset(&ref, x[0]);
+          int p = 0, pr = 0;
+          for (int k = 1; k < len && !pr; k++, pushes++) {
+            p = sc_period_push(pd, x[k]);
+            pr = ref_push(&ref, x[k]);
+            if (p != pr) push_diff++;
+            if (sc_period_tol(pd) != ref.tol) tol_diff++;
+          }
+          deferred += ref.deferred;
+          if (p != pr) continue; /* counted */
+          if (pr) {
+            found++;
+            continue;
+          }
+          int s = sc_period_settling(pd);
+          if (s != ref_settling(&ref)) settle_diff++;
+          if (s) unsettled++;
+          else high++;
+        }
+        sc_period_free(pd);
+      }
+  tu_int("pushes with a different answer than the reference", push_diff, 0);
+  tu_int("pushes with a different tolerance", tol_diff, 0);
+  tu_int("orbits with a different settling answer", settle_diff, 0);
+  printf("  %ld orbits, %ld pushes: %ld periodic, %ld high, %ld not "
+         "settled, %ld pushes with a confirmed period deferred\n",
+         orbits, pushes, found, high, unsettled, deferred);
+  tu_true(found > orbits / 5 && high > orbits / 10 && unsettled > 20 &&
+              deferred > 1000,
+          "the orbits cover every class");
+}
+
 int main(void) {
   exact_sequences();
   logistic();
   divergent();
   bk2();
+  against_reference();
   return tu_finish();
 }

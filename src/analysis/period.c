@@ -1,7 +1,23 @@
 /* Period detection on an orbit of a one-dimensional map: the rule is
- * stated in include/slipcont/chart.h and docs/charts.md. */
+ * stated in include/slipcont/chart.h and docs/charts.md.
+ *
+ * The confirmation test is evaluated lazily.  For each lag p the detector
+ * keeps the latest iterate lf[p] known to fail (|x_j - x_{j-p}| > tol_j,
+ * with tol_j the tolerance after x_j was pushed), so p cannot be confirmed
+ * before iterate lf[p] + confirm p.  Lag p is looked at only from then
+ * on: the differences since it was last looked at are checked newest
+ * first, back to the window of the last confirm p iterates, and the
+ * newest failure found moves lf[p] on.  A lag that keeps failing is
+ * looked at about once every confirm p iterates instead of every iterate,
+ * and the smallest confirmed lag comes out at the same iterate as with a
+ * run counter per lag, since only the newest failure in the window
+ * matters.  Tolerances are kept per iterate so that each difference is
+ * compared with the tolerance of its own iterate, as a run counter does.
+ * Due times (and the ends of the settling test's blocks) are kept in a
+ * timing wheel of bit sets, one slot per ring slot. */
 #include <float.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 
 #include "slipcont/chart.h"
@@ -19,18 +35,29 @@ struct sc_period {
   int maxp;      /* largest period detected */
   int confirm;   /* confirmation cycles */
   double rtol;   /* tolerance relative to the extent */
-  long cap;      /* ring capacity: (confirm + 1) maxp + 1 iterates */
-  double *ring;  /* the last cap iterates; x_k at ring[k % cap] */
-  long *run;     /* run[p]: consecutive latest k with |x_k - x_{k-p}| <= tol */
+  long cap;      /* ring capacity: (confirm + 1) maxp + SETTLE_BLOCK
+                    iterates, more than any due time lies ahead */
+  int nw;        /* 64-bit words in a set of lags 0..maxp */
+  long slot;     /* ring slot of the newest iterate: n - 1 modulo cap */
+  double *rev;   /* the last cap iterates, twice, in reverse: x_{k-i} at
+                    rev[cap - 1 - slot + i] for 0 <= i < cap */
+  double *tolk;  /* tol_k, the tolerance after x_k, laid out as rev */
   long n;        /* iterates pushed, x0 included */
   double lo, hi; /* extent of the orbit so far */
   double amax;   /* largest |x| so far */
   double tol;
   int found;     /* accepted period, 0 while none */
+  /* Confirmation: per lag p the newest failing iterate known (or an
+   * iterate before a window known to pass), the iterate up to which the
+   * differences were looked at, and the due time lf + confirm p. */
+  long *lf, *seen, *due_at;
+  uint64_t *due;      /* lags with due_at <= the newest iterate */
+  uint64_t *wheel_c;  /* cap sets: lags falling due at that slot */
+  uint64_t *wheel_b;  /* cap sets: lags whose block ends at that slot */
   /* Settling (sc_period_settling()): per lag p, the largest lag-p
    * difference of the current block of blk[p] iterates and of the one
    * before, and how many blocks in a row the maximum decreased. */
-  long *blk, *blk_pos, *streak;
+  long *blk, *streak;
   double *blk_max, *prev_max;
 };
 
@@ -54,16 +81,27 @@ int sc_period_alloc(int max_period, int confirm, double rtol,
   pd->maxp = max_period;
   pd->confirm = confirm;
   pd->rtol = rtol;
-  pd->cap = (long)(confirm + 1) * max_period + 1;
-  pd->ring = malloc((size_t)pd->cap * sizeof *pd->ring);
-  pd->run = calloc((size_t)max_period + 1, sizeof *pd->run);
-  pd->blk = calloc((size_t)max_period + 1, sizeof *pd->blk);
-  pd->blk_pos = calloc((size_t)max_period + 1, sizeof *pd->blk_pos);
-  pd->streak = calloc((size_t)max_period + 1, sizeof *pd->streak);
-  pd->blk_max = calloc((size_t)max_period + 1, sizeof *pd->blk_max);
-  pd->prev_max = calloc((size_t)max_period + 1, sizeof *pd->prev_max);
-  if (!pd->ring || !pd->run || !pd->blk || !pd->blk_pos || !pd->streak ||
-      !pd->blk_max || !pd->prev_max)
+  /* Due times lie at most confirm maxp iterates ahead, block ends at most
+   * 2 maxp + SETTLE_BLOCK - 2 (the first one after a reset). */
+  pd->cap = (long)(confirm + 1) * max_period + SETTLE_BLOCK;
+  pd->nw = max_period / 64 + 1;
+  size_t np = (size_t)max_period + 1, cap = (size_t)pd->cap;
+  size_t nw = (size_t)pd->nw;
+  pd->rev = calloc(2 * cap, sizeof *pd->rev);
+  pd->tolk = calloc(2 * cap, sizeof *pd->tolk);
+  pd->lf = calloc(np, sizeof *pd->lf);
+  pd->seen = calloc(np, sizeof *pd->seen);
+  pd->due_at = calloc(np, sizeof *pd->due_at);
+  pd->due = calloc(nw, sizeof *pd->due);
+  pd->wheel_c = calloc(cap * nw, sizeof *pd->wheel_c);
+  pd->wheel_b = calloc(cap * nw, sizeof *pd->wheel_b);
+  pd->blk = calloc(np, sizeof *pd->blk);
+  pd->streak = calloc(np, sizeof *pd->streak);
+  pd->blk_max = calloc(np, sizeof *pd->blk_max);
+  pd->prev_max = calloc(np, sizeof *pd->prev_max);
+  if (!pd->rev || !pd->tolk || !pd->lf || !pd->seen || !pd->due_at ||
+      !pd->due || !pd->wheel_c || !pd->wheel_b || !pd->blk ||
+      !pd->streak || !pd->blk_max || !pd->prev_max)
     goto fail;
   for (int p = 1; p <= max_period; p++)
     pd->blk[p] = (long)p * ((SETTLE_BLOCK + p - 1) / p);
@@ -77,35 +115,78 @@ fail:
 
 void sc_period_free(sc_period *pd) {
   if (!pd) return;
-  free(pd->ring);
-  free(pd->run);
+  free(pd->rev);
+  free(pd->tolk);
+  free(pd->lf);
+  free(pd->seen);
+  free(pd->due_at);
+  free(pd->due);
+  free(pd->wheel_c);
+  free(pd->wheel_b);
   free(pd->blk);
-  free(pd->blk_pos);
   free(pd->streak);
   free(pd->blk_max);
   free(pd->prev_max);
   free(pd);
 }
 
+static void set_bit(uint64_t *set, int p) {
+  set[p >> 6] |= (uint64_t)1 << (p & 63);
+}
+
+static void clear_bit(uint64_t *set, int p) {
+  set[p >> 6] &= ~((uint64_t)1 << (p & 63));
+}
+
+/* The wheel's set for iterate t, t - n < cap (t >= n - 1). */
+static uint64_t *wheel_at(const sc_period *pd, uint64_t *wheel, long t) {
+  return wheel + (size_t)(t % pd->cap) * (size_t)pd->nw;
+}
+
+/* The end of lag p's block pending after iterate k: blocks end with the
+ * iterates p - 1 + m blk[p], m >= 1. */
+static long block_end(const sc_period *pd, int p, long k) {
+  const long b = pd->blk[p];
+  if (k < p + b - 1) return p + b - 1;
+  return k + b - (k - p + 1) % b;
+}
+
 void sc_period_reset(sc_period *pd, double x0) {
-  pd->ring[0] = x0;
+  /* Take every lag off the wheels: lag p is in at most one set of each,
+   * the one of its pending due time and block end. */
+  for (int p = 1; p <= pd->maxp; p++) {
+    clear_bit(wheel_at(pd, pd->wheel_c, pd->due_at[p]), p);
+    clear_bit(wheel_at(pd, pd->wheel_b, block_end(pd, p, pd->n - 1)), p);
+  }
+  for (int w = 0; w < pd->nw; w++) pd->due[w] = 0;
+  pd->slot = 0;
+  pd->rev[pd->cap - 1] = pd->rev[2 * pd->cap - 1] = x0;
   pd->n = 1;
   pd->lo = pd->hi = x0;
   pd->amax = fabs(x0);
+  pd->tol = SC_PERIOD_FLOOR_ULPS * DBL_EPSILON * pd->amax;
+  pd->tolk[pd->cap - 1] = pd->tolk[2 * pd->cap - 1] = pd->tol;
+  pd->found = 0;
   for (int p = 0; p <= pd->maxp; p++) {
-    pd->run[p] = 0;
-    pd->blk_pos[p] = pd->streak[p] = 0;
+    pd->streak[p] = 0;
     pd->blk_max[p] = pd->prev_max[p] = 0;
   }
-  pd->tol = SC_PERIOD_FLOOR_ULPS * DBL_EPSILON * pd->amax;
-  pd->found = 0;
+  /* Lag p's first difference is the one of x_p: as if x_{p-1} failed. */
+  for (int p = 1; p <= pd->maxp; p++) {
+    pd->lf[p] = pd->seen[p] = p - 1;
+    pd->due_at[p] = (long)(pd->confirm + 1) * p - 1;
+    set_bit(wheel_at(pd, pd->wheel_c, pd->due_at[p]), p);
+    set_bit(wheel_at(pd, pd->wheel_b, block_end(pd, p, 0)), p);
+  }
 }
 
 double sc_period_tol(const sc_period *pd) { return pd->tol; }
 double sc_period_extent(const sc_period *pd) { return pd->hi - pd->lo; }
 
 /* Iterate k (0 <= n - cap < k < n). */
-static double at(const sc_period *pd, long k) { return pd->ring[k % pd->cap]; }
+static double at(const sc_period *pd, long k) {
+  return pd->rev[pd->cap - 1 - pd->slot + (pd->n - 1 - k)];
+}
 
 /* Largest |x_j - x_{j-q}| for j in [j0, j0 + len). */
 static double lag_max(const sc_period *pd, int q, long j0, long len) {
@@ -156,39 +237,104 @@ static int accept(const sc_period *pd, int p) {
   return 1;
 }
 
+/* Looks at lag p after the iterate x_k: the differences of the iterates
+ * since it was last looked at, newest first, back to the confirmation
+ * window.  Returns whether p is confirmed; if not, p is put on the wheel
+ * at its new due time. */
+static int confirmed(sc_period *pd, int p, long k) {
+  const long cp = (long)pd->confirm * p;
+  const long cap = pd->cap, slot = pd->slot;
+  const double *xr = pd->rev + (cap - 1 - slot); /* x_{k-i} = xr[i] */
+  const double *tr = pd->tolk + (cap - 1 - slot); /* tol_{k-i} = tr[i] */
+  long stop = pd->seen[p] + 1, lf = pd->lf[p];
+  if (stop <= k - cp) { /* only the window matters: it starts after it */
+    stop = k - cp + 1;
+    lf = k - cp;
+  }
+  for (long i = 0; i <= k - stop; i++) {
+    if (!(fabs(xr[i] - xr[i + p]) <= tr[i])) {
+      lf = k - i;
+      break;
+    }
+  }
+  pd->seen[p] = k;
+  pd->lf[p] = lf;
+  long due = lf + cp;
+  if (due <= k) return 1;
+  pd->due_at[p] = due;
+  clear_bit(pd->due, p);
+  long s = slot + (due - k);
+  if (s >= cap) s -= cap;
+  set_bit(pd->wheel_c + (size_t)s * (size_t)pd->nw, p);
+  return 0;
+}
+
+/* m[i] = max(m[i], |x - y[i]|) for i < n: the block maxima of every lag
+ * at once (a loop the compiler vectorizes). */
+static void lag_maxima(int n, double x, const double *restrict y,
+                       double *restrict m) {
+  for (int i = 0; i < n; i++) {
+    double dx = fabs(x - y[i]);
+    m[i] = dx > m[i] ? dx : m[i];
+  }
+}
+
 int sc_period_push(sc_period *pd, double x) {
   if (pd->found) return pd->found;
-  long k = pd->n;
-  long slot = k % pd->cap;
-  pd->ring[slot] = x;
+  const long k = pd->n, cap = pd->cap;
+  const int nw = pd->nw;
+  long slot = pd->slot + 1;
+  if (slot == cap) slot = 0;
+  pd->slot = slot;
   pd->n = k + 1;
+  double *xr = pd->rev + (cap - 1 - slot); /* x_{k-i} = xr[i] */
+  xr[0] = xr[cap] = x;
   if (x < pd->lo) pd->lo = x;
   if (x > pd->hi) pd->hi = x;
   if (fabs(x) > pd->amax) pd->amax = fabs(x);
   /* The extent only grows, so a difference that passed stays passed. */
   pd->tol = pd->rtol * (pd->hi - pd->lo) +
             SC_PERIOD_FLOOR_ULPS * DBL_EPSILON * pd->amax;
+  pd->tolk[cap - 1 - slot] = pd->tolk[2 * cap - 1 - slot] = pd->tol;
+  /* Block maxima of the settling test, every lag. */
   int maxp = k < pd->maxp ? (int)k : pd->maxp;
-  for (int p = 1; p <= maxp; p++) {
-    long back = slot >= p ? slot - p : slot - p + pd->cap;
-    double dx = fabs(x - pd->ring[back]);
-    pd->run[p] = dx <= pd->tol ? pd->run[p] + 1 : 0;
-    if (dx > pd->blk_max[p]) pd->blk_max[p] = dx;
-    if (++pd->blk_pos[p] == pd->blk[p]) { /* a block of lag p is complete */
-      pd->streak[p] = pd->blk_max[p] < pd->prev_max[p] ? pd->streak[p] + 1 : 0;
-      pd->prev_max[p] = pd->blk_max[p];
-      pd->blk_max[p] = 0;
-      pd->blk_pos[p] = 0;
+  lag_maxima(maxp, x, xr + 1, pd->blk_max + 1);
+  double *bm = pd->blk_max;
+  /* Lags whose block ends with x_k. */
+  uint64_t *wb = pd->wheel_b + (size_t)slot * (size_t)nw;
+  for (int w = 0; w < nw; w++) {
+    uint64_t m = wb[w];
+    wb[w] = 0;
+    while (m) {
+      int p = 64 * w + __builtin_ctzll(m);
+      m &= m - 1;
+      pd->streak[p] = bm[p] < pd->prev_max[p] ? pd->streak[p] + 1 : 0;
+      pd->prev_max[p] = bm[p];
+      bm[p] = 0;
+      long s = slot + pd->blk[p];
+      if (s >= cap) s -= cap;
+      set_bit(pd->wheel_b + (size_t)s * (size_t)nw, p);
     }
   }
-  for (int p = 1; p <= maxp; p++) {
-    if (pd->run[p] < (long)pd->confirm * p) continue;
-    /* Smallest confirmed period: accept it, or wait for the divisor the
-     * orbit is converging to (a larger p would be a multiple of it). */
-    if (accept(pd, p)) pd->found = p;
-    break;
+  /* Lags that fall due with x_k join the due set; the smallest confirmed
+   * one is accepted, or waits for the divisor the orbit is converging to
+   * (a larger p would be a multiple of it). */
+  uint64_t *wc = pd->wheel_c + (size_t)slot * (size_t)nw;
+  for (int w = 0; w < nw; w++) {
+    pd->due[w] |= wc[w];
+    wc[w] = 0;
   }
-  return pd->found;
+  for (int w = 0; w < nw; w++) {
+    uint64_t m = pd->due[w];
+    while (m) {
+      int p = 64 * w + __builtin_ctzll(m);
+      m &= m - 1;
+      if (!confirmed(pd, p, k)) continue;
+      if (accept(pd, p)) pd->found = p;
+      return pd->found;
+    }
+  }
+  return 0;
 }
 
 int sc_period_find(sc_period *pd, sc_map *m, double d0, long max_iter,
