@@ -646,7 +646,12 @@ static inline int grid_march_n(const guard_ctx *c, int n, double wmax,
    * grow with the steps while the rotations follow the exact sum) */
   double t = 0, rerr = 0;
   long q = 0;
-  int m = 0;
+  /* The first step is the longest (4 dt): most guards are far from zero
+   * at the start, and one that is not fails the step's tests and halves
+   * it, down to dt, as any step does.  Starting at dt cost a step or two
+   * on every search (fig 5.6: 5.2 steps a two-term search, 2.2 a
+   * threshold search; 4.1 and 1 now). */
+  int m = GUARD_GRID_LEVELS - 1;
   while (t < tmax) {
     double h, tn, rem0, rem1, ct[SC_GUARD_MAXFREQ], st[SC_GUARD_MAXFREQ];
     const double *cr, *sr;
