@@ -635,9 +635,12 @@ static inline int grid_march_n(const guard_ctx *c, int n, double wmax,
   /* per level: the step, its Hermite remainders, its rotation's ulps */
   double hl[GUARD_GRID_LEVELS], rem0l[GUARD_GRID_LEVELS];
   double rem1l[GUARD_GRID_LEVELS], ulpl[GUARD_GRID_LEVELS];
+  /* one division: level l scales h by 2^l and the remainders by 16^l,
+   * exactly (powers of two), so these equal the per-level formulas */
+  double h40 = dt * dt * dt * dt / 384;
   for (int l = 0; l < GUARD_GRID_LEVELS; l++) {
-    double h = dt * (double)(1 << l), h4 = h * h * h * h / 384;
-    hl[l] = h, rem0l[l] = M4 * h4, rem1l[l] = M5 * h4;
+    double s = (double)(1 << l), s4 = s * s * s * s;
+    hl[l] = dt * s, rem0l[l] = M4 * h40 * s4, rem1l[l] = M5 * h40 * s4;
     ulpl[l] = GUARD_ROT_ULPS + 4 * l;
   }
   double ve[3], vf[3];
