@@ -133,6 +133,41 @@ int main(void) {
   tu_int("random guards: roots missed against the dense search", misses, 0);
   tu_int("random guards: roots located elsewhere", wrong, 0);
 
+  /* Horizons just short of and just past the first root (bk2 searches a
+   * phase's second guard up to the first one's root): the step that
+   * reaches past tmax may prove [t, tmax] root-free, but must never
+   * report a root beyond tmax nor miss one before it.  tmax = r -+ 1e-9
+   * and -+ 1e-3 (within a step of the root), and a tmax far below one
+   * grid step. */
+  int hz_wrong = 0, hz_cases = 0;
+  for (int i = 0; i < 200; i++) {
+    sc_guard g = {0};
+    g.n = 1 + i % 2;
+    g.w[0] = 1;
+    g.w[1] = uni(1.5, 4.5);
+    for (int k = 0; k < g.n; k++) g.a[k] = uni(-1, 1), g.b[k] = uni(-1, 1);
+    g.c0 = uni(-2, 0.5);
+    g.c1 = i % 3 == 0 ? uni(-0.1, 0.1) : 0;
+    if (g.n == 1 && g.c1 == 0) g.c1 = 0.01; /* not the closed form */
+    double r0 = dense_first_root(&g, 20, 0);
+    if (r0 < 0.01) continue;
+    const double off[5] = {-1e-3, -1e-9, 1e-9, 1e-3, 0};
+    for (int j = 0; j < 5; j++) {
+      double tmax = j < 4 ? r0 + off[j] : 1e-4 * r0;
+      sc_root r;
+      int st = sc_guard_first_root(&g, tmax, 0, 1e-15, 1e-14, &r);
+      hz_cases++;
+      if (st != SC_OK) hz_wrong++;
+      else if (tmax > r0 ? !r.found || fabs(r.t - r0) > 1e-9
+                         : r.found && (r.t > tmax ||
+                                       fabs(geval(&g, r.t)) > 1e-12))
+        hz_wrong++;
+    }
+  }
+  tu_true(hz_cases >= 500, "horizons next to the root: %d cases", hz_cases);
+  tu_int("horizons next to the root: roots missed, late or beyond tmax",
+         hz_wrong, 0);
+
   /* Near tangency: g = c0 + A cos(w1 (t - t0)) + B cos(w2 (t - t0)) has
    * its highest maximum A + B + c0 = delta at t = t0. */
   double A = 0.3, B = 0.2, w1 = 1, w2 = sqrt(7.0), t0 = 2.385;

@@ -635,9 +635,12 @@ static inline int grid_march_n(const guard_ctx *c, int n, double wmax,
   /* per level: the step, its Hermite remainders, its rotation's ulps */
   double hl[GUARD_GRID_LEVELS], rem0l[GUARD_GRID_LEVELS];
   double rem1l[GUARD_GRID_LEVELS], ulpl[GUARD_GRID_LEVELS];
+  /* one division: level l scales h by 2^l and the remainders by 16^l,
+   * exactly (powers of two), so these equal the per-level formulas */
+  double h40 = dt * dt * dt * dt / 384;
   for (int l = 0; l < GUARD_GRID_LEVELS; l++) {
-    double h = dt * (double)(1 << l), h4 = h * h * h * h / 384;
-    hl[l] = h, rem0l[l] = M4 * h4, rem1l[l] = M5 * h4;
+    double s = (double)(1 << l), s4 = s * s * s * s;
+    hl[l] = dt * s, rem0l[l] = M4 * h40 * s4, rem1l[l] = M5 * h40 * s4;
     ulpl[l] = GUARD_ROT_ULPS + 4 * l;
   }
   double ve[3], vf[3];
@@ -646,13 +649,22 @@ static inline int grid_march_n(const guard_ctx *c, int n, double wmax,
    * grow with the steps while the rotations follow the exact sum) */
   double t = 0, rerr = 0;
   long q = 0;
-  int m = 0;
+  /* The first step is the longest (4 dt): most guards are far from zero
+   * at the start, and one that is not fails the step's tests and halves
+   * it, down to dt, as any step does.  Starting at dt cost a step or two
+   * on every search (fig 5.6: 5.2 steps a two-term search, 2.2 a
+   * threshold search; 4.1 and 1 now). */
+  int m = GUARD_GRID_LEVELS - 1, past_tried = 0;
   while (t < tmax) {
     double h, tn, rem0, rem1, ct[SC_GUARD_MAXFREQ], st[SC_GUARD_MAXFREQ];
     const double *cr, *sr;
     double rot_ulps;
     tn = (double)(q + (1L << m)) * dt;
-    int tail = !(tn < tmax);
+    /* A step that reaches past tmax is first tried whole (its rotation is
+     * in the table): if it proves [t, tn] free of roots, so is [t, tmax].
+     * Otherwise the tail step through tmax - t follows, as before. */
+    int past = !(tn < tmax) && !past_tried;
+    int tail = !(tn < tmax) && !past;
     if (tail) {
       h = tmax - t, tn = tmax;
       rotation(g, h, ct, st);
@@ -704,15 +716,22 @@ static inline int grid_march_n(const guard_ctx *c, int n, double wmax,
       if (dmin3 > 3 * (rem1 + E1 + h * E2)) {
         if (same || (at_start_root && s1 == sigma && s1 * G0 > E)) {
           decided = 1; /* monotone, no sign change past the start */
-        } else if (!at_start_root && sigma * G0 <= 0 && fabs(G0) > E) {
+        } else if (!past && !at_start_root && sigma * G0 <= 0 &&
+                   fabs(G0) > E) {
           refine(g, &c->z, c->M3, t, g0, ve[1], tn, G0, vf[1], c->atol, c->rtol,
                  out);
           return 1;
         }
       }
     }
+    if (decided && past) return 0;
+    if (past) {
+      past_tried = 1; /* the tail step from the same state */
+      continue;
+    }
     if (decided) {
       at_start_root = 0;
+      past_tried = 0;
       t = tn, rerr = nerr;
       if (!tail) q += 1L << m;
       for (int k = 0; k < n; k++) cs[k] = ncs[k], sn[k] = nsn[k];
