@@ -32,22 +32,12 @@
 
 #include "slipcont/chart.h"
 #include "slipcont/map.h"
+#include "bench_util.h"
 
 #define NPERSET 400 /* points per parameter set: 200 attractor, 200 grid */
 #define NSETS 4
 #define NPTS (NPERSET * NSETS)
 #define MAXSET 32
-
-static double now(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
-
-static int cmp(const void *a, const void *b) {
-  double x = *(const double *)a, y = *(const double *)b;
-  return (x > y) - (x < y);
-}
 
 typedef struct {
   const char *name;
@@ -134,10 +124,10 @@ static void run_map(const msetting *st, int repeats, mresult *res) {
     sc_map_value r;
     double sink = 0;
     for (int rep = 0; rep < repeats; rep++) {
-      double t0 = now();
+      double t0 = bench_wall();
       for (int i = 0; i < NPERSET; i++)
         if (!sc_map_eval(m, pts[s][i], 0, &r, NULL)) sink += r.f;
-      times[rep] += now() - t0;
+      times[rep] += bench_wall() - t0;
     }
     if (sink == 42) printf(" ");
     for (int i = 0; i < NPERSET; i++) {
@@ -160,9 +150,9 @@ static void run_map(const msetting *st, int repeats, mresult *res) {
     }
     sc_map_free(m);
   }
-  qsort(times, (size_t)repeats, sizeof times[0], cmp);
+  qsort(times, (size_t)repeats, sizeof times[0], bench_cmp_double);
   res->time = times[repeats / 2] / NPTS;
-  qsort(errs, (size_t)ne, sizeof errs[0], cmp);
+  qsort(errs, (size_t)ne, sizeof errs[0], bench_cmp_double);
   res->med_f = ne ? errs[ne / 2] : NAN;
 }
 
@@ -258,12 +248,12 @@ static double run_chart(const csetting *c, long steps, sc_chart_point *out) {
     fprintf(stderr, "bench_accuracy: %s\n", msg.text);
     exit(1);
   }
-  double t0 = now();
+  double t0 = bench_wall();
   if (sc_chart_rows(m, &s, 0, steps, 1, 1, NULL, NULL, out, &msg)) {
     fprintf(stderr, "bench_accuracy: %s\n", msg.text);
     exit(1);
   }
-  double t = now() - t0;
+  double t = bench_wall() - t0;
   sc_map_free(m);
   return t;
 }

@@ -31,14 +31,9 @@
 
 #include "slipcont/branch.h"
 #include "slipcont/map.h"
+#include "bench_util.h"
 
 #define MAXPTS 256
-
-static double now(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
 
 typedef struct {
   char label[8];
@@ -80,13 +75,13 @@ static double run(const bsetting *s, spt *pts, int *npts, unsigned long *nev) {
       .hmax = s->hmax,
   };
   sc_orbit_branch *ob;
-  double t0 = now();
+  double t0 = bench_wall();
   unsigned long e0 = sc_map_nevals(m);
   int st = sc_orbit_branch_alloc(m, &sp, &ob, &msg);
   if (!st) st = sc_orbit_branch_add_start(ob, 3.3, 0.0991, 6, &msg);
   if (!st) st = sc_orbit_branch_add_start(ob, 3.75, 0.2075, 4, &msg);
   if (!st) st = sc_orbit_branch_run(ob, &msg);
-  double t = now() - t0;
+  double t = bench_wall() - t0;
   if (st) {
     fprintf(stderr, "bench_accuracy_branch: %s (%s)\n", msg.text,
             sc_strerror(st));
@@ -187,11 +182,6 @@ static const smooth_case smooth_cases[] = {
  * uses the same window for AUTO's points). */
 #define SMOOTH_MATCH 1e-2
 
-static int cmp_double(const void *a, const void *b) {
-  double x = *(const double *)a, y = *(const double *)b;
-  return (x > y) - (x < y);
-}
-
 /* One smooth case under one setting, run `repeats` times: returns the
  * median time and the largest |p - exact| over the exact points found
  * (a point of that label and period within SMOOTH_MATCH; the others are
@@ -226,14 +216,14 @@ static double run_smooth(const smooth_case *c, const char *preset, double hmax,
         .hmax = hmax,
     };
     sc_orbit_branch *ob;
-    double t0 = now();
+    double t0 = bench_wall();
     unsigned long e0 = sc_map_nevals(m);
     int st = sc_orbit_branch_alloc(m, &sp, &ob, &msg);
     if (!st && c->extra_period)
       st = sc_orbit_branch_add_start(ob, c->extra_p, c->extra_d,
                                      c->extra_period, &msg);
     if (!st) st = sc_orbit_branch_run(ob, &msg);
-    times[rep] = now() - t0;
+    times[rep] = bench_wall() - t0;
     if (st) {
       fprintf(stderr, "bench_accuracy_branch: %s: %s\n", c->name, msg.text);
       exit(1);
@@ -258,7 +248,7 @@ static double run_smooth(const smooth_case *c, const char *preset, double hmax,
     sc_orbit_branch_free(ob);
     sc_map_free(m);
   }
-  qsort(times, (size_t)repeats, sizeof times[0], cmp_double);
+  qsort(times, (size_t)repeats, sizeof times[0], bench_cmp_double);
   return times[repeats / 2];
 }
 

@@ -18,31 +18,10 @@
 #include <time.h>
 
 #include "slipcont/chart.h"
-
-static double now(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
+#include "bench_util.h"
 
 /* CPU seconds of the whole process (all threads): on a shared machine a
  * rate per CPU second is the rate per core, whatever the load. */
-static double cpu(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-static int cmp_double(const void *a, const void *b) {
-  double x = *(const double *)a, y = *(const double *)b;
-  return x < y ? -1 : x > y;
-}
-
-static double median(double *v, int n) {
-  qsort(v, (size_t)n, sizeof *v, cmp_double);
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 /* Fig 5.7(a): bk2, driver frozen, phi = 1.25, alpha and beta over
  * [1, 20], d0 = 0, transient 1000. */
 static sc_chart_spec fig57a(long n) {
@@ -93,7 +72,7 @@ static int bench_iterates(void) {
   sc_msg msg;
   for (int r = 0; r < R; r++) {
     long n = 0, undef = 0;
-    double t = now(), c = cpu();
+    double t = bench_wall(), c = bench_cpu();
     for (long j = 0; j < G; j++)
       for (long i = 0; i < G; i++) {
         sc_map_set_param(m, (size_t)ib, sc_chart_y(&s, j), NULL);
@@ -108,15 +87,15 @@ static int bench_iterates(void) {
           d = v.f;
         }
       }
-    bare[r] = (double)n / (cpu() - c);
-    bare_w[r] = (double)n / (now() - t);
-    t = now();
-    c = cpu();
+    bare[r] = (double)n / (bench_cpu() - c);
+    bare_w[r] = (double)n / (bench_wall() - t);
+    t = bench_wall();
+    c = bench_cpu();
     if (sc_chart_rows(m, &s, 0, G, 1, 1, NULL, NULL, pt, &msg)) {
       fprintf(stderr, "bench_chart: %s\n", msg.text);
       return 1;
     }
-    double el = now() - t, ec = cpu() - c, it = 0;
+    double el = bench_wall() - t, ec = bench_cpu() - c, it = 0;
     for (long k = 0; k < G * G; k++) it += pt[k].iterations;
     chart[r] = it / ec;
     chart_w[r] = it / el;
@@ -129,8 +108,8 @@ static int bench_iterates(void) {
   printf("median map iterates per CPU second (one core): bare %.4g, "
          "through the chart %.4g; wall: %.4g, %.4g (%d runs, %ld x %ld "
          "points of fig 5.7(a))\n",
-         median(bare, R), median(chart, R), median(bare_w, R),
-         median(chart_w, R), R, G, G);
+         bench_median(bare, R), bench_median(chart, R), bench_median(bare_w, R),
+         bench_median(chart_w, R), R, G, G);
   free(pt);
   sc_map_free(m);
   return 0;
@@ -148,12 +127,12 @@ static int bench_points(long N) {
   for (int r = 0; r < R; r++) {
     double t1 = 0;
     for (int th = 1; th <= 2; th++) {
-      double t = now(), c = cpu();
+      double t = bench_wall(), c = bench_cpu();
       if (sc_chart_rows(m, &s, 0, N, 1, th, NULL, NULL, pt, &msg)) {
         fprintf(stderr, "bench_chart: %s\n", msg.text);
         return 1;
       }
-      double el = now() - t, ec = cpu() - c, it = 0;
+      double el = bench_wall() - t, ec = bench_cpu() - c, it = 0;
       for (long k = 0; k < N * N; k++) it += pt[k].iterations;
       rate[th - 1][r] = (double)(N * N) / el;
       cpurate[th - 1][r] = (double)(N * N) / ec;
@@ -168,8 +147,8 @@ static int bench_points(long N) {
   printf("median chart points per second, fig 5.7(a) %ld x %ld: 1 thread "
          "%.4g, 2 threads %.4g, speed-up %.3f (%d runs); per CPU second: "
          "%.4g and %.4g\n",
-         N, N, median(rate[0], R), median(rate[1], R), median(ratio, R), R,
-         median(cpurate[0], R), median(cpurate[1], R));
+         N, N, bench_median(rate[0], R), bench_median(rate[1], R), bench_median(ratio, R), R,
+         bench_median(cpurate[0], R), bench_median(cpurate[1], R));
   free(pt);
   sc_map_free(m);
   return 0;

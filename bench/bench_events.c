@@ -17,17 +17,7 @@
 #include <time.h>
 
 #include "slipcont/map.h"
-
-static double cpu(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-static int cmp(const void *a, const void *b) {
-  double x = *(const double *)a, y = *(const double *)b;
-  return (x > y) - (x < y);
-}
+#include "bench_util.h"
 
 int main(int argc, char **argv) {
   int repeats = argc > 1 ? atoi(argv[1]) : 5;
@@ -66,7 +56,7 @@ int main(int argc, char **argv) {
     for (int rep = 0; rep < repeats; rep++) {
       sc_map_value r;
       d = 0.02, sum = 0;
-      double t0 = cpu();
+      double t0 = bench_cpu();
       for (long k = 0; k < n; k++) {
         if (sc_map_eval(m, d, 0, &r, &msg)) {
           fprintf(stderr, "bench_events: %s\n", msg.text);
@@ -75,9 +65,9 @@ int main(int argc, char **argv) {
         d = r.f;
         sum += d;
       }
-      rates[rep] = (double)n / (cpu() - t0);
+      rates[rep] = (double)n / (bench_cpu() - t0);
     }
-    qsort(rates, (size_t)repeats, sizeof rates[0], cmp);
+    qsort(rates, (size_t)repeats, sizeof rates[0], bench_cmp_double);
     printf("%s: %.4g iterates/CPU-s (median of %d; min %.4g, max %.4g); "
            "d_%ld = %.17g, sum %.17g\n",
            figs[fi].name, rates[repeats / 2], repeats, rates[0],

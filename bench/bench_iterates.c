@@ -33,15 +33,10 @@
 #include <time.h>
 
 #include "slipcont/map.h"
+#include "bench_util.h"
 
 #define SEGMENT 10000
 #define NREASON 16
-
-static double now(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 static unsigned long long rng = 88172645463325252ULL;
 static double uniform(void) { /* in [-1, 1) */
@@ -116,14 +111,14 @@ static int run(const workload *w, long n, long every) {
   int nreasons = 0;
   double worst_f = 0, slowest = 0, d_slowest = 0;
   double d = w->follow ? 0.02 : ds + uniform() * scale;
-  double t0 = now();
+  double t0 = bench_wall();
   for (long k = 0; k < n; k++) {
     if (!w->follow && k % SEGMENT == 0) d = ds + uniform() * scale;
     sc_map_value v;
     sc_msg msg = {""};
-    double t = now();
+    double t = bench_wall();
     int st = sc_map_eval(md, d, SC_EVAL_VALUE, &v, &msg);
-    t = now() - t;
+    t = bench_wall() - t;
     if (t > slowest) slowest = t, d_slowest = d;
     if (!st && !isfinite(v.f)) {
       nnan++;
@@ -174,7 +169,7 @@ static int run(const workload *w, long n, long every) {
     }
     d = v.f;
   }
-  double el = now() - t0;
+  double el = bench_wall() - t0;
   printf("%s: %ld iterates in %.1f s (%.3g it/s, samples included); f not "
          "finite %ld; slowest iterate %.3g s (d = %.17g); %ld refused\n",
          w->name, n, el, (double)n / el, nnan, slowest, d_slowest, nrefused);

@@ -19,19 +19,9 @@
 #include <time.h>
 
 #include "slipcont/map.h"
+#include "bench_util.h"
 
 #define NPTS 2000
-
-static double now(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
-
-static int cmp(const void *a, const void *b) {
-  double x = *(const double *)a, y = *(const double *)b;
-  return (x > y) - (x < y);
-}
 
 typedef struct {
   const char *name;
@@ -101,19 +91,19 @@ int main(int argc, char **argv) {
       /* one untimed pass: caches and clock frequency settle */
       for (int i = 0; i < NPTS; i++) sc_map_eval(m, pts[i], 0, &r, &msg);
       for (int rep = 0; rep < repeats; rep++) {
-        double t0 = now();
+        double t0 = bench_wall();
         for (int i = 0; i < NPTS; i++) {
           sc_map_eval(m, pts[i], 0, &r, &msg);
           sink += r.f;
         }
-        rates[rep] = NPTS / (now() - t0);
+        rates[rep] = NPTS / (bench_wall() - t0);
       }
       for (int i = 0; i < NPTS; i++) {
         sc_map_eval(m, pts[i], SC_EVAL_ITINERARY, &r, &msg);
         if (strcmp(r.itinerary, itex[i]) == 0)
           err = fmax(err, fabs(r.f - fex[i]));
       }
-      qsort(rates, (size_t)repeats, sizeof rates[0], cmp);
+      qsort(rates, (size_t)repeats, sizeof rates[0], bench_cmp_double);
       printf("| %s | %s | %.4g | %.3g |%s\n", figs[fi].name,
              variants[vi].label, rates[repeats / 2], err,
              sink == 42 ? " " : "");

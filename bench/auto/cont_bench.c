@@ -3,6 +3,7 @@
  * attractor until its flip) and the period-3 fold.  Prints the located
  * values, their errors and the median time of the continuation calls
  * (attractor iteration excluded) over 200 repetitions. */
+#define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -10,6 +11,7 @@
 
 #include "slipcont/continuation.h"
 #include "slipcont/map.h"
+#include "bench_util.h" /* bench/ */
 
 typedef struct { sc_map *m; int period; } ctx_t;
 
@@ -27,17 +29,6 @@ static int fn(double x, const double *p, int order, sc_map1d_jet *j, void *u) {
 /* Points and Newton iterations of the last repetition. */
 static unsigned long npoints, nnewton;
 
-static double now(void) {
-  struct timespec t;
-  clock_gettime(CLOCK_MONOTONIC, &t);
-  return t.tv_sec + 1e-9 * t.tv_nsec;
-}
-
-static int cmp(const void *a, const void *b) {
-  double x = *(const double *)a, y = *(const double *)b;
-  return (x > y) - (x < y);
-}
-
 /* Continue the fixed points of f^period from (x0, r0) until the first
  * special point of test `want`; returns its r and adds the time. */
 static double locate(sc_map *m, int period, double x0, double r0, double h0,
@@ -51,7 +42,7 @@ static double locate(sc_map *m, int period, double x0, double r0, double h0,
   sc_cont_settings_default(&set);
   set.h0 = h0, set.hmax = hmax, set.direction = dir, set.pmax = 4;
   set.pmin = 3.8 * (dir < 0);
-  double t0 = now();
+  double t0 = bench_wall();
   sc_branch *b;
   sc_branch_alloc(&pb, &set, NULL, &b, NULL);
   double u0[2] = {x0, r0};
@@ -63,7 +54,7 @@ static double locate(sc_map *m, int period, double x0, double r0, double h0,
   npoints += sc_branch_npoints(b);
   nnewton += sc_branch_nnewton(b);
   sc_branch_free(b);
-  *t += now() - t0;
+  *t += bench_wall() - t0;
   return r;
 }
 
@@ -106,8 +97,8 @@ int main(void) {
   for (int k = 1; k <= 6; k++)
     printf("r_%d slipcont %.17g err %.3g\n", k, rk[k], fabs(rk[k] - ref[k - 1]));
   printf("fold slipcont %.17g err %.3g\n", rfold, fabs(rfold - (1 + 2 * sqrt(2))));
-  qsort(tc, REP, sizeof *tc, cmp);
-  qsort(tf, REP, sizeof *tf, cmp);
+  qsort(tc, REP, sizeof *tc, bench_cmp_double);
+  qsort(tf, REP, sizeof *tf, bench_cmp_double);
   printf("cascade (6 flips): median %.3g s, min %.3g s over %d runs\n",
          tc[REP / 2], tc[0], REP);
   printf("period-3 fold: median %.3g s, min %.3g s over %d runs\n",

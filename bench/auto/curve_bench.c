@@ -10,6 +10,7 @@
 #include <time.h>
 
 #include "slipcont/slipcont.h"
+#include "bench_util.h" /* bench/ */
 
 typedef struct {
   double worst, cusp;
@@ -29,11 +30,6 @@ static int sp(void *c, const sc_curve_special *s) {
   if (!strcmp(s->label, "CP"))
     a->cusp = fmax(fabs(s->x), fmax(fabs(s->y), fabs(s->d)));
   return 0;
-}
-
-static int cmp(const void *a, const void *b) {
-  double x = *(const double *)a, y = *(const double *)b;
-  return (x > y) - (x < y);
 }
 
 int main(void) {
@@ -59,7 +55,7 @@ int main(void) {
     t[r] = (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
     sc_map_free(m);
   }
-  qsort(t, R, sizeof t[0], cmp);
+  qsort(t, R, sizeof t[0], bench_cmp_double);
   printf("slipcont cubic fold curve: median %.3g ms (min %.3g ms), %ld points, "
          "worst rel |27 mu1^2 - 4 mu2^3| %.3g, cusp at %.3g from the "
          "origin\n",

@@ -6,7 +6,7 @@ set -e
 BUILD=${BUILD:-build}
 ROOT=$(pwd)
 WORK=$(mktemp -d)
-gcc -O2 -std=c11 -I"$ROOT/include" bench/auto/curve_bench.c \
+gcc -O2 -std=c11 -I"$ROOT/include" -I"$ROOT/bench" bench/auto/curve_bench.c \
   "$BUILD/libslipcont.a" -lklu -lamd -lcolamd -lbtf -lsuitesparseconfig \
   -llapack -lblas -lgsl -lgslcblas -linih -lquadmath -fopenmp -lm -o "$WORK/curve_bench"
 "$WORK/curve_bench"
