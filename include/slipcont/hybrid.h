@@ -50,7 +50,8 @@ typedef struct {
   int steps;      /**< intervals examined (for benchmarks) */
   int ntrig;      /**< 0, or the number of terms (n) whose cos(w_k t) and
                        sin(w_k t) at the returned t are in cs[], sn[], to a
-                       few ulps (roots found by the refinement) */
+                       few ulps (roots found by the refinement or
+                       the closed form) */
   double cs[SC_GUARD_MAXFREQ]; /**< cos(w_k t), when ntrig > 0 */
   double sn[SC_GUARD_MAXFREQ]; /**< sin(w_k t), when ntrig > 0 */
 } sc_root;

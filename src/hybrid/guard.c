@@ -327,10 +327,27 @@ static void refine(const sc_guard *g, const guard_size *z, double M3,
     refine_n(g, g->n, z, M3, lo, glo, dlo, hi, ghi, dhi, atol, rtol, out);
 }
 
+/* 2 pi as a sum of two doubles (the second is 2 pi - fl(2 pi)). */
+#define GUARD_TWO_PI_HI (2 * SC_PI)
+#define GUARD_TWO_PI_LO 2.4492935982947064e-16
+
 /* A single sinusoid and a constant: roots in closed form.  g = c0 +
  * R cos(w t - phi).  Ascending roots sit at w t = phi - theta, descending
  * ones at phi + theta (mod 2 pi), cos theta = -c0 / R.  Returns 0 when the
- * case is degenerate and the march should decide. */
+ * case is degenerate and the march should decide.
+ *
+ * The root's angle psi = phi -+ theta is that of a phase vector (x, y),
+ * the product of (cos phi, sin phi) and (cos theta, -+ sin theta) times
+ * R^2: one atan2 gives psi, and (x, y) / |(x, y)| gives cos psi and
+ * sin psi without sincos.  The root is t = alpha / w, alpha = psi or
+ * psi + 2 pi; the flow at the event evaluates cos and sin of the rounded
+ * product fl(w t), which differs from alpha by an ulp or two.  So the
+ * phase vector is turned by that small angle fl(w t) - alpha (exact), less
+ * the rounding of alpha's 2 pi (kept as a second double), to first order:
+ * the angle is below 1e-15, its square below rounding.  What is left is
+ * atan2's own rounding (half an ulp of |psi| <= pi) and a few roundings
+ * of the products: cos and sin within a few ulps of libm's cos(w * t),
+ * sin(w * t) (tests/test_guard.c), handed over in out->cs, out->sn. */
 static int closed_form(const sc_guard *g, const guard_size *z, double R,
                        double tmax, int skip_start, sc_root *out) {
   double a = g->a[0], b = g->b[0], w = g->w[0], c0 = g->c0;
@@ -338,46 +355,57 @@ static int closed_form(const sc_guard *g, const guard_size *z, double R,
   if (R <= E) return 0;
   double gap = R - fabs(c0);
   if (gap < -E) return 1; /* never reaches zero: out says not found */
-  const double twopi = 2 * SC_PI;
-  /* Phase vectors: with (a, b) = R (cos phi, sin phi) and
-   * (-c0, rs) = R (cos theta, sin theta), the ascending root's phase
-   * phi - theta and the descending one's phi + theta are the angles of
-   * the products (a + i b)(-c0 -+ i rs): one atan2, no fmod. */
-  double asc, desc, alpha, rs = 0;
+  /* The phase vector (x, y) of the first root's type (ascending if asc),
+   * and its angle alpha in [0, 2 pi) (2 pi or a little more after a
+   * skipped start root) as alpha + alo. */
+  double x, y, alpha, alo = 0, rs = 0;
+  int asc;
   if (gap <= E) {
     /* touches: cos(w t - phi) = -sign(c0) */
-    asc = desc = c0 < 0 ? atan2(b, a) : atan2(-b, -a);
+    if (skip_start) return 0;
     out->tangent = 1;
+    asc = c0 + a < 0;
+    x = c0 < 0 ? a : -a, y = c0 < 0 ? b : -b;
   } else {
     rs = sqrt(gap * (R + fabs(c0))); /* R sin(theta) */
-    asc = desc = -1;
-  }
-  if (skip_start) {
-    double g1 = w * b; /* g'(0) */
-    if (g1 == 0 || out->tangent) return 0;
-    /* the start root is of the type of g'(0): the next is the other type */
-    if (g1 < 0) asc = atan2(-b * c0 - a * rs, -a * c0 + b * rs);
-    else desc = atan2(a * rs - b * c0, -a * c0 - b * rs);
-    alpha = g1 < 0 ? asc : desc;
-    if (alpha < 0) alpha += twopi;
-    if (alpha * 1 <= 4 * DBL_EPSILON * twopi) alpha += twopi;
-  } else {
-    /* from below zero the first root ascends, from above it descends */
-    if (!out->tangent) {
-      if (c0 + a < 0) asc = atan2(-b * c0 - a * rs, -a * c0 + b * rs);
-      else desc = atan2(a * rs - b * c0, -a * c0 - b * rs);
+    if (skip_start) {
+      double g1 = w * b; /* g'(0) */
+      if (g1 == 0) return 0;
+      /* the start root is of the type of g'(0): the next is the other */
+      asc = g1 < 0;
+    } else {
+      /* from below zero the first root ascends, from above it descends */
+      asc = c0 + a < 0;
     }
-    alpha = c0 + a < 0 ? asc : desc;
-    if (alpha < 0) alpha += twopi;
+    if (asc) x = -a * c0 + b * rs, y = -b * c0 - a * rs;
+    else x = -a * c0 - b * rs, y = a * rs - b * c0;
+  }
+  alpha = atan2(y, x);
+  if (alpha < 0) {
+    /* Fast2Sum: |2 pi| > |alpha|, so the rounding of the sum is exact */
+    double s = alpha + GUARD_TWO_PI_HI;
+    alo = (alpha - (s - GUARD_TWO_PI_HI)) + GUARD_TWO_PI_LO;
+    alpha = s;
+  }
+  if (skip_start && alpha * 1 <= 4 * DBL_EPSILON * GUARD_TWO_PI_HI) {
+    double s = alpha + GUARD_TWO_PI_HI;
+    alo += (alpha - (s - GUARD_TWO_PI_HI)) + GUARD_TWO_PI_LO;
+    alpha = s;
   }
   double t = alpha / w;
   if (t <= tmax) {
     out->found = 1;
     out->t = t;
+    /* cos and sin of fl(w t): the unit phase vector turned by the angle
+     * d = fl(w t) - (alpha + alo) (|d| < 1e-15: cos d = 1, sin d = d) */
+    double r = 1 / sqrt(x * x + y * y), cx = x * r, sy = y * r;
+    double d = (w * t - alpha) - alo;
+    out->cs[0] = cx - sy * d, out->sn[0] = sy + cx * d;
+    out->ntrig = 1;
     /* at a root R cos(w t - phi) = -c0: g' = +-w R sin(theta) (ascending
      * or descending), g'' = w^2 c0 */
     if (out->tangent) sc_guard_eval(g, t, NULL, &out->slope, NULL);
-    else out->slope = (skip_start ? w * b < 0 : c0 + a < 0) ? w * rs : -w * rs;
+    else out->slope = asc ? w * rs : -w * rs;
     out->curv = w * w * c0;
     out->bracket = out->tangent ? 0 : E / fmax(fabs(out->slope), DBL_MIN);
   }
