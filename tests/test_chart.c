@@ -17,8 +17,8 @@ typedef struct {
 } l2_inst;
 
 static const sc_param_info l2_params[] = {
-    {"r", 3, 0, 5, 1, 0, "growth rate", NULL},
-    {"e", 0, -1, 1, 0, 0, "shift of the growth rate", NULL},
+    {"r", 3, 0, 5, 1, 0, "growth rate", NULL, NULL},
+    {"e", 0, -1, 1, 0, 0, "shift of the growth rate", NULL, NULL},
 };
 
 static int l2_setup(void *inst, const double *p, const int *opt,

@@ -285,6 +285,15 @@ SC_API char *sc_plot_title(const sc_map *m, const char *skip, char *buf,
                            size_t len);
 
 /**
+ * @brief sc_plot_title() leaving out two parameters (those on the axes
+ * of a chart; either may be NULL).  Parameters that do not act with the
+ * model's options (sc_param_info.only_with) are left out too.
+ * @return @p buf.
+ */
+SC_API char *sc_plot_title_except(const sc_map *m, const char *skip1,
+                                  const char *skip2, char *buf, size_t len);
+
+/**
  * @brief The axis label of a model parameter or state variable: "V" for
  * bk2's v, "Y_2 - Y_1" for bk2's d, the name itself otherwise.
  */

@@ -33,6 +33,10 @@ typedef struct {
   int hi_open;       /**< 1: hi itself is excluded (hi may be HUGE_VAL) */
   const char *doc;   /**< one line */
   const char *symbol; /**< plot label (gnuplot text), NULL: the name */
+  /** NULL, or "option=value": the parameter acts only with that option
+   * value (bk2: gamma with friction=velocity-weakening, phi with
+   * friction=coulomb); plot titles leave it out otherwise. */
+  const char *only_with;
 } sc_param_info;
 
 /** Most values one string option may take. */

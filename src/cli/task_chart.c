@@ -389,26 +389,13 @@ static unsigned class_rgb(int period) {
   return period_rgb[(period - 1) % 16];
 }
 
-/* The title: every parameter except the two on the axes, the options. */
+/* The title: every parameter except the two on the axes, the options,
+ * the start and the iterates. */
 static void chart_title(const sc_map *m, const sc_chart_spec *c, char *buf,
                         size_t len) {
   const sc_model_type *t = sc_map_type(m);
-  size_t u = 0;
-  buf[0] = '\0';
-  for (size_t i = 0; i < t->nparam && u < len; i++) {
-    const char *n = t->params[i].name;
-    if (strcmp(n, c->x) == 0 || strcmp(n, c->y) == 0) continue;
-    int k = snprintf(buf + u, len - u, "%s%s = %.10g", u ? ", " : "", n,
-                     sc_map_get_param(m, i));
-    if (k > 0) u += (size_t)k;
-  }
-  for (size_t i = 0; i < t->noption && u < len; i++) {
-    const char *v = sc_map_get_option(m, t->options[i].name);
-    if (i && strcmp(v, t->options[i].values[0]) == 0) continue;
-    int k = snprintf(buf + u, len - u, "%s%s %s", u ? ", " : "",
-                     t->options[i].name, v);
-    if (k > 0) u += (size_t)k;
-  }
+  sc_plot_title_except(m, c->x, c->y, buf, len);
+  size_t u = strlen(buf);
   if (u < len)
     snprintf(buf + u, len - u, "%s%s_0 = %.10g, %ld iterates at most",
              u ? ", " : "", t->state_name, c->d0, c->transient);

@@ -41,15 +41,33 @@ void sc_plot_head(FILE *f, const char *png, const char *title,
   fputc('\n', f);
 }
 
-char *sc_plot_title(const sc_map *m, const char *skip, char *buf,
-                    size_t len) {
+/* Whether parameter p acts with the map's options (only_with
+ * "option=value"). */
+static int param_acts(const sc_map *m, const sc_param_info *p) {
+  if (!p->only_with) return 1;
+  const char *eq = strchr(p->only_with, '=');
+  if (!eq) return 1;
+  char opt[64];
+  size_t n = (size_t)(eq - p->only_with);
+  if (n >= sizeof opt) return 1;
+  memcpy(opt, p->only_with, n);
+  opt[n] = '\0';
+  const char *v = sc_map_get_option(m, opt);
+  return !v || strcmp(v, eq + 1) == 0;
+}
+
+char *sc_plot_title_except(const sc_map *m, const char *skip1,
+                           const char *skip2, char *buf, size_t len) {
   const sc_model_type *t = sc_map_type(m);
   buf[0] = '\0';
   size_t used = 0;
   for (size_t i = 0; i < t->nparam && used < len; i++) {
-    if (skip && strcmp(skip, t->params[i].name) == 0) continue;
+    const char *n = t->params[i].name;
+    if ((skip1 && strcmp(skip1, n) == 0) || (skip2 && strcmp(skip2, n) == 0) ||
+        !param_acts(m, &t->params[i]))
+      continue;
     int k = snprintf(buf + used, len - used, "%s%s = %.10g", used ? ", " : "",
-                     t->params[i].name, sc_map_get_param(m, i));
+                     n, sc_map_get_param(m, i));
     if (k > 0) used += (size_t)k;
   }
   /* The first option (bk2: driver) always, the others when changed. */
@@ -62,6 +80,11 @@ char *sc_plot_title(const sc_map *m, const char *skip, char *buf,
   }
   if (!buf[0]) snprintf(buf, len, "%s", t->doc);
   return buf;
+}
+
+char *sc_plot_title(const sc_map *m, const char *skip, char *buf,
+                    size_t len) {
+  return sc_plot_title_except(m, skip, NULL, buf, len);
 }
 
 const char *sc_plot_label(const sc_map *m, const char *name) {

@@ -18,14 +18,17 @@
 #include "slipcont/hybrid.h"
 
 static const sc_param_info bk2_params[] = {
-    {"alpha", 3, 0, 1e6, 1, 0, "coupling spring / driver spring, k_c/k", NULL},
-    {"beta", 1, 0, 1e6, 1, 0, "static friction of block 2 / block 1", NULL},
-    {"phi", 1.25, 1, 1e6, 1, 0, "static / kinetic friction ratio, 1/mu", NULL},
-    {"v", 0.025, 0, 1e3, 0, 0, "driver velocity V (dimensionless)", "V"},
+    {"alpha", 3, 0, 1e6, 1, 0, "coupling spring / driver spring, k_c/k", NULL,
+     NULL},
+    {"beta", 1, 0, 1e6, 1, 0, "static friction of block 2 / block 1", NULL,
+     NULL},
+    {"phi", 1.25, 1, 1e6, 1, 0, "static / kinetic friction ratio, 1/mu", NULL,
+     "friction=coulomb"},
+    {"v", 0.025, 0, 1e3, 0, 0, "driver velocity V (dimensionless)", "V", NULL},
     {"gamma", 1, 0, 1e6, 0, 0,
      "velocity weakening: K_i = T_i / (1 + gamma |U_i - V_s|) (friction = "
      "velocity-weakening only)",
-     NULL},
+     NULL, "friction=velocity-weakening"},
 };
 
 static const sc_option_info bk2_options[] = {

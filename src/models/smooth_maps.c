@@ -13,7 +13,7 @@ typedef struct {
 } logistic_inst;
 
 static const sc_param_info logistic_params[] = {
-    {"r", 2.8, 0, 4, 0, 0, "growth rate", NULL},
+    {"r", 2.8, 0, 4, 0, 0, "growth rate", NULL, NULL},
 };
 
 static int logistic_setup(void *inst, const double *p, const int *opt,
@@ -65,8 +65,8 @@ typedef struct {
 } cubic_inst;
 
 static const sc_param_info cubic_params[] = {
-    {"mu1", 0, -1e6, 1e6, 0, 0, "constant term", NULL},
-    {"mu2", 0.5, -1e6, 1e6, 0, 0, "linear term", NULL},
+    {"mu1", 0, -1e6, 1e6, 0, 0, "constant term", NULL, NULL},
+    {"mu2", 0.5, -1e6, 1e6, 0, 0, "linear term", NULL, NULL},
 };
 
 static int cubic_setup(void *inst, const double *p, const int *opt,
@@ -124,8 +124,8 @@ typedef struct {
 } gpd_inst;
 
 static const sc_param_info gpd_params[] = {
-    {"mu1", 0, -1e6, 1e6, 0, 0, "multiplier of x = 0 is -(1 + mu1)", NULL},
-    {"mu2", 0.5, -1e6, 1e6, 0, 0, "cubic term", NULL},
+    {"mu1", 0, -1e6, 1e6, 0, 0, "multiplier of x = 0 is -(1 + mu1)", NULL, NULL},
+    {"mu2", 0.5, -1e6, 1e6, 0, 0, "cubic term", NULL, NULL},
 };
 
 static int gpd_setup(void *inst, const double *p, const int *opt,
