@@ -439,7 +439,11 @@ void sc_bk2_first_restick(bk2_inst *b) {
         b->search(&b->first_g[i - 1], guard_horizon(&b->first_g[i - 1]), 1,
                   b->acc.event_atol, b->acc.event_rtol,
                   &b->first_r[i - 1]) == SC_OK &&
-        b->first_r[i - 1].found;
+        b->first_r[i - 1].found &&
+        /* (so a phase with an equal guard, whose horizon is at least
+         * this one, never needs its horizon to take the cached root:
+         * first_event()) */
+        b->first_r[i - 1].t <= guard_horizon(&b->first_g[i - 1]);
   }
 }
 
@@ -463,6 +467,17 @@ static inline double window_once(const sc_guard *g, const sc_root *r, int i,
                                  double *rw) {
   if (rw[i] < 0) rw[i] = root_window(&g[i], &r[i]);
   return rw[i];
+}
+
+/* A phase's horizon: the largest of its guards' (fmax without the libm
+ * call; a NaN one is left out, as fmax leaves it out). */
+static double phase_horizon(const sc_guard *g, int ng) {
+  double tmax = 0;
+  for (int i = 0; i < ng; i++) {
+    double hz = guard_horizon(&g[i]);
+    if (hz > tmax) tmax = hz;
+  }
+  return tmax;
 }
 
 /* The candidate events of a phase of `mode`, in the order they are
@@ -554,7 +569,10 @@ static double onset_trigger_slope(const sc_guard *g, double gap) {
 }
 
 /* The first event of a phase among its guards g (kinds kind), searched
- * up to tmax: later guards only up to the earliest root so far (plus its
+ * up to the phase's horizon tmax (phase_horizon(); NaN: computed here
+ * when first needed, which a slip from a GSP whose re-stick comes from
+ * the cache never does: two guards and three divisions saved in most
+ * phases of a chart): later guards only up to the earliest root so far (plus its
  * tie tolerance), the first re-stick after a GSP from the per-parameter
  * cache; ties within the event tolerance, or within the intervals the two
  * roots are known to lie in (a root can be known no better than the
@@ -579,15 +597,23 @@ static int first_event(const bk2_inst *b, int mode, int fresh,
   int first = -1;
   for (int i = 0; i < ng; i++) {
     int skip = kind[i] < 3 && ((fresh & kind[i]) || falls_from_zero(&g[i]));
-    double lim = first < 0 ? tmax
+    double lim = first < 0 ? NAN
                            : r[first].t + 2 * (atol + rtol * r[first].t +
                                                window_once(g, r, first, rw));
     int st = SC_OK;
+    /* Without a root yet, the cached root is within tmax: tmax is at
+     * least this guard's horizon, which equals the cached guard's (same
+     * frequency, one term, no linear term: same_guard()), and the cached
+     * root lies within that (sc_bk2_first_restick()). */
     if (skip && mode != SC_BK2_SLIP12 && b->first_ok[kind[i] - 1] &&
-        b->first_r[kind[i] - 1].t <= lim &&
+        (first < 0 || b->first_r[kind[i] - 1].t <= lim) &&
         same_guard(&g[i], &b->first_g[kind[i] - 1]))
       r[i] = b->first_r[kind[i] - 1]; /* the slip from a GSP: d-free */
     else {
+      if (first < 0) {
+        if (isnan(tmax)) tmax = phase_horizon(g, ng);
+        lim = tmax;
+      }
       r[i].ntrig = 0; /* (a search that does not leave cos and sin) */
       st = b->search(&g[i], lim, skip, atol, rtol, &r[i]);
     }
@@ -602,6 +628,7 @@ static int first_event(const bk2_inst *b, int mode, int fresh,
       r[i].slope = onset_trigger_slope(&g[i], onset_gap);
     if (r[i].found && (first < 0 || r[i].t < r[first].t)) first = i;
   }
+  if (first < 0 && isnan(tmax)) tmax = phase_horizon(g, ng);
   if (first < 0)
     return sc_fail(msg, SC_EUNDEF,
                    "no event within %.6g time units of slip mode %s: the "
@@ -644,8 +671,7 @@ static int exact_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
       set_onset_gap(&g[i], ev->onset_gap);
   }
   sc_root r[2];
-  double tmax = 0;
-  for (int i = 0; i < ng; i++) tmax = fmax(tmax, guard_horizon(&g[i]));
+  double tmax = phase_horizon(g, ng);
   int first = -1, both = 0, atmax = 0;
   if (!ev->force) {
     int st = first_event(b, mode, fresh, g, kind, ng, tmax,
@@ -889,14 +915,9 @@ static int value_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
       set_onset_gap(&g[i], onset_gap);
   }
   sc_root r[2];
-  double tmax = 0;
-  for (int i = 0; i < ng; i++) {
-    double hz = guard_horizon(&g[i]); /* fmax without the libm call */
-    if (hz > tmax) tmax = hz;
-  }
   int first = -1, both = 0;
   long steps = 0;
-  int st = first_event(b, mode, fresh, g, kind, ng, tmax, onset_gap, r,
+  int st = first_event(b, mode, fresh, g, kind, ng, NAN, onset_gap, r,
                        &first, &both,
                        &steps, msg);
   if (st) return st;
