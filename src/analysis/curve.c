@@ -503,14 +503,7 @@ static int run(trace *T, int dir, int branch, sc_msg *msg) {
   const sc_curve_settings *s = T->set;
   size_t N = T->N;
   sc_cont_settings cset;
-  sc_cont_settings_default(&cset);
-  cset.h0 = s->h0;
-  cset.hmax = s->hmax;
-  cset.hmin = fmin(cset.hmin, s->h0);
-  cset.pmin = s->ylo;
-  cset.pmax = s->yhi;
-  cset.direction = dir;
-  cset.max_points = s->max_points;
+  sc_curve_cont_settings(s, dir, &cset);
   /* multiple shooting: the sparse pattern and KLU (about 5 m nonzeros
    * in an (m + 2)^2 bordered matrix) */
   sc_cont_problem pb = T->cs.pb;

@@ -19,6 +19,18 @@ void sc_curve_ftol(sc_accuracy *acc, double floor) {
   }
 }
 
+void sc_curve_cont_settings(const sc_curve_settings *s, int dir,
+                            sc_cont_settings *c) {
+  sc_cont_settings_default(c);
+  c->h0 = s->h0;
+  c->hmax = s->hmax;
+  c->hmin = fmin(c->hmin, s->h0);
+  c->pmin = s->ylo;
+  c->pmax = s->yhi;
+  c->direction = dir;
+  c->max_points = s->max_points;
+}
+
 int sc_forced_init(sc_forced_sys *s, sc_map *m, int period, int ix, int iy,
                    sc_curve_type type, double fd_step, sc_msg *msg) {
   memset(s, 0, sizeof *s);
@@ -475,14 +487,7 @@ static int bfallback(btrace *B, const double *u, int *st) {
 static int brun(btrace *B, int dir, int branch, sc_msg *msg) {
   const sc_curve_settings *s = B->set;
   sc_cont_settings cset;
-  sc_cont_settings_default(&cset);
-  cset.h0 = s->h0;
-  cset.hmax = s->hmax;
-  cset.hmin = fmin(cset.hmin, s->h0);
-  cset.pmin = s->ylo;
-  cset.pmax = s->yhi;
-  cset.direction = dir;
-  cset.max_points = s->max_points;
+  sc_curve_cont_settings(s, dir, &cset);
   sc_branch *b;
   int st = sc_branch_alloc(&B->cs.pb, &cset, &B->acc, &b, msg);
   if (st) return st;

@@ -18,6 +18,11 @@
  * 1e-9 (the fast preset's). */
 void sc_curve_ftol(sc_accuracy *acc, double floor);
 
+/* The continuation settings of a curve from its own (steps, the box in
+ * y, max points) in direction dir. */
+void sc_curve_cont_settings(const sc_curve_settings *s, int dir,
+                            sc_cont_settings *c);
+
 /* sqrt(DBL_EPSILON): how small a located test function must be against
  * its values at the bracket's ends (what a difference-row Newton reaches
  * on a well-scaled zero) */
