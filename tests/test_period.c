@@ -75,6 +75,8 @@ static void exact_sequences(void) {
          feed(pd, small2, 2, 1000, &pushes), 2);
   tu_close("tolerance = rtol * extent + floor", sc_period_tol(pd),
            1e-6 * 1.0 + SC_PERIOD_FLOOR_ULPS * DBL_EPSILON * 1.0, 1e-22);
+  tu_close("extent = max - min over the orbit", sc_period_extent(pd), 1.0,
+           0);
   sc_period_free(pd);
 
   /* Error paths. */
@@ -82,8 +84,14 @@ static void exact_sequences(void) {
          SC_EINVAL);
   tu_true(pd == NULL && strstr(msg.text, "max-period") != NULL,
           "message names max-period: %s", msg.text);
+  tu_int("max_period 257 refused",
+         sc_period_alloc(SC_PERIOD_MAX + 1, 4, 1e-6, &pd, &msg), SC_EINVAL);
   tu_int("confirm 0 refused", sc_period_alloc(16, 0, 1e-6, &pd, &msg),
          SC_EINVAL);
+  tu_int("confirm 65 refused",
+         sc_period_alloc(16, SC_PERIOD_MAX_CONFIRM + 1, 1e-6, &pd, &msg),
+         SC_EINVAL);
+  sc_period_free(NULL); /* a no-op, as free() */
   tu_int("rtol NaN refused", sc_period_alloc(16, 4, NAN, &pd, &msg),
          SC_EINVAL);
   tu_int("rtol 0.5 refused", sc_period_alloc(16, 4, 0.5, &pd, &msg),
@@ -372,11 +380,24 @@ static void orbit(int kind, int maxp, double rtol, double *x, int len) {
       if (kind == 3 && k == t0) x[k] = 50 * (1 + uniform());
       break;
     }
-    default:
+    case 4:
       if (k == 0 || below(60) == 0) q = 1 + below(maxp + 1);
       x[k] = k >= q && below(8) ? x[k - q] : (double)below(3);
       break;
+    default: /* kind 2, always alternating, without noise */
+      x[k] = cyc[k % q] + ((k / q) % 2 ? -amp : amp) * pow(lam, k);
+      break;
     }
+  }
+  if (kind == 5) { /* one iterate in the second half kicked by 1 to 3
+                      tolerances */
+    int t1 = len / 2 - 1 + t0;
+    double lo = x[0], hi = x[0];
+    for (int k = 1; k < t1; k++) {
+      lo = fmin(lo, x[k]);
+      hi = fmax(hi, x[k]);
+    }
+    x[t1] += (1 + 2 * uniform()) * rtol * (hi - lo) * (sign ? 1 : -1);
   }
 }
 
@@ -400,9 +421,9 @@ static void against_reference(void) {
         ref.maxp = maxps[a];
         ref.confirm = confirms[b];
         ref.rtol = rtols[c];
-        for (int o = 0; o < 40; o++, orbits++) {
+        for (int o = 0; o < 48; o++, orbits++) {
           int len = 50 + below(REF_LEN - 50);
-          orbit(o % 5, maxps[a], rtols[c], x, len);
+          orbit(o % 6, maxps[a], rtols[c], x, len);
           sc_period_reset(pd, x[0]);
           ref_reset(&ref, x[0]);
           int p = 0, pr = 0;
@@ -436,11 +457,89 @@ static void against_reference(void) {
           "the orbits cover every class");
 }
 
+/* A lag p that falls due while a smaller lag is confirmed but deferred
+ * waits: sc_period_push() looks at no lag above the smallest confirmed
+ * one.  Looked at again more than confirm p iterates after its last look,
+ * p has only its window checked (the branch "only the window matters" of
+ * confirmed() in period.c).  The random orbits above take that branch
+ * (kind 5) but hardly ever confirm p there; these orbits do, on either
+ * side of the window's first iterate.  x_j = (-1)^j 0.99^j converges to
+ * the fixed point 0 with multiplier -0.99: lag 2 is confirmed long before
+ * lag 1 and deferred (near flip), lag 4 fails until iterate j4 and then
+ * waits behind lag 2.  Iterate k is kicked so that lag 2 fails there and
+ * lag 4 does not, and lag 4 is looked at with x_k:
+ * - k = j4 + confirm 4: the last failure lies just before the window, so
+ *   period 4 is accepted with x_k;
+ * - k = j4 + confirm 4 - 1: it is the window's oldest difference, so
+ *   period 4 comes one iterate later;
+ * - k = j4 + confirm 4 + 40: the window starts well after it. */
+static void waiting_lag(void) {
+  static ref_period ref;
+  static double x[REF_LEN];
+  const int confirms[] = {3, 4, 8};
+  const int offsets[] = {0, -1, 40};
+  const double rtol = 1e-3;
+  sc_msg msg;
+  for (size_t b = 0; b < sizeof confirms / sizeof *confirms; b++)
+    for (size_t o = 0; o < sizeof offsets / sizeof *offsets; o++) {
+      const int c = confirms[b], len = REF_LEN;
+      for (int j = 0; j < len; j++) x[j] = (j % 2 ? -1 : 1) * pow(0.99, j);
+      /* x0 and x1 set the extent; every later iterate lies inside it. */
+      const double tol = rtol * (x[0] - x[1]) +
+                         SC_PERIOD_FLOOR_ULPS * DBL_EPSILON * x[0];
+      int j4 = 0;
+      for (int j = 4; j < len; j++)
+        if (!(fabs(x[j] - x[j - 4]) <= tol)) j4 = j;
+      const int k = j4 + 4 * c + offsets[o];
+      /* Outwards by tol + |x_k - x_{k-2}| + |x_{k-2} - x_{k-4}| / 2: lag 2
+       * fails by half a lag-2 step, lag 4 passes by as much. */
+      double d2 = fabs(x[k] - x[k - 2]), d4 = fabs(x[k - 2] - x[k - 4]);
+      x[k] += (k % 2 ? -1 : 1) * (tol + d2 + d4 / 2);
+      sc_period *pd = NULL;
+      if (sc_period_alloc(8, c, rtol, &pd, &msg)) {
+        tu_true(0, "alloc: %s", msg.text);
+        continue;
+      }
+      ref.maxp = 8;
+      ref.confirm = c;
+      ref.rtol = rtol;
+      sc_period_reset(pd, x[0]);
+      ref_reset(&ref, x[0]);
+      int p = 0, pr = 0, at = 0, at_ref = 0;
+      long diff = 0;
+      for (int i = 1; i < len && !(p && pr); i++) {
+        p = sc_period_push(pd, x[i]);
+        pr = ref_push(&ref, x[i]);
+        diff += p != pr || sc_period_tol(pd) != ref.tol;
+        if (p && !at) at = i;
+        if (pr && !at_ref) at_ref = i;
+      }
+      char what[96];
+      snprintf(what, sizeof what,
+               "waiting lag, confirm %d, kick at j4 + %d: period", c,
+               4 * c + offsets[o]);
+      tu_int(what, p, 4);
+      snprintf(what, sizeof what,
+               "waiting lag, confirm %d, kick at j4 + %d: accepted at", c,
+               4 * c + offsets[o]);
+      tu_int(what, at, offsets[o] == -1 ? k + 1 : k);
+      tu_true(diff == 0 && pr == p && at_ref == at,
+              "waiting lag, confirm %d: the reference agrees on every "
+              "push (%ld differ)",
+              c, diff);
+      /* Lag 4 waited behind lag 2 for longer than its window. */
+      tu_true(ref.deferred > 4 * c, "lag 2 deferred on %ld pushes",
+              ref.deferred);
+      sc_period_free(pd);
+    }
+}
+
 int main(void) {
   exact_sequences();
   logistic();
   divergent();
   bk2();
   against_reference();
+  waiting_lag();
   return tu_finish();
 }
