@@ -23,11 +23,12 @@
  *   last (confirm + 1) p iterates repeat with period p (confirm full
  *   cycles after a first one);
  * - the reported period is the smallest confirmed p, except that p is not
- *   accepted while, for a proper divisor q of p, the lag-q differences are
- *   still shrinking over the window by more than the tolerance explains
- *   (the orbit is converging to a period-q orbit whose multiplier is near
- *   -1: lag-p differences then decay faster than lag-q ones); detection
- *   goes on;
+ *   accepted while, for a proper divisor q of p, the largest lag-q
+ *   differences of the window's last three cycles decay geometrically
+ *   towards a limit within the tolerance of 0 (the orbit is converging to
+ *   a period-q orbit whose multiplier is near -1: lag-p differences then
+ *   decay faster than lag-q ones); detection goes on.  This near-flip
+ *   test needs confirm >= 3;
  * - detection stops at the first accepted period (early stop);
  * - "high" (SC_PERIOD_HIGH): no period 1..max_period accepted within the
  *   iterate budget: longer periods, chaos, quasi-periodicity;
