@@ -407,7 +407,9 @@ static int closed_form(const sc_guard *g, const guard_size *z, double R,
     if (out->tangent) sc_guard_eval(g, t, NULL, &out->slope, NULL);
     else out->slope = asc ? w * rs : -w * rs;
     out->curv = w * w * c0;
-    out->bracket = out->tangent ? 0 : E / fmax(fabs(out->slope), DBL_MIN);
+    /* fmax(|slope|, DBL_MIN), NaN included, without libm's call */
+    double as = fabs(out->slope);
+    out->bracket = out->tangent ? 0 : E / (as > DBL_MIN ? as : DBL_MIN);
   }
   return 1;
 }
