@@ -5,6 +5,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <stddef.h>
 #include <string.h>
 
 struct sc_map {
@@ -230,13 +231,22 @@ double sc_map_precision(const sc_map *m) {
   return m->type->precision ? m->type->precision(m->inst) : 0;
 }
 
+/* Zero every field of @p v but the itinerary's bytes past its first (an
+ * empty text): the map's inner loop clears a result per iterate, and the
+ * 256-byte text is most of it. */
+static void clear_value(sc_map_value *v) {
+  memset(v, 0, offsetof(sc_map_value, itinerary));
+  v->itinerary[0] = '\0';
+  memset(&v->d2fdd2, 0, sizeof *v - offsetof(sc_map_value, d2fdd2));
+}
+
 int sc_map_eval_ex(sc_map *m, double d, unsigned flags,
                    const sc_itin_code *force, sc_itin_code *code,
                    sc_border_list *borders, sc_map_value *out, sc_msg *msg) {
   if (!isfinite(d))
     return sc_fail(msg, SC_EINVAL, "sc_map_eval: %s = %g is not finite",
                    m->type->state_name, d);
-  memset(out, 0, sizeof *out);
+  clear_value(out);
   if (code) code->n = 0;
   if (flags & SC_EVAL_DERIV2) flags |= SC_EVAL_DERIV;
   m->nevals++;
