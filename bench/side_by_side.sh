@@ -1,0 +1,115 @@
+#!/bin/sh
+# The event map's speed, this checkout against an earlier commit, measured
+# side by side: both are built the same way (Release, from `git archive`
+# for the base) and their benchmarks run alternately, so that the load of
+# a shared machine falls on both (docs/performance.md, issue 9's tables).
+#
+# usage: bench/side_by_side.sh BASE_REV [ROUNDS] [big]
+#   BASE_REV  a commit of this repository (e.g. dac61ff, HEAD~3)
+#   ROUNDS    alternating rounds (default 3); each round runs
+#             bench_events 5 100000 and bench_chart iterates (3 repeats)
+#             for the base, then for this checkout
+#   big       also fig 5.7(a) at 1000 x 1000 on 2 threads, whole runs
+#             (about 35-50 s each), one a round and build
+# Environment: SLIPCONT_SBS_DIR (default /tmp/slipcont-sbs) keeps the two
+# builds; a base build already there is reused.
+#
+# Prints one line per measurement and a summary of medians over the
+# rounds (rates per CPU second; the 1000 x 1000 chart's wall and user s).
+set -eu
+if [ $# -lt 1 ]; then
+  sed -n '2,18p' "$0" | sed 's/^# \{0,1\}//'
+  exit 2
+fi
+BASE=$1
+ROUNDS=${2:-3}
+BIG=${3:-}
+SRC=$(cd "$(dirname "$0")/.." && pwd)
+DIR=${SLIPCONT_SBS_DIR:-/tmp/slipcont-sbs}
+REV=$(git -C "$SRC" rev-parse --short "$BASE") || {
+  echo "side_by_side: $BASE is not a commit of $SRC" >&2
+  exit 2
+}
+case $ROUNDS in
+[1-9] | [1-9][0-9]) ;;
+*) echo "side_by_side: ROUNDS = $ROUNDS (valid: 1..99)" >&2; exit 2 ;;
+esac
+case $BIG in
+'' | big) ;;
+*) echo "side_by_side: third argument $BIG (valid: big, or none)" >&2; exit 2 ;;
+esac
+mkdir -p "$DIR"
+J=$(nproc 2>/dev/null || echo 2)
+
+build() { # build SOURCE BUILD_DIR
+  cmake -S "$1" -B "$2" -DCMAKE_BUILD_TYPE=Release > "$2.log" 2>&1 &&
+    cmake --build "$2" -j "$J" --target bench_events bench_chart \
+      slipcont_cli >> "$2.log" 2>&1 || {
+    echo "side_by_side: building $1 failed (log: $2.log)" >&2
+    exit 1
+  }
+}
+
+if [ ! -x "$DIR/base-$REV/build/bench/bench_events" ]; then
+  rm -rf "$DIR/base-$REV"
+  mkdir -p "$DIR/base-$REV"
+  git -C "$SRC" archive "$REV" | tar -x -C "$DIR/base-$REV"
+  echo "building the base $REV in $DIR/base-$REV"
+  build "$DIR/base-$REV" "$DIR/base-$REV/build"
+fi
+echo "building this checkout in $DIR/now"
+build "$SRC" "$DIR/now"
+
+OUT="$DIR/results-$REV.txt"
+: > "$OUT"
+echo "== $(date -u '+%Y-%m-%dT%H:%M:%SZ') on $J cores; $(uptime)"
+run() { # run LABEL BUILD_DIR
+  ev=$("$2/bench/bench_events" 5 100000 | sed 's/ iterates.*//; s/.*: //' |
+    tr '\n' ' ')
+  ch=$(OMP_NUM_THREADS=1 SLIPCONT_BENCH_REPEAT=3 "$2/bench/bench_chart" \
+    iterates | tail -1 | sed 's/.*bare \([^,]*\), through the chart \([^;]*\);.*/\1 \2/')
+  set -- "$1" $ev $ch
+  echo "$1 fig56 $2 fig58 $3 bare $4 chart $5" | tee -a "$OUT"
+}
+big() { # big LABEL CLI
+  o="$DIR/big-$1"
+  rm -rf "$o"
+  t=$( { /usr/bin/time -f '%e %U' "$2" run "$SRC/examples/chart-alpha-beta.ini" \
+    --set task.x-steps=1000 --set task.y-steps=1000 --set output.plot=no \
+    --out "$o" --quiet --threads 2 > /dev/null; } 2>&1 | tail -1)
+  echo "$1 big $t" | tee -a "$OUT"
+}
+i=1
+while [ $i -le "$ROUNDS" ]; do
+  run base "$DIR/base-$REV/build"
+  run now "$DIR/now"
+  if [ "$BIG" = big ]; then
+    big base "$DIR/base-$REV/build/slipcont"
+    big now "$DIR/now/slipcont"
+  fi
+  i=$((i + 1))
+done
+
+echo "== medians over $ROUNDS rounds (base $REV | this checkout)"
+awk '
+  function med(a, n,   i, j, t) {
+    for (i = 1; i <= n; i++) for (j = i + 1; j <= n; j++)
+      if (a[j] < a[i]) { t = a[i]; a[i] = a[j]; a[j] = t }
+    return n % 2 ? a[(n + 1) / 2] : (a[n / 2] + a[n / 2 + 1]) / 2
+  }
+  $2 == "fig56" { for (k = 2; k < NF; k += 2) { n[$1, $k]++; v[$1, $k, n[$1, $k]] = $(k + 1) } }
+  $2 == "big" { n[$1, "wall"]++; v[$1, "wall", n[$1, "wall"]] = $3
+                n[$1, "user"]++; v[$1, "user", n[$1, "user"]] = $4 }
+  END {
+    split("fig56 fig58 bare chart wall user", keys, " ")
+    for (k = 1; k <= 6; k++) {
+      key = keys[k]
+      if (!n["base", key] || !n["now", key]) continue
+      for (i = 1; i <= n["base", key]; i++) b[i] = v["base", key, i]
+      for (i = 1; i <= n["now", key]; i++) c[i] = v["now", key, i]
+      mb = med(b, n["base", key]); mc = med(c, n["now", key])
+      printf "%-6s %12.4g | %12.4g   (%.3fx)\n", key, mb, mc,
+        (key == "wall" || key == "user") ? mb / mc : mc / mb
+    }
+  }' "$OUT"
+echo "(rates: iterates per CPU second; wall, user: seconds; ratio > 1: faster now)"
