@@ -26,10 +26,6 @@ ROUNDS=${2:-3}
 BIG=${3:-}
 SRC=$(cd "$(dirname "$0")/.." && pwd)
 DIR=${SLIPCONT_SBS_DIR:-/tmp/slipcont-sbs}
-REV=$(git -C "$SRC" rev-parse --short "$BASE") || {
-  echo "side_by_side: $BASE is not a commit of $SRC" >&2
-  exit 2
-}
 case $ROUNDS in
 [1-9] | [1-9][0-9]) ;;
 *) echo "side_by_side: ROUNDS = $ROUNDS (valid: 1..99)" >&2; exit 2 ;;
@@ -38,6 +34,10 @@ case $BIG in
 '' | big) ;;
 *) echo "side_by_side: third argument $BIG (valid: big, or none)" >&2; exit 2 ;;
 esac
+REV=$(git -C "$SRC" rev-parse --short --verify --quiet "$BASE^{commit}") || {
+  echo "side_by_side: $BASE is not a commit of $SRC" >&2
+  exit 2
+}
 mkdir -p "$DIR"
 J=$(nproc 2>/dev/null || echo 2)
 

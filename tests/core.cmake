@@ -13,3 +13,7 @@ sc_add_test(test_map_equiv)
 target_sources(test_map_equiv PRIVATE ref/guard_v0.c)
 # bk2's value-only path against its dual path, bit for bit.
 sc_add_test(test_bk2_value)
+
+# bench/side_by_side.sh's refusals (the benchmark itself is not a test).
+add_test(NAME bench_args
+  COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/bench_args.sh ${PROJECT_SOURCE_DIR})
