@@ -94,28 +94,9 @@ static int eval(bk2_inst *b, double d, unsigned flags, sc_map_value *out) {
   return sc_model_bk2.eval(b, d, flags, out, &msg);
 }
 
-/* Whether the current map reports a border of its iterate from d (any
- * kind) within 1024 eps (S + V) of zero, S = 1 + beta + (1 + alpha)|d|
- * the size of the onset state: within rounding of a border, where the
- * accuracy promise lets either side be taken (docs/accuracy.md, the
- * rule of bench_iterates and test_extremes).  *m: the smallest |value|. */
-static int on_border(bk2_inst *b, const double p[4], double d, double *m) {
-  sc_border bl[128];
-  sc_border_list l = {bl, 128, 0};
-  sc_map_value v;
-  sc_msg msg;
-  memset(&v, 0, sizeof v);
-  *m = HUGE_VAL;
-  if (sc_model_bk2.eval_ex(b, d, 0, NULL, NULL, &l, &v, &msg)) return 0;
-  for (size_t i = 0; i < l.n && i < l.cap; i++)
-    *m = fmin(*m, fabs(bl[i].value));
-  double S = 1 + p[1] + (1 + p[0]) * fabs(d);
-  return *m <= 1024 * DBL_EPSILON * (S + p[3]);
-}
-
-/* The distance to grazing of an iterate: the smallest |m| of its grazing
- * borders (models.h), for the statistics of points near grazing. */
-static double graze_margin(bk2_inst *b, double d) {
+/* The smallest |m| of the borders of the iterate from d (models.h): of
+ * every kind, or only the grazing ones; HUGE_VAL if there is none. */
+static double border_min(bk2_inst *b, double d, int grazing_only) {
   sc_border bl[128];
   sc_border_list l = {bl, 128, 0};
   sc_map_value v;
@@ -125,8 +106,26 @@ static double graze_margin(bk2_inst *b, double d) {
     return HUGE_VAL;
   double m = HUGE_VAL;
   for (size_t i = 0; i < l.n && i < l.cap; i++)
-    if (bl[i].kind == SC_BORDER_GRAZING) m = fmin(m, fabs(bl[i].value));
+    if (!grazing_only || bl[i].kind == SC_BORDER_GRAZING)
+      m = fmin(m, fabs(bl[i].value));
   return m;
+}
+
+/* Whether the iterate from d has a border within 1024 eps (S + V) of
+ * zero, S = 1 + beta + (1 + alpha)|d| the size of the onset state: within
+ * rounding of a border, where the accuracy promise lets either side be
+ * taken (docs/accuracy.md, the rule of bench_iterates and test_extremes).
+ * *m: the smallest |m|. */
+static int on_border(bk2_inst *b, const double p[4], double d, double *m) {
+  *m = border_min(b, d, 0);
+  double S = 1 + p[1] + (1 + p[0]) * fabs(d);
+  return *m <= 1024 * DBL_EPSILON * (S + p[3]);
+}
+
+/* The distance to grazing of an iterate, for the statistics of points
+ * near grazing. */
+static double graze_margin(bk2_inst *b, double d) {
+  return border_min(b, d, 1);
 }
 
 static int search_now(const sc_guard *g, double tmax, int skip, double atol,
