@@ -135,6 +135,17 @@ static int search_now(const sc_guard *g, double tmax, int skip, double atol,
   return st;
 }
 
+/* The current map searches the two guards of a slip of both blocks
+ * together; the reference one after the other with its own search. */
+static int search_pair_now(const sc_guard *g, double tmax, const int *skip,
+                           double atol, double rtol, sc_guard_limit_fn limit,
+                           void *ctx, sc_root *out) {
+  int st = sc_guard_first_root_pair(g, tmax, skip, atol, rtol, limit, ctx,
+                                    out);
+  for (int i = 0; i < 2; i++) note_window(&g[i], &out[i]);
+  return st;
+}
+
 static int search_ref(const sc_guard *g, double tmax, int skip, double atol,
                       double rtol, sc_root *out) {
   int st = sc_guard_first_root_v0(g, tmax, skip, atol, rtol, out);
@@ -212,6 +223,7 @@ static int setup(bk2_inst *b, const double p[4], int frozen,
   const double q[5] = {p[0], p[1], p[2], p[3], 1}; /* gamma: unused */
   int st = sc_model_bk2.setup(b, q, opt, &acc, &msg);
   b->search = search;
+  b->search_pair = search == search_now ? search_pair_now : NULL;
   if (!st) sc_bk2_first_restick(b); /* with this search */
   return st;
 }

@@ -621,10 +621,93 @@ static void rotation(const sc_guard *g, double h, double *c, double *s) {
   }
 }
 
-/* Returns 1 with *out filled when a root is found in (0, tmax], else 0. */
-static inline int grid_march_n(const guard_ctx *c, int n, double wmax,
-                               double tmax, int at_start_root, sc_root *out) {
+/* Two guards searched together (sc_guard_first_root_pair): the second's
+ * terms are the first's times sgn[k] = +-1, with the same c0, c1 and
+ * frequencies, so the march computes each term once for both; and the
+ * search limit of the guard whose root comes later. */
+typedef struct {
+  const sc_guard *gb;
+  double sgn[SC_GUARD_MAXFREQ];
+  sc_guard_limit_fn limit;
+  void *ctx;
+} guard_pair;
+
+/* g, g', g'' of both guards of a pair at t, from cos and sin of each
+ * term: each guard's values are those of vals_from() bit for bit (a
+ * term times -1 is the negated term, exactly). */
+static inline void vals_pair(const sc_guard *g, const double *sgn, int n,
+                             double t, const double *cs, const double *sn,
+                             double *va, double *vb) {
+  double base = g->c0 + g->c1 * t;
+  double g0 = base, g1 = g->c1, g2 = 0, h0 = base, h1 = g->c1, h2 = 0;
+  for (int k = 0; k < n; k++) {
+    double w = g->w[k];
+    double a = g->a[k] * cs[k] + g->b[k] * sn[k];
+    double d = w * (g->b[k] * cs[k] - g->a[k] * sn[k]), dd = w * w * a;
+    g0 += a, g1 += d, g2 -= dd;
+    h0 += sgn[k] * a, h1 += sgn[k] * d, h2 -= sgn[k] * dd;
+  }
+  va[0] = g0, va[1] = g1, va[2] = g2;
+  vb[0] = h0, vb[1] = h1, vb[2] = h2;
+}
+
+/* What one guard's step [t, t + h] of the grid march proves. */
+enum { STEP_UNDECIDED, STEP_FREE, STEP_ROOT };
+
+/* The tests of one step from values ve at its start and vf at its end
+ * (g, g', g''): STEP_FREE, no root in (t, t + h] (the cubic of g keeps
+ * its sign, or g is monotone without a sign change past a start root);
+ * STEP_ROOT, exactly one (g monotone with a sign change: a bracket for
+ * refine(); never on a step reaching `past` tmax, whose root may lie
+ * beyond it); else STEP_UNDECIDED.  E, E1, E2: rounding of g, g', g'' at
+ * the samples; rem0, rem1: the Hermite remainders of g and g'. */
+static inline int grid_step(const double *ve, const double *vf, int start,
+                            int past, double h, double E, double E1,
+                            double E2, double rem0, double rem1) {
+  double g0 = ve[0], G0 = vf[0];
+  double sigma;
+  if (start) {
+    sigma = ve[1] != 0 ? (ve[1] > 0 ? 1 : -1) : (ve[2] > 0 ? 1 : -1);
+  } else {
+    sigma = g0 > 0 ? 1 : -1;
+    if (fabs(g0) <= E) return STEP_UNDECIDED; /* at a root: the march's */
+  }
+  int same = !start && sigma * G0 > E;
+  /* (A) no root: the cubic of g keeps its sign with margin (rounding
+   * of the values and of the slopes times h; twice that for the exact
+   * minimum, whose own arithmetic rounds too) */
+  if (same) {
+    double marg = rem0 + E + h * E1;
+    if (bern_min3(sigma * g0, sigma * ve[1] * h, sigma * G0,
+                  sigma * vf[1] * h) > 3 * marg ||
+        hermite_min(sigma * g0, sigma * ve[1], sigma * G0, sigma * vf[1], h) >
+            2 * marg)
+      return STEP_FREE;
+  }
+  /* (B) g' keeps one sign: g strictly monotone on [t, t + h] */
+  double s1 = ve[1] > 0 ? 1 : -1;
+  double dmin3 =
+      bern_min3(s1 * ve[1], s1 * ve[2] * h, s1 * vf[1], s1 * vf[2] * h);
+  if (dmin3 > 3 * (rem1 + E1 + h * E2)) {
+    if (same || (start && s1 == sigma && s1 * G0 > E))
+      return STEP_FREE; /* monotone, no sign change past the start */
+    if (!past && !start && sigma * G0 <= 0 && fabs(G0) > E) return STEP_ROOT;
+  }
+  return STEP_UNDECIDED;
+}
+
+/* The grid march of one guard (ng = 1: c->g into out[0]) or of a pair
+ * (ng = 2: c->g and pr->gb, whose sizes are equal, into out[0], out[1]),
+ * from 0 over (0, tmax]; start[i]: guard i starts at a root to skip.  One
+ * guard: returns 1 with out[0] filled when a root is found.  A pair: both
+ * march until one finds its first root (the earlier one when both do in
+ * one step); the other goes on alone up to pr->limit of that root, as the
+ * later guard of a phase is searched (bk2's first_event); returns 1. */
+static inline int grid_march_n(const guard_ctx *c, const guard_pair *pr,
+                               int n, int ng, double wmax, double tmax,
+                               int *start, sc_root *out) {
   const sc_guard *g = c->g;
+  const sc_guard *gg[2] = {g, ng == 2 ? pr->gb : g};
   double dt = 2 * SC_PI / (GUARD_GRID_PER_PERIOD * wmax);
   /* rotations through w dt 2^m, all levels at once (a few products a
    * term; a test on every step cost more): the fastest term's are
@@ -673,8 +756,10 @@ static inline int grid_march_n(const guard_ctx *c, int n, double wmax,
     hl[l] = dt * s, rem0l[l] = M4 * h40 * s4, rem1l[l] = M5 * h40 * s4;
     ulpl[l] = GUARD_ROT_ULPS + 4 * l;
   }
-  double ve[3], vf[3];
-  vals_from(g, n, 0, cs, sn, ve);
+  double ve[2][3], vf[2][3];
+  int live[2] = {1, ng == 2}, alone = 0;
+  if (ng == 1) vals_from(g, n, 0, cs, sn, ve[0]);
+  else vals_pair(g, pr->sgn, n, 0, cs, sn, ve[0], ve[1]);
   /* t = q dt with one rounding (not a running sum, whose rounding would
    * grow with the steps while the rotations follow the exact sum) */
   double t = 0, rerr = 0;
@@ -712,84 +797,101 @@ static inline int grid_march_n(const guard_ctx *c, int n, double wmax,
       nsn[k] = sn[k] * cr[k] + cs[k] * sr[k];
     }
     double nerr = rerr + rot_ulps;
-    vals_from(g, n, tn, ncs, nsn, vf);
-    out->steps++;
+    if (ng == 1) vals_from(g, n, tn, ncs, nsn, vf[0]);
+    else vals_pair(g, pr->sgn, n, tn, ncs, nsn, vf[0], vf[1]);
     double E = e00 + e01 * tn + r0 * nerr;
     double E1 = e10 + e11 * tn + r1 * nerr;
     double E2 = e20 + e21 * tn + r2 * nerr;
-    double g0 = ve[0], G0 = vf[0];
-    double sigma;
-    int decided = 0;
-    if (at_start_root) {
-      sigma = ve[1] != 0 ? (ve[1] > 0 ? 1 : -1) : (ve[2] > 0 ? 1 : -1);
-    } else {
-      sigma = g0 > 0 ? 1 : -1;
-      if (fabs(g0) <= E) sigma = 0; /* at a root: the march decides */
+    int dec[2] = {STEP_FREE, STEP_FREE}, undecided = 0, roots = 0;
+    for (int i = 0; i < ng; i++) {
+      if (!live[i]) continue;
+      out[i].steps++;
+      dec[i] = grid_step(ve[i], vf[i], start[i], past, h, E, E1, E2, rem0,
+                         rem1);
+      undecided |= dec[i] == STEP_UNDECIDED;
+      roots |= dec[i] == STEP_ROOT;
     }
-    int same = sigma != 0 && !at_start_root && sigma * G0 > E;
-    /* (A) no root: the cubic of g keeps its sign with margin (rounding
-     * of the values and of the slopes times h; twice that for the exact
-     * minimum, whose own arithmetic rounds too) */
-    if (same) {
-      double marg = rem0 + E + h * E1;
-      if (bern_min3(sigma * g0, sigma * ve[1] * h, sigma * G0,
-                    sigma * vf[1] * h) > 3 * marg ||
-          hermite_min(sigma * g0, sigma * ve[1], sigma * G0, sigma * vf[1],
-                      h) > 2 * marg)
-        decided = 1;
-    }
-    /* (B) g' keeps one sign: g strictly monotone on [t, tn] */
-    if (!decided && sigma != 0) {
-      double s1 = ve[1] > 0 ? 1 : -1;
-      double dmin3 = bern_min3(s1 * ve[1], s1 * ve[2] * h, s1 * vf[1],
-                               s1 * vf[2] * h);
-      if (dmin3 > 3 * (rem1 + E1 + h * E2)) {
-        if (same || (at_start_root && s1 == sigma && s1 * G0 > E)) {
-          decided = 1; /* monotone, no sign change past the start */
-        } else if (!past && !at_start_root && sigma * G0 <= 0 &&
-                   fabs(G0) > E) {
-          refine(g, &c->z, c->M3, t, g0, ve[1], tn, G0, vf[1], c->atol, c->rtol,
-                 out);
-          return 1;
-        }
-      }
-    }
-    if (decided && past) return 0;
     if (past) {
-      past_tried = 1; /* the tail step from the same state */
+      if (!undecided) return 0; /* (a past step brackets no root) */
+      past_tried = 1;           /* the tail step from the same state */
       continue;
     }
-    if (decided) {
-      at_start_root = 0;
-      past_tried = 0;
-      t = tn, rerr = nerr;
-      if (!tail) q += 1L << m;
-      for (int k = 0; k < n; k++) cs[k] = ncs[k], sn[k] = nsn[k];
-      ve[0] = vf[0], ve[1] = vf[1], ve[2] = vf[2];
-      if (m + 1 < GUARD_GRID_LEVELS) m++;
+    int marched = 0;
+    if (undecided) {
+      /* A shorter step, down to dt (below the tail's length, which is
+       * not retried), then the adaptive march for the guards still
+       * undecided. */
+      if (m > 0) {
+        m--;
+        while (m > 0 && !((double)(q + (1L << m)) * dt < tmax)) m--;
+        if ((double)(q + 1) * dt < tmax) continue;
+      }
+      /* [t, tn] is [t, tend] here: a step of dt, or the tail */
+      double tend = min2((double)(q + 1) * dt, tmax);
+      for (int i = 0; i < ng; i++) {
+        if (dec[i] != STEP_UNDECIDED) continue;
+        guard_ctx ci = *c;
+        ci.g = gg[i];
+        guard_terms ex;
+        eval_terms(gg[i], t, &ex);
+        if (march(&ci, t, tend, &ex, start[i],
+                  min2(tend - t, 0.5 * SC_PI / wmax), &out[i]))
+          dec[i] = STEP_ROOT, roots = 1;
+        else
+          dec[i] = STEP_FREE;
+      }
+      marched = 1;
+      tn = tend;
+    }
+    if (roots) {
+      /* refine the roots bracketed by [t, tn] (the adaptive march's are
+       * found), then the earliest decides */
+      int e = -1;
+      for (int i = 0; i < ng; i++) {
+        if (dec[i] != STEP_ROOT) continue;
+        if (!out[i].found)
+          refine(gg[i], &c->z, c->M3, t, ve[i][0], ve[i][1], tn, vf[i][0],
+                 vf[i][1], c->atol, c->rtol, &out[i]);
+        live[i] = 0;
+        if (e < 0 || out[i].t < out[e].t) e = i;
+      }
+      if (ng == 1 || alone) return 1;
+      int j = 1 - e;
+      double lim = pr->limit(pr->ctx, gg[e], &out[e]);
+      if (dec[j] == STEP_ROOT && out[j].t > lim) {
+        /* beyond the later guard's limit: as if searched up to it */
+        out[j] = (sc_root){.t = lim, .steps = out[j].steps};
+      }
+      if (!live[j] || !(tn < lim)) {
+        if (live[j]) out[j].t = lim;
+        return 1;
+      }
+      tmax = lim; /* the later guard, alone from tn */
+      alone = 1;
+    }
+    /* on to tn */
+    for (int i = 0; i < ng; i++) start[i] = 0;
+    if (marched) {
+      t = tn;
+      q++;
+      anchor(g, t, cs, sn);
+      if (ng == 1) vals_from(g, n, t, cs, sn, ve[0]);
+      else vals_pair(g, pr->sgn, n, t, cs, sn, ve[0], ve[1]);
+      rerr = SC_FAST_TRIG_ULPS;
+      m = 0;
       continue;
     }
-    /* Undecided: a shorter step, down to dt (below the tail's length,
-     * which is not retried), then the adaptive march. */
-    if (m > 0) {
-      m--;
-      while (m > 0 && !((double)(q + (1L << m)) * dt < tmax)) m--;
-      if ((double)(q + 1) * dt < tmax) continue;
-    }
-    double tend = min2((double)(q + 1) * dt, tmax);
-    guard_terms ex;
-    eval_terms(g, t, &ex);
-    if (march(c, t, tend, &ex, at_start_root, min2(tend - t, 0.5 * SC_PI / wmax),
-              out))
-      return 1;
-    at_start_root = 0;
-    t = tend;
-    q++;
-    anchor(g, t, cs, sn);
-    vals_from(g, n, t, cs, sn, ve);
-    rerr = SC_FAST_TRIG_ULPS;
-    m = 0;
+    past_tried = 0;
+    t = tn, rerr = nerr;
+    if (!tail) q += 1L << m;
+    for (int k = 0; k < n; k++) cs[k] = ncs[k], sn[k] = nsn[k];
+    for (int i = 0; i < ng; i++)
+      ve[i][0] = vf[i][0], ve[i][1] = vf[i][1], ve[i][2] = vf[i][2];
+    if (m + 1 < GUARD_GRID_LEVELS) m++;
   }
+  if (ng == 2)
+    for (int i = 0; i < 2; i++)
+      if (live[i]) out[i].t = tmax;
   return 0;
 }
 
@@ -797,13 +899,14 @@ static inline int grid_march_n(const guard_ctx *c, int n, double wmax,
  * unrolls its loops (bk2's guards have one or two terms). */
 static int grid_march(const guard_ctx *c, double wmax, double tmax,
                       int at_start_root, sc_root *out) {
+  int start[1] = {at_start_root};
   switch (c->g->n) {
   case 1:
-    return grid_march_n(c, 1, wmax, tmax, at_start_root, out);
+    return grid_march_n(c, NULL, 1, 1, wmax, tmax, start, out);
   case 2:
-    return grid_march_n(c, 2, wmax, tmax, at_start_root, out);
+    return grid_march_n(c, NULL, 2, 1, wmax, tmax, start, out);
   default:
-    return grid_march_n(c, c->g->n, wmax, tmax, at_start_root, out);
+    return grid_march_n(c, NULL, c->g->n, 1, wmax, tmax, start, out);
   }
 }
 
@@ -877,5 +980,110 @@ int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
     e.g0 = g0, e.g1 = g1, e.g2 = g2;
     march(&c, 0, tmax, &e, skip_start, tmax, out);
   }
+  return SC_OK;
+}
+
+/* Whether h is g with each term times +-1 (the same c0, c1 and
+ * frequencies, two terms or more): the signs into sgn[]. */
+static int guard_pairs(const sc_guard *g, const sc_guard *h, double *sgn) {
+  if (g->n != h->n || g->n < 2 || g->n > SC_GUARD_MAXFREQ || g->c0 != h->c0 ||
+      g->c1 != h->c1)
+    return 0;
+  for (int k = 0; k < g->n; k++) {
+    if (g->w[k] != h->w[k]) return 0;
+    if (h->a[k] == g->a[k] && h->b[k] == g->b[k]) sgn[k] = 1;
+    else if (h->a[k] == -g->a[k] && h->b[k] == -g->b[k]) sgn[k] = -1;
+    else return 0;
+  }
+  return 1;
+}
+
+/* The pair's search, with the later guard limited: guard j from
+ * scratch, after guard i's root. */
+static int pair_later(const sc_guard *g, int i, const int *skip, double atol,
+                      double rtol, sc_guard_limit_fn limit, void *ctx,
+                      sc_root *out) {
+  int j = 1 - i;
+  double lim = limit(ctx, &g[i], &out[i]);
+  return sc_guard_first_root(&g[j], lim, skip[j], atol, rtol, &out[j]);
+}
+
+int sc_guard_first_root_pair(const sc_guard *g, double tmax, const int *skip,
+                             double atol, double rtol, sc_guard_limit_fn limit,
+                             void *ctx, sc_root *out) {
+  guard_pair pr = {&g[1], {0}, limit, ctx};
+  if (!guard_pairs(&g[0], &g[1], pr.sgn)) {
+    /* one after the other: g[0] to tmax, g[1] up to the limit of g[0]'s
+     * root */
+    int st = sc_guard_first_root(&g[0], tmax, skip[0], atol, rtol, &out[0]);
+    if (st || out[0].found)
+      return st ? st : pair_later(g, 0, skip, atol, rtol, limit, ctx, out);
+    return sc_guard_first_root(&g[1], tmax, skip[1], atol, rtol, &out[1]);
+  }
+  for (int i = 0; i < 2; i++) {
+    out[i].found = out[i].tangent = 0;
+    out[i].t = tmax;
+    out[i].bracket = out[i].slope = out[i].curv = 0;
+    out[i].steps = out[i].ntrig = 0;
+  }
+  const sc_guard *ga = &g[0];
+  int n = ga->n;
+  if (!isfinite(ga->c0) || !isfinite(ga->c1) || !(tmax > 0) ||
+      !isfinite(tmax) || !(atol > 0) || !(rtol >= 0))
+    return SC_EINVAL;
+  double wmax = 0;
+  for (int k = 0; k < n; k++) {
+    if (!(ga->w[k] > 0) || !isfinite(ga->w[k]) || !isfinite(ga->a[k]) ||
+        !isfinite(ga->b[k]))
+      return SC_EINVAL;
+    if (ga->w[k] > wmax) wmax = ga->w[k];
+  }
+  /* one context: the guards' sizes are equal */
+  guard_ctx c;
+  c.g = ga;
+  c.z = guard_sizes(ga, c.amp);
+  c.atol = atol, c.rtol = rtol;
+  /* each guard at 0, as sc_guard_first_root() takes it */
+  double E0 = round_at(&c.z, 0);
+  int sk[2] = {skip[0], skip[1]}, at0 = -1;
+  for (int i = 0; i < 2; i++) {
+    double g0 = ga->c0, g1 = ga->c1, g2 = 0;
+    for (int k = 0; k < n; k++) {
+      double w = ga->w[k], v = i ? pr.sgn[k] * ga->a[k] : ga->a[k];
+      double b = i ? pr.sgn[k] * ga->b[k] : ga->b[k];
+      g0 += v, g1 += w * b, g2 -= w * w * v;
+    }
+    if (!(fabs(g0) <= E0)) continue;
+    if (!sk[i] && (g1 > 0 || (g1 == 0 && g2 > 0))) {
+      out[i].found = 1;
+      out[i].t = 0;
+      out[i].slope = g1;
+      out[i].curv = g2;
+      if (at0 < 0) at0 = i;
+    }
+    sk[i] = 1;
+  }
+  if (at0 >= 0) /* a root at 0 is the earlier */
+    return out[1 - at0].found
+               ? SC_OK
+               : pair_later(g, at0, skip, atol, rtol, limit, ctx, out);
+  /* Out of reach (the same for both: one c0, c1, one size): |c0 + c1 t|
+   * above the amplitudes and the rounding on all of [0, tmax]. */
+  double lo = min2(fabs(ga->c0), fabs(ga->c0 + ga->c1 * tmax));
+  int reach = !((ga->c0 > 0) == (ga->c0 + ga->c1 * tmax > 0) &&
+                lo > c.z.amp + round_at(&c.z, tmax));
+  if (!reach && !sk[0] && !sk[1]) return SC_OK;
+  if (!reach && (!sk[0] || !sk[1])) {
+    int j = sk[0] ? 0 : 1; /* the one that starts at zero is searched */
+    return sc_guard_first_root(&g[j], tmax, skip[j], atol, rtol, &out[j]);
+  }
+  c.M3 = 0;
+  for (int k = 0; k < n; k++) {
+    double w = ga->w[k];
+    c.m3[k] = c.amp[k] * w * w * w;
+    c.M3 += c.m3[k];
+  }
+  if (n == 2) grid_march_n(&c, &pr, 2, 2, wmax, tmax, sk, out);
+  else grid_march_n(&c, &pr, n, 2, wmax, tmax, sk, out);
   return SC_OK;
 }

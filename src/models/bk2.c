@@ -469,6 +469,14 @@ static inline double window_once(const sc_guard *g, const sc_root *r, int i,
   return rw[i];
 }
 
+/* How far the later of two guards is searched past the earlier's root r
+ * (g its guard; ctx: atol, rtol): twice the tie tolerance of r, so that
+ * a tie with r is seen (first_event()). */
+static double tie_limit(void *ctx, const sc_guard *g, const sc_root *r) {
+  const double *tol = ctx;
+  return r->t + 2 * (tol[0] + tol[1] * r->t + root_window(g, r));
+}
+
 /* A phase's horizon: the largest of its guards' (fmax without the libm
  * call; a NaN one is left out, as fmax leaves it out). */
 static double phase_horizon(const sc_guard *g, int ng) {
@@ -595,7 +603,29 @@ static int first_event(const bk2_inst *b, int mode, int fresh,
    * phase_kinds) */
   double rw[2] = {-1, -1};
   int first = -1;
-  for (int i = 0; i < ng; i++) {
+  /* A slip of both blocks: its two re-stick guards differ only in the
+   * sign of the second oscillator's terms, and one march searches both
+   * (sc_guard_first_root_pair), the later root up to tie_limit() of the
+   * earlier, as below. */
+  int paired = mode == SC_BK2_SLIP12 && ng == 2 && b->search_pair;
+  if (paired) {
+    int skip[2];
+    for (int i = 0; i < 2; i++)
+      skip[i] = (fresh & kind[i]) || falls_from_zero(&g[i]);
+    if (isnan(tmax)) tmax = phase_horizon(g, ng);
+    double tol[2] = {atol, rtol};
+    r[0].ntrig = r[1].ntrig = 0;
+    if (b->search_pair(g, tmax, skip, atol, rtol, tie_limit, tol, r))
+      return sc_fail(msg, SC_EINTERNAL,
+                     "bk2: malformed guard in mode %d (parameters out of "
+                     "range?)",
+                     mode);
+    for (int i = 0; i < 2; i++) {
+      *steps += r[i].steps;
+      if (r[i].found && (first < 0 || r[i].t < r[first].t)) first = i;
+    }
+  }
+  for (int i = 0; i < ng && !paired; i++) {
     int skip = kind[i] < 3 && ((fresh & kind[i]) || falls_from_zero(&g[i]));
     double lim = first < 0 ? NAN
                            : r[first].t + 2 * (atol + rtol * r[first].t +

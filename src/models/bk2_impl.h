@@ -21,6 +21,7 @@
 #include <string.h>
 
 #include "hybrid/dual.h"
+#include "hybrid/hybrid_impl.h"
 #include "slipcont/hybrid.h"
 #include "slipcont/models.h"
 
@@ -54,6 +55,12 @@ typedef struct {
    * faster one changes nothing but speed (tests/test_map_equiv.c). */
   int (*search)(const sc_guard *g, double tmax, int skip_start, double atol,
                 double rtol, sc_root *out);
+  /* The two re-stick guards of a slip of both blocks, searched together:
+   * sc_guard_first_root_pair, set by bk2_setup; NULL: one after the other
+   * with `search` (the frozen earlier search of tests/test_map_equiv.c). */
+  int (*search_pair)(const sc_guard *g, double tmax, const int *skip,
+                     double atol, double rtol, sc_guard_limit_fn limit,
+                     void *ctx, sc_root *out);
   /* The re-stick guard of block i in a slip that starts from a GSP does
    * not depend on d (its amplitude is (1 - mu) T_i / (1 + alpha)): its
    * guard and first root, found once by sc_bk2_first_restick() (exact

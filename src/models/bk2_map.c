@@ -80,6 +80,7 @@ static int bk2_setup(void *vinst, const double *p, const int *opt,
   b->dstar = sc_bk2_dstar(b->alpha, b->beta);
   sc_bk2_dparams(b, 0, &b->p0); /* value-only evaluations start from it */
   b->search = sc_guard_first_root;
+  b->search_pair = sc_guard_first_root_pair;
   if (b->v > 0 && b->v < DBL_MIN)
     return sc_fail(msg, SC_EINVAL,
                    "bk2: v = %g is subnormal: the event horizons divide by "
