@@ -6,6 +6,7 @@
 #include <float.h>
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "hybrid/hybrid_impl.h"
 #include "hybrid/trig.h"
@@ -94,8 +95,146 @@ static void test_fast_sincos(void) {
   tu_true(s == sin(3e7) && c == cos(3e7), "fast sincos beyond its range: libm");
 }
 
+/* The pair search's limit in these tests: the earlier root plus a fixed
+ * margin (bk2's is twice the tie tolerance; a long one here lets the
+ * later guard's root be found too). */
+static double pair_margin;
+static double pair_limit(void *ctx, const sc_guard *g, const sc_root *r) {
+  (void)ctx, (void)g;
+  return r->t + pair_margin;
+}
+
+/* Two guards searched together (sc_guard_first_root_pair) against the
+ * dense search of each: the earlier root is the first root of its guard;
+ * the later guard's root is found exactly when it lies within the limit
+ * of the earlier one, and is then its first root.  Pairs of bk2's shape
+ * (the second term's sign flipped, the second guard often starting at a
+ * zero it skips: a block that has just started to slip), pairs with
+ * every sign kept or both flipped, and guards that do not pair (searched
+ * one after the other).  Near-tangent pairs: the later guard touches
+ * zero by +-1e-12 just after the earlier root. */
+static void test_pair(void) {
+  int n = 600, wrong = 0, cases_later = 0, cases_both = 0, joint = 0;
+  double worst = 0;
+  for (int i = 0; i < n; i++) {
+    sc_guard g[2];
+    memset(g, 0, sizeof g);
+    g[0].n = 2;
+    g[0].w[0] = 1;
+    g[0].w[1] = uni(1.5, 4.5);
+    for (int k = 0; k < 2; k++) g[0].a[k] = uni(-1, 1), g[0].b[k] = uni(-1, 1);
+    g[0].c1 = i % 5 == 0 ? uni(-0.1, 0.1) : 0;
+    int shape = i % 4; /* 0, 1: bk2's; 2: signs (-, -) or (+, +); 3: none */
+    g[1] = g[0];
+    double s0 = shape == 2 && i % 8 == 2 ? 1 : -1, s1 = shape == 2 ? s0 : -1;
+    if (shape < 3) {
+      g[1].a[0] *= shape == 2 ? s0 : 1, g[1].b[0] *= shape == 2 ? s0 : 1;
+      g[1].a[1] *= s1, g[1].b[1] *= s1;
+    } else {
+      g[1].a[1] = uni(-1, 1); /* not a pair */
+    }
+    int skip[2] = {0, shape == 1};
+    /* the second guard starts at zero when it skips (c0 is shared) */
+    g[0].c0 = skip[1] ? -(g[1].a[0] + g[1].a[1]) : uni(-2, 0.5);
+    g[1].c0 = g[0].c0;
+    pair_margin = i % 3 == 0 ? 0.5 : i % 3 == 1 ? 3 : 1e-9;
+    double tmax = 20;
+    sc_root r[2];
+    if (sc_guard_first_root_pair(g, tmax, skip, 1e-15, 1e-14, pair_limit,
+                                 NULL, r) != SC_OK) {
+      wrong++;
+      continue;
+    }
+    joint += shape < 3;
+    double ref[2] = {dense_first_root(&g[0], tmax, skip[0]),
+                     dense_first_root(&g[1], tmax, skip[1])};
+    int e = ref[0] < 0 ? 1 : ref[1] < 0 ? 0 : ref[1] < ref[0];
+    if (shape == 3) e = ref[0] < 0 ? 1 : 0; /* one after the other */
+    if (ref[e] < 0) { /* neither has a root */
+      wrong += r[0].found || r[1].found;
+      continue;
+    }
+    int j = 1 - e;
+    double lim = ref[e] + pair_margin;
+    if (!r[e].found || fabs(r[e].t - ref[e]) > 1e-9) {
+      wrong++;
+      continue;
+    }
+    worst = fmax(worst, fabs(r[e].t - ref[e]));
+    if (ref[j] >= 0 && fabs(ref[j] - lim) < 1e-9) continue; /* at the limit */
+    int want = ref[j] >= 0 && ref[j] <= lim;
+    cases_later += ref[j] >= 0 && !want;
+    cases_both += want;
+    if (r[j].found != want || (want && fabs(r[j].t - ref[j]) > 1e-9)) wrong++;
+    else if (want) worst = fmax(worst, fabs(r[j].t - ref[j]));
+  }
+  tu_true(joint >= n / 2 && cases_later >= n / 10 && cases_both >= n / 10,
+          "pairs: %d searched jointly, later root beyond the limit in %d, "
+          "within it in %d",
+          joint, cases_later, cases_both);
+  tu_int("pairs: roots missed, found beyond the limit or located elsewhere",
+         wrong, 0);
+  tu_true(worst <= 1e-12, "pairs: roots within %.3g of the dense search's",
+          worst);
+
+  /* Near tangency in a joint march: g[1] = c + A cos(t - t1) + B cos(w2
+   * (t - t1)) reaches its highest maximum delta = +-1e-12 at t1, and g[0]
+   * = c + A cos(t - t1) - B cos(w2 (t - t1)) stays below zero (it would
+   * need both cosines at their extremes at once), so the touch is the
+   * pair's only root. */
+  for (int sgn = -1; sgn <= 1; sgn += 2) {
+    double delta = sgn * 1e-12, t1 = 1.001, w2 = sqrt(7.0);
+    double A = 0.3, B = 0.2, c = delta - A - B;
+    sc_guard g[2];
+    memset(g, 0, sizeof g);
+    g[0].n = 2, g[0].c0 = c;
+    g[0].w[0] = 1, g[0].a[0] = A * cos(t1), g[0].b[0] = A * sin(t1);
+    g[0].w[1] = w2, g[0].a[1] = -B * cos(w2 * t1);
+    g[0].b[1] = -B * sin(w2 * t1);
+    g[1] = g[0];
+    g[1].a[1] = -g[0].a[1], g[1].b[1] = -g[0].b[1];
+    int skip[2] = {0, 0};
+    pair_margin = 1; /* the later search reaches well past t1 */
+    sc_root r[2];
+    int st = sc_guard_first_root_pair(g, 20, skip, 1e-15, 1e-14, pair_limit,
+                                      NULL, r);
+    tu_int("near-tangent pair: SC_OK", st, SC_OK);
+    tu_true(dense_first_root(&g[0], 20, 0) < 0 && !r[0].found,
+            "near-tangent pair: the other guard has no root, none found");
+    if (delta > 0) {
+      /* roots at t1 -+ sqrt(2 delta / kappa), kappa = A + B w2^2 */
+      double s = sqrt(2 * delta / (A + B * w2 * w2));
+      tu_true(r[1].found, "near-tangent pair, reaches zero by 1e-12: found "
+                          "(t = %.17g)", r[1].t);
+      tu_close("near-tangent pair: root time", r[1].t, t1 - s, 1e-8);
+    } else {
+      tu_true(!r[1].found, "near-tangent pair, misses zero by 1e-12: no "
+                           "root (t = %g)", r[1].t);
+    }
+  }
+  /* Malformed pairs are refused as single guards are. */
+  {
+    sc_guard g[2];
+    memset(g, 0, sizeof g);
+    g[0].n = 2, g[0].w[0] = 1, g[0].w[1] = 2, g[0].a[0] = NAN;
+    g[1] = g[0];
+    int skip[2] = {0, 0};
+    sc_root r[2];
+    tu_int("pair with a NaN coefficient refused",
+           sc_guard_first_root_pair(g, 1, skip, 1e-15, 1e-14, pair_limit,
+                                    NULL, r),
+           SC_EINVAL);
+    g[0].a[0] = g[1].a[0] = 1;
+    tu_int("pair with an infinite horizon refused",
+           sc_guard_first_root_pair(g, INFINITY, skip, 1e-15, 1e-14,
+                                    pair_limit, NULL, r),
+           SC_EINVAL);
+  }
+}
+
 int main(void) {
   test_fast_sincos();
+  test_pair();
   /* Random guards of the shape bk2 produces: a constant, sometimes a
    * linear term, two incommensurate frequencies. */
   int misses = 0, wrong = 0, n = 300, ntrig = 0;
