@@ -492,8 +492,9 @@ static double phase_horizon(const sc_guard *g, int ng) {
  * searched (kinds: 1, 2 re-stick of block i; 3 threshold of the stuck
  * block): later guards are searched only up to the earliest root so far,
  * so the likelier first event goes first: in SLIP12, the block that has
- * slipped longer (not fresh) usually re-sticks first.  Returns their
- * number.  The dual and the value-only phases share it. */
+ * slipped longer (not fresh); there the two are searched together
+ * (first_event()) and the order only breaks exact ties of the roots'
+ * times (and orders guards that do not pair).  Returns their number.  The dual and the value-only phases share it. */
 static int phase_kinds(int mode, int fresh, int kind[2]) {
   int ng = 0;
   int order[2] = {1, 2};
@@ -580,8 +581,10 @@ static double onset_trigger_slope(const sc_guard *g, double gap) {
  * up to the phase's horizon tmax (phase_horizon(); NaN: computed here
  * when first needed, which a slip from a GSP whose re-stick comes from
  * the cache never does: two guards and three divisions saved in most
- * phases of a chart): later guards only up to the earliest root so far (plus its
- * tie tolerance), the first re-stick after a GSP from the per-parameter
+ * phases of a chart): later guards only up to the earliest root so far
+ * (plus twice its tie tolerance: tie_limit()), the two re-sticks of a
+ * slip of both blocks together (the later one only up to the earlier
+ * one's limit), the first re-stick after a GSP from the per-parameter
  * cache; ties within the event tolerance, or within the intervals the two
  * roots are known to lie in (a root can be known no better than the
  * rounding of its guard over its slope): re-sticks go first
