@@ -6,7 +6,10 @@
  * guard at multiples of a twelfth of the fastest period, with cos and sin
  * carried by rotations, and decides each interval by cubic Hermite bounds;
  * the intervals it cannot decide go to the adaptive march described here,
- * which was the whole search before issue 9.
+ * which was the whole search before issue 9.  Two guards whose terms
+ * differ only in sign (bk2's re-sticks in a slip of both blocks) are
+ * marched together, each term computed once (sc_guard_first_root_pair,
+ * at the end; docs/events.md, "Two guards at once").
  *
  * The adaptive march covers its span by intervals [t, t + h].  Write s = time from
  * t, g0, g1, g2 = g, g', g'' at t, M3 >= |g'''|.  Taylor's theorem gives
