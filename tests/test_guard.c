@@ -166,6 +166,8 @@ static void test_pair(void) {
     cases_later += ref[j] >= 0 && !want;
     cases_both += want;
     if (r[j].found != want || (want && fabs(r[j].t - ref[j]) > 1e-9)) wrong++;
+    /* a later root beyond the limit: not found, t the search's end */
+    else if (!want && ref[j] >= 0 && r[j].t != r[e].t + pair_margin) wrong++;
     else if (want) worst = fmax(worst, fabs(r[j].t - ref[j]));
   }
   tu_true(joint >= n / 2 && cases_later >= n / 10 && cases_both >= n / 10,

@@ -815,7 +815,7 @@ static inline int grid_march_n(const guard_ctx *c, const guard_pair *pr,
       roots |= dec[i] == STEP_ROOT;
     }
     if (past) {
-      if (!undecided) return 0; /* (a past step brackets no root) */
+      if (!undecided) break; /* (a past step brackets no root) */
       past_tried = 1;           /* the tail step from the same state */
       continue;
     }
