@@ -913,8 +913,8 @@ static int grid_march(const guard_ctx *c, double wmax, double tmax,
   }
 }
 
-int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
-                        double atol, double rtol, sc_root *out) {
+/* No root yet: the result of a search that finds none up to tmax. */
+static inline void root_none(sc_root *out, double tmax) {
   out->found = out->tangent = 0;
   out->t = tmax;
   out->bracket = 0;
@@ -922,17 +922,32 @@ int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
   out->curv = 0;
   out->steps = 0;
   out->ntrig = 0;
+}
+
+/* The fastest frequency of g (0 without sinusoids), or -1 if a search of
+ * g is not well posed (finite coefficients, 0 <= n <= SC_GUARD_MAXFREQ,
+ * w > 0, tmax finite and > 0, atol > 0, rtol >= 0). */
+static inline double search_wmax(const sc_guard *g, double tmax, double atol,
+                                 double rtol) {
   if (!g || g->n < 0 || g->n > SC_GUARD_MAXFREQ || !isfinite(g->c0) ||
       !isfinite(g->c1) || !(tmax > 0) || !isfinite(tmax) || !(atol > 0) ||
       !(rtol >= 0))
-    return SC_EINVAL;
+    return -1;
   double wmax = 0;
   for (int k = 0; k < g->n; k++) {
     if (!(g->w[k] > 0) || !isfinite(g->w[k]) || !isfinite(g->a[k]) ||
         !isfinite(g->b[k]))
-      return SC_EINVAL;
+      return -1;
     if (g->w[k] > wmax) wmax = g->w[k]; /* (no libm call: none is NaN) */
   }
+  return wmax;
+}
+
+int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
+                        double atol, double rtol, sc_root *out) {
+  root_none(out, tmax);
+  double wmax = search_wmax(g, tmax, atol, rtol);
+  if (wmax < 0) return SC_EINVAL;
   /* A guard that starts within rounding of zero: a root at 0 if it moves
    * up through zero there (the events of docs/model.md are all upward
    * crossings), otherwise the start root is skipped. */
@@ -1023,24 +1038,13 @@ int sc_guard_first_root_pair(const sc_guard *g, double tmax, const int *skip,
       return st ? st : pair_later(g, 0, skip, atol, rtol, limit, ctx, out);
     return sc_guard_first_root(&g[1], tmax, skip[1], atol, rtol, &out[1]);
   }
-  for (int i = 0; i < 2; i++) {
-    out[i].found = out[i].tangent = 0;
-    out[i].t = tmax;
-    out[i].bracket = out[i].slope = out[i].curv = 0;
-    out[i].steps = out[i].ntrig = 0;
-  }
+  root_none(&out[0], tmax);
+  root_none(&out[1], tmax);
   const sc_guard *ga = &g[0];
   int n = ga->n;
-  if (!isfinite(ga->c0) || !isfinite(ga->c1) || !(tmax > 0) ||
-      !isfinite(tmax) || !(atol > 0) || !(rtol >= 0))
-    return SC_EINVAL;
-  double wmax = 0;
-  for (int k = 0; k < n; k++) {
-    if (!(ga->w[k] > 0) || !isfinite(ga->w[k]) || !isfinite(ga->a[k]) ||
-        !isfinite(ga->b[k]))
-      return SC_EINVAL;
-    if (ga->w[k] > wmax) wmax = ga->w[k];
-  }
+  /* (g[1] is finite where g[0] is: the same numbers, +-) */
+  double wmax = search_wmax(ga, tmax, atol, rtol);
+  if (wmax < 0) return SC_EINVAL;
   /* one context: the guards' sizes are equal */
   guard_ctx c;
   c.g = ga;
