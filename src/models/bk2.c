@@ -469,12 +469,37 @@ static inline double window_once(const sc_guard *g, const sc_root *r, int i,
   return rw[i];
 }
 
-/* How far the later of two guards is searched past the earlier's root r
- * (g its guard; ctx: atol, rtol): twice the tie tolerance of r, so that
- * a tie with r is seen (first_event()). */
+/* A phase's guards g, their roots r and the roots' windows rw (computed
+ * once, window_once()), with the event tolerances: first_event()'s. */
+typedef struct {
+  double atol, rtol;
+  const sc_guard *g;
+  const sc_root *r;
+  double *rw;
+} tie_ctx;
+
+/* How far a later guard is searched past root r, whose window is w:
+ * twice its tie tolerance, so that a tie with it is seen
+ * (first_event()). */
+static inline double past_tie(double atol, double rtol, const sc_root *r,
+                              double w) {
+  return r->t + 2 * (atol + rtol * r->t + w);
+}
+
+/* past_tie() as the pair search's limit (g: one of the phase's guards,
+ * whose root it is). */
 static double tie_limit(void *ctx, const sc_guard *g, const sc_root *r) {
-  const double *tol = ctx;
-  return r->t + 2 * (tol[0] + tol[1] * r->t + root_window(g, r));
+  const tie_ctx *c = ctx;
+  int i = (int)(g - c->g); /* r is c->r[i] */
+  return past_tie(c->atol, c->rtol, r, window_once(c->g, c->r, i, c->rw));
+}
+
+/* A search refused the phase's guards. */
+static int malformed_guard(int mode, sc_msg *msg) {
+  return sc_fail(msg, SC_EINTERNAL,
+                 "bk2: malformed guard in mode %d (parameters out of "
+                 "range?)",
+                 mode);
 }
 
 /* A phase's horizon: the largest of its guards' (fmax without the libm
@@ -494,7 +519,8 @@ static double phase_horizon(const sc_guard *g, int ng) {
  * so the likelier first event goes first: in SLIP12, the block that has
  * slipped longer (not fresh); there the two are searched together
  * (first_event()) and the order only breaks exact ties of the roots'
- * times (and orders guards that do not pair).  Returns their number.  The dual and the value-only phases share it. */
+ * times (and orders guards that do not pair).  Returns their number.
+ * The dual and the value-only phases share it. */
 static int phase_kinds(int mode, int fresh, int kind[2]) {
   int ng = 0;
   int order[2] = {1, 2};
@@ -616,13 +642,10 @@ static int first_event(const bk2_inst *b, int mode, int fresh,
     for (int i = 0; i < 2; i++)
       skip[i] = (fresh & kind[i]) || falls_from_zero(&g[i]);
     if (isnan(tmax)) tmax = phase_horizon(g, ng);
-    double tol[2] = {atol, rtol};
     r[0].ntrig = r[1].ntrig = 0;
-    if (b->search_pair(g, tmax, skip, atol, rtol, tie_limit, tol, r))
-      return sc_fail(msg, SC_EINTERNAL,
-                     "bk2: malformed guard in mode %d (parameters out of "
-                     "range?)",
-                     mode);
+    tie_ctx tc = {atol, rtol, g, r, rw};
+    if (b->search_pair(g, tmax, skip, atol, rtol, tie_limit, &tc, r))
+      return malformed_guard(mode, msg);
     for (int i = 0; i < 2; i++) {
       *steps += r[i].steps;
       if (r[i].found && (first < 0 || r[i].t < r[first].t)) first = i;
@@ -631,8 +654,8 @@ static int first_event(const bk2_inst *b, int mode, int fresh,
   for (int i = 0; i < ng && !paired; i++) {
     int skip = kind[i] < 3 && ((fresh & kind[i]) || falls_from_zero(&g[i]));
     double lim = first < 0 ? NAN
-                           : r[first].t + 2 * (atol + rtol * r[first].t +
-                                               window_once(g, r, first, rw));
+                           : past_tie(atol, rtol, &r[first],
+                                      window_once(g, r, first, rw));
     int st = SC_OK;
     /* Without a root yet, the cached root is within tmax: tmax is at
      * least this guard's horizon, which equals the cached guard's (same
@@ -650,11 +673,7 @@ static int first_event(const bk2_inst *b, int mode, int fresh,
       r[i].ntrig = 0; /* (a search that does not leave cos and sin) */
       st = b->search(&g[i], lim, skip, atol, rtol, &r[i]);
     }
-    if (st)
-      return sc_fail(msg, SC_EINTERNAL,
-                     "bk2: malformed guard in mode %d (parameters out of "
-                     "range?)",
-                     mode);
+    if (st) return malformed_guard(mode, msg);
     *steps += r[i].steps;
     if (kind[i] == BK2_EV_THRESHOLD && r[i].found && r[i].t == 0 &&
         onset_gap < 0)
