@@ -11,8 +11,10 @@
 #             for the base, then for this checkout
 #   big       also fig 5.7(a) at 1000 x 1000 on 2 threads, whole runs
 #             (about 35-50 s each), one a round and build
-# Environment: SLIPCONT_SBS_DIR (default /tmp/slipcont-sbs) keeps the two
-# builds; a base build already there is reused.
+# Environment: SLIPCONT_SBS_DIR (default /tmp/slipcont-sbs) keeps the
+# builds; a base build already there is reused.  SLIPCONT_SBS_NATIVE=1
+# also builds this checkout with SLIPCONT_NATIVE=ON and runs it third in
+# every round (the summary's third column).
 #
 # Prints one line per measurement and a summary of medians over the
 # rounds (rates per CPU second; the 1000 x 1000 chart's wall and user s).
@@ -41,11 +43,13 @@ REV=$(git -C "$SRC" rev-parse --short --verify --quiet "$BASE^{commit}") || {
 mkdir -p "$DIR"
 J=$(nproc 2>/dev/null || echo 2)
 
-build() { # build SOURCE BUILD_DIR
-  cmake -S "$1" -B "$2" -DCMAKE_BUILD_TYPE=Release > "$2.log" 2>&1 &&
-    cmake --build "$2" -j "$J" --target bench_events bench_chart \
-      slipcont_cli >> "$2.log" 2>&1 || {
-    echo "side_by_side: building $1 failed (log: $2.log)" >&2
+build() { # build SOURCE BUILD_DIR [CMAKE_ARGS...]
+  src=$1 bdir=$2
+  shift 2
+  cmake -S "$src" -B "$bdir" -DCMAKE_BUILD_TYPE=Release "$@" > "$bdir.log" 2>&1 &&
+    cmake --build "$bdir" -j "$J" --target bench_events bench_chart \
+      slipcont_cli >> "$bdir.log" 2>&1 || {
+    echo "side_by_side: building $src failed (log: $bdir.log)" >&2
     exit 1
   }
 }
@@ -59,6 +63,11 @@ if [ ! -x "$DIR/base-$REV/build/bench/bench_events" ]; then
 fi
 echo "building this checkout in $DIR/now"
 build "$SRC" "$DIR/now"
+NATIVE=${SLIPCONT_SBS_NATIVE:-0}
+if [ "$NATIVE" = 1 ]; then
+  echo "building this checkout with SLIPCONT_NATIVE=ON in $DIR/native"
+  build "$SRC" "$DIR/native" -DSLIPCONT_NATIVE=ON
+fi
 
 OUT="$DIR/results-$REV.txt"
 : > "$OUT"
@@ -83,19 +92,30 @@ i=1
 while [ $i -le "$ROUNDS" ]; do
   run base "$DIR/base-$REV/build"
   run now "$DIR/now"
+  [ "$NATIVE" = 1 ] && run native "$DIR/native"
   if [ "$BIG" = big ]; then
     big base "$DIR/base-$REV/build/slipcont"
     big now "$DIR/now/slipcont"
+    [ "$NATIVE" = 1 ] && big native "$DIR/native/slipcont"
   fi
   i=$((i + 1))
 done
 
-echo "== medians over $ROUNDS rounds (base $REV | this checkout)"
+echo "== medians over $ROUNDS rounds (base $REV | this checkout [| native])"
 awk '
   function med(a, n,   i, j, t) {
     for (i = 1; i <= n; i++) for (j = i + 1; j <= n; j++)
       if (a[j] < a[i]) { t = a[i]; a[i] = a[j]; a[j] = t }
     return n % 2 ? a[(n + 1) / 2] : (a[n / 2] + a[n / 2 + 1]) / 2
+  }
+  # the median of the values of key under label l
+  function medof(l, key,   i, c) {
+    for (i = 1; i <= n[l, key]; i++) c[i] = v[l, key, i]
+    return med(c, n[l, key])
+  }
+  # the ratio "faster than the base" of value x against the base mb
+  function ratio(key, mb, x) {
+    return (key == "wall" || key == "user") ? mb / x : x / mb
   }
   $2 == "fig56" { for (k = 2; k < NF; k += 2) { n[$1, $k]++; v[$1, $k, n[$1, $k]] = $(k + 1) } }
   $2 == "big" { n[$1, "wall"]++; v[$1, "wall", n[$1, "wall"]] = $3
@@ -105,11 +125,13 @@ awk '
     for (k = 1; k <= 6; k++) {
       key = keys[k]
       if (!n["base", key] || !n["now", key]) continue
-      for (i = 1; i <= n["base", key]; i++) b[i] = v["base", key, i]
-      for (i = 1; i <= n["now", key]; i++) c[i] = v["now", key, i]
-      mb = med(b, n["base", key]); mc = med(c, n["now", key])
-      printf "%-6s %12.4g | %12.4g   (%.3fx)\n", key, mb, mc,
-        (key == "wall" || key == "user") ? mb / mc : mc / mb
+      mb = medof("base", key); mc = medof("now", key)
+      printf "%-6s %12.4g | %12.4g   (%.3fx)", key, mb, mc, ratio(key, mb, mc)
+      if (n["native", key]) {
+        mn = medof("native", key)
+        printf " | %12.4g   (%.3fx)", mn, ratio(key, mb, mn)
+      }
+      printf "\n"
     }
   }' "$OUT"
-echo "(rates: iterates per CPU second; wall, user: seconds; ratio > 1: faster now)"
+echo "(rates: iterates per CPU second; wall, user: seconds; ratio > 1: faster than the base)"

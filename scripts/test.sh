@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The whole test suite, as CI runs it: install, build with warnings as
-# errors, run ctest; install and build examples/downstream against the
-# installed package (CMake and pkg-config, shared and static); then again under AddressSanitizer and UBSan; then the
-# MPI build's distributed-chart test.
+# errors, run ctest; check that a -march=native build computes the same
+# numbers; install and build examples/downstream against the installed
+# package (CMake and pkg-config, shared and static); then again under
+# AddressSanitizer and UBSan; then the MPI build's distributed-chart test.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/deps.sh
@@ -11,6 +12,8 @@ echo "== release build, -Werror =="
 cmake -S . -B build-ci -DCMAKE_BUILD_TYPE=Release -DSLIPCONT_WERROR=ON >/dev/null
 cmake --build build-ci -j"$jobs"
 (cd build-ci && ctest --output-on-failure -j"$jobs")
+echo "== a build for this processor (SLIPCONT_NATIVE) computes the same numbers =="
+scripts/check-native.sh build-ci build-native
 echo "== install, and a downstream project built against it =="
 rm -rf build-ci/prefix
 cmake --install build-ci --prefix build-ci/prefix >/dev/null
