@@ -468,6 +468,39 @@ int main(void) {
     g.a[0] = 1;
     tu_int("infinite horizon refused",
            sc_guard_first_root(&g, INFINITY, 0, 1e-15, 1e-14, &r), SC_EINVAL);
+    /* the validity test goes through the sizes: each way a number can
+     * fail it, and the largest coefficients that pass */
+    struct {
+      const char *what;
+      double c0, c1, w, a, b;
+      int st;
+    } bad[] = {
+        {"infinite c0 refused", INFINITY, 0, 1, 1, 0, SC_EINVAL},
+        {"NaN c1 refused", 0, NAN, 1, 1, 0, SC_EINVAL},
+        {"infinite b refused", 0, 0, 1, 0, -INFINITY, SC_EINVAL},
+        {"NaN w with a zero amplitude refused", 0, 0, NAN, 0, 0, SC_EINVAL},
+        {"infinite w with a zero amplitude refused", 0, 0, INFINITY, 0, 0,
+         SC_EINVAL},
+        {"zero frequency refused", 0, 0, 0, 1, 0, SC_EINVAL},
+        {"coefficient whose square overflows refused", 0, 0, 1, 1e200, 0,
+         SC_EINVAL},
+        {"coefficients of 1e150 searched", 0.5e150, 0, 1, 1e150, 0, SC_OK},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+      g.c0 = bad[i].c0, g.c1 = bad[i].c1, g.w[0] = bad[i].w;
+      g.a[0] = bad[i].a, g.b[0] = bad[i].b;
+      tu_int(bad[i].what, sc_guard_first_root(&g, 10, 0, 1e-15, 1e-14, &r),
+             bad[i].st);
+    }
+    /* g = 1e150 (1/2 + cos t): first root at 2 pi / 3 */
+    tu_int("coefficients of 1e150: root found", r.found, 1);
+    tu_close("coefficients of 1e150: root at 2 pi / 3", r.t, 2 * SC_PI / 3,
+             1e-13);
+    g.c0 = 0, g.c1 = 0, g.w[0] = 1, g.a[0] = 1, g.b[0] = 0;
+    tu_int("atol 0 refused", sc_guard_first_root(&g, 1, 0, 0, 1e-14, &r),
+           SC_EINVAL);
+    tu_int("negative rtol refused",
+           sc_guard_first_root(&g, 1, 0, 1e-15, -1, &r), SC_EINVAL);
   }
   return tu_finish();
 }

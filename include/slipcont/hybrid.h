@@ -75,8 +75,9 @@ SC_API double sc_guard_m3(const sc_guard *g);
  *        an interval of width <= atol + rtol t (or g is within rounding of
  *        zero there).
  * @return SC_OK (found or not: see out->found); SC_EINVAL for a
- *         malformed guard (non-finite coefficients, n out of range,
- *         w <= 0) or tmax not finite and > 0.
+ *         malformed guard (non-finite coefficients, or coefficients
+ *         whose squares overflow, |a| > 1e154; n out of range; w <= 0),
+ *         tmax not finite and > 0, atol <= 0 or rtol < 0.
  * Thread safe; no allocation.
  */
 SC_API int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,

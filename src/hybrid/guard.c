@@ -924,37 +924,43 @@ static inline void root_none(sc_root *out, double tmax) {
   out->ntrig = 0;
 }
 
-/* The fastest frequency of g (0 without sinusoids), or -1 if a search of
- * g is not well posed (finite coefficients, 0 <= n <= SC_GUARD_MAXFREQ,
- * w > 0, tmax finite and > 0, atol > 0, rtol >= 0). */
-static inline double search_wmax(const sc_guard *g, double tmax, double atol,
-                                 double rtol) {
-  if (!g || g->n < 0 || g->n > SC_GUARD_MAXFREQ || !isfinite(g->c0) ||
-      !isfinite(g->c1) || !(tmax > 0) || !isfinite(tmax) || !(atol > 0) ||
-      !(rtol >= 0))
+/* A search's context for g (c->g, c->z, c->amp, atol, rtol; c->M3 and
+ * c->m3 are left to the search), and the fastest frequency of g (0
+ * without sinusoids), or -1 if a search of g is not well posed: 0 <= n
+ * <= SC_GUARD_MAXFREQ, w > 0, finite coefficients, tmax finite and > 0,
+ * atol > 0, rtol >= 0.  Every search starts here, so the coefficients are
+ * tested through the sizes the search needs anyway, not one by one: a
+ * coefficient that is infinite or NaN makes the sum of the sizes infinite
+ * or NaN (a w that is, with a zero amplitude, 0 * w = NaN), and so does
+ * one whose square overflows (|a| > 1e154), which the sizes could not
+ * bound anyway (a sum past DBL_MAX, refused as well). */
+static inline double search_setup(const sc_guard *g, double tmax, double atol,
+                                  double rtol, guard_ctx *c) {
+  if (!g || g->n < 0 || g->n > SC_GUARD_MAXFREQ || !(tmax > 0) ||
+      !(tmax < INFINITY) || !(atol > 0) || !(rtol >= 0))
     return -1;
-  double wmax = 0;
+  c->g = g;
+  c->z = guard_sizes(g, c->amp);
+  c->atol = atol, c->rtol = rtol;
+  double wmin = INFINITY, wmax = 0;
   for (int k = 0; k < g->n; k++) {
-    if (!(g->w[k] > 0) || !isfinite(g->w[k]) || !isfinite(g->a[k]) ||
-        !isfinite(g->b[k]))
-      return -1;
-    if (g->w[k] > wmax) wmax = g->w[k]; /* (no libm call: none is NaN) */
+    double w = g->w[k];
+    wmin = w < wmin ? w : wmin; /* (a NaN w is caught by the sizes) */
+    wmax = w > wmax ? w : wmax;
   }
-  return wmax;
+  double all = (c->z.c0 + c->z.c1) + (c->z.amp + c->z.wamp);
+  return wmin > 0 && all < INFINITY ? wmax : -1;
 }
 
 int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
                         double atol, double rtol, sc_root *out) {
   root_none(out, tmax);
-  double wmax = search_wmax(g, tmax, atol, rtol);
+  guard_ctx c; /* sizes once per search */
+  double wmax = search_setup(g, tmax, atol, rtol, &c);
   if (wmax < 0) return SC_EINVAL;
   /* A guard that starts within rounding of zero: a root at 0 if it moves
    * up through zero there (the events of docs/model.md are all upward
    * crossings), otherwise the start root is skipped. */
-  guard_ctx c;
-  c.g = g;
-  c.z = guard_sizes(g, c.amp); /* once per search */
-  c.atol = atol, c.rtol = rtol;
   /* g, g', g'' at 0 (cos = 1, sin = 0); the terms' own values are not
    * kept: only the march without sinusoids (n = 0) starts from them */
   double g0 = g->c0, g1 = g->c1, g2 = 0;
@@ -1042,14 +1048,11 @@ int sc_guard_first_root_pair(const sc_guard *g, double tmax, const int *skip,
   root_none(&out[1], tmax);
   const sc_guard *ga = &g[0];
   int n = ga->n;
-  /* (g[1] is finite where g[0] is: the same numbers, +-) */
-  double wmax = search_wmax(ga, tmax, atol, rtol);
-  if (wmax < 0) return SC_EINVAL;
-  /* one context: the guards' sizes are equal */
+  /* one context: the guards' sizes are equal (and g[1] is finite where
+   * g[0] is: the same numbers, +-) */
   guard_ctx c;
-  c.g = ga;
-  c.z = guard_sizes(ga, c.amp);
-  c.atol = atol, c.rtol = rtol;
+  double wmax = search_setup(ga, tmax, atol, rtol, &c);
+  if (wmax < 0) return SC_EINVAL;
   /* each guard at 0, as sc_guard_first_root() takes it */
   double E0 = round_at(&c.z, 0);
   int sk[2] = {skip[0], skip[1]}, at0 = -1;

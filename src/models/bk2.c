@@ -203,13 +203,15 @@ static sc_guard guard_threshold(const bk2_dpar *P, const mode_flow *f) {
  * one period for a pure sinusoid, the time the linear term needs to
  * dominate otherwise. */
 static double guard_horizon(const sc_guard *g) {
-  double amp = 0, wmin = HUGE_VAL;
-  for (int k = 0; k < g->n; k++) {
-    amp += fabs(g->a[k]) + fabs(g->b[k]); /* >= the amplitude: enough here */
+  double wmin = HUGE_VAL;
+  for (int k = 0; k < g->n; k++)
     if (g->w[k] < wmin) wmin = g->w[k]; /* fmin without the libm call */
-  }
   double period = 2 * SC_PI / wmin;
-  if (g->c1 != 0) return (fabs(g->c0) + amp) / fabs(g->c1) + period;
+  if (g->c1 != 0) {
+    double amp = 0; /* (>= the amplitude: enough here) */
+    for (int k = 0; k < g->n; k++) amp += fabs(g->a[k]) + fabs(g->b[k]);
+    return (fabs(g->c0) + amp) / fabs(g->c1) + period;
+  }
   if (g->n == 1) return 1.01 * period;
   return SLIP12_PERIODS * period;
 }
@@ -411,8 +413,17 @@ static void phase_borders(const bk2_dpar *P, const mode_flow *f, int fresh,
  * coefficients of size (1 - mu) T_i): ~50 eps of the guard's size. */
 #define BK2_SAME_GUARD_EPS (50 * DBL_EPSILON)
 
+/* Inlined into every caller, whatever the compiler's estimate of the cost
+ * (first_event()); a plain inline elsewhere. */
+#if defined(__GNUC__)
+#define BK2_ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define BK2_ALWAYS_INLINE inline
+#endif
+
 /* Two guards equal up to the rounding of building them from a state. */
-static int same_guard(const sc_guard *g, const sc_guard *h) {
+static BK2_ALWAYS_INLINE int same_guard(const sc_guard *g,
+                                        const sc_guard *h) {
   if (g->n != 1 || h->n != 1 || g->c1 != 0 || h->c1 != 0 || g->w[0] != h->w[0])
     return 0;
   double tol =
@@ -454,12 +465,26 @@ void sc_bk2_first_restick(bk2_inst *b) {
  * rounding of g near it over its slope (two equal guards built from
  * different states, or searched over different horizons, may return
  * roots this far apart). */
-static double root_window(const sc_guard *g, const sc_root *r) {
-  double size = fabs(g->c0) + fabs(g->c1) * r->t;
-  for (int k = 0; k < g->n; k++)
-    size += (fabs(g->a[k]) + fabs(g->b[k])) * (1 + g->w[k] * r->t);
+static inline double root_window_n(const sc_guard *g, int n,
+                                   const sc_root *r) {
+  double t = r->t, size = fabs(g->c0) + fabs(g->c1) * t;
+  for (int k = 0; k < n; k++)
+    size += (fabs(g->a[k]) + fabs(g->b[k])) * (1 + g->w[k] * t);
   double E = ROOT_ROUND_ULPS * DBL_EPSILON * size;
   return r->bracket + (r->slope != 0 ? E / fabs(r->slope) : 0);
+}
+
+/* (with the number of terms a constant for bk2's guards, so that the
+ * loop unrolls: the tie windows are taken in every phase) */
+static double root_window(const sc_guard *g, const sc_root *r) {
+  switch (g->n) {
+  case 1:
+    return root_window_n(g, 1, r);
+  case 2:
+    return root_window_n(g, 2, r);
+  default:
+    return root_window_n(g, g->n, r);
+  }
 }
 
 /* root_window of root i, kept in rw[i] (negative: not yet computed). */
@@ -573,7 +598,7 @@ static void set_onset_gap(sc_guard *g, double gap) {
  * D5 in docs/accuracy.md).  The window is START_ROUND_ULPS of the terms'
  * size, a few times the search's step-grown bound. */
 #define START_ROUND_ULPS 64.0
-static int falls_from_zero(const sc_guard *g) {
+static BK2_ALWAYS_INLINE int falls_from_zero(const sc_guard *g) {
   double g0, g1, size = fabs(g->c0), wsize = fabs(g->c1);
   guard_at_zero(g, &g0, &g1);
   for (int k = 0; k < g->n; k++) {
@@ -622,11 +647,16 @@ static double onset_trigger_slope(const sc_guard *g, double gap) {
  * (onset_trigger_slope()), also for the tie windows (its slope at 0,
  * ~ (1 + alpha) V_s, would make the window of a root known to ~1e-13
  * as long as the whole phase).  The dual and the value-only paths share
- * it, so they take the same events. */
-static int first_event(const bk2_inst *b, int mode, int fresh,
-                       const sc_guard *g, const int *kind, int ng, double tmax,
-                       double onset_gap, sc_root *r, int *firstp, int *bothp,
-                       long *steps, sc_msg *msg) {
+ * it, so they take the same events.  Returns the index of the first event
+ * in g and r (*bothp: it ends the slip of both blocks), or a negative
+ * status.  Inlined into both: in a call of its own, moving its twelve
+ * arguments and the search results cost 3% of a chart's instructions. */
+static BK2_ALWAYS_INLINE int first_event(const bk2_inst *b, int mode,
+                                         int fresh, const sc_guard *g,
+                                         const int *kind, int ng, double tmax,
+                                         double onset_gap, sc_root *r,
+                                         int *bothp, long *steps,
+                                         sc_msg *msg) {
   double atol = b->acc.event_atol, rtol = b->acc.event_rtol;
   /* each root's window, computed once when first needed (ng <= 2:
    * phase_kinds) */
@@ -696,9 +726,8 @@ static int first_event(const bk2_inst *b, int mode, int fresh,
       else if (kind[i] < 3) both = 1;
     }
   }
-  *firstp = first;
   *bothp = both;
-  return SC_OK;
+  return first;
 }
 
 /* One slip phase with exact flows: find its end (the first event, or the
@@ -726,10 +755,10 @@ static int exact_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
   double tmax = phase_horizon(g, ng);
   int first = -1, both = 0, atmax = 0;
   if (!ev->force) {
-    int st = first_event(b, mode, fresh, g, kind, ng, tmax,
-                         ev->onset ? ev->onset_gap : NAN, r, &first, &both,
-                         &ev->steps, msg);
-    if (st) return st;
+    first = first_event(b, mode, fresh, g, kind, ng, tmax,
+                        ev->onset ? ev->onset_gap : NAN, r, &both,
+                        &ev->steps, msg);
+    if (first < 0) return first;
   } else {
     /* Follow the code: the forced guard's first rise through zero after
      * its first `skip` local maxima; the other guards are not taken. */
@@ -967,12 +996,11 @@ static int value_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
       set_onset_gap(&g[i], onset_gap);
   }
   sc_root r[2];
-  int first = -1, both = 0;
+  int both = 0;
   long steps = 0;
-  int st = first_event(b, mode, fresh, g, kind, ng, NAN, onset_gap, r,
-                       &first, &both,
-                       &steps, msg);
-  if (st) return st;
+  int first = first_event(b, mode, fresh, g, kind, ng, NAN, onset_gap, r,
+                          &both, &steps, msg);
+  if (first < 0) return first;
   vflow_at(P, &f, r[first].t, &r[first], x);
   if (both) {
     x->u1 = x->u2 = P->vs.v;
