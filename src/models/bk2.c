@@ -209,8 +209,7 @@ static double guard_horizon(const sc_guard *g) {
   double period = 2 * SC_PI / wmin;
   if (g->c1 != 0) {
     double amp = 0; /* (>= the amplitude: enough here) */
-    for (int k = 0; k < g->n; k++)
-      amp += fabs(g->a[k]) + fabs(g->b[k]);
+    for (int k = 0; k < g->n; k++) amp += fabs(g->a[k]) + fabs(g->b[k]);
     return (fabs(g->c0) + amp) / fabs(g->c1) + period;
   }
   if (g->n == 1) return 1.01 * period;
@@ -423,7 +422,8 @@ static void phase_borders(const bk2_dpar *P, const mode_flow *f, int fresh,
 #endif
 
 /* Two guards equal up to the rounding of building them from a state. */
-static BK2_ALWAYS_INLINE int same_guard(const sc_guard *g, const sc_guard *h) {
+static BK2_ALWAYS_INLINE int same_guard(const sc_guard *g,
+                                        const sc_guard *h) {
   if (g->n != 1 || h->n != 1 || g->c1 != 0 || h->c1 != 0 || g->w[0] != h->w[0])
     return 0;
   double tol =
@@ -465,7 +465,8 @@ void sc_bk2_first_restick(bk2_inst *b) {
  * rounding of g near it over its slope (two equal guards built from
  * different states, or searched over different horizons, may return
  * roots this far apart). */
-static inline double root_window_n(const sc_guard *g, int n, const sc_root *r) {
+static inline double root_window_n(const sc_guard *g, int n,
+                                   const sc_root *r) {
   double t = r->t, size = fabs(g->c0) + fabs(g->c1) * t;
   for (int k = 0; k < n; k++)
     size += (fabs(g->a[k]) + fabs(g->b[k])) * (1 + g->w[k] * t);
@@ -650,10 +651,11 @@ static double onset_trigger_slope(const sc_guard *g, double gap) {
  * in g and r (*bothp: it ends the slip of both blocks), or a negative
  * status.  Inlined into both: in a call of its own, moving its twelve
  * arguments and the search results cost 3% of a chart's instructions. */
-static BK2_ALWAYS_INLINE int first_event(const bk2_inst *b, int mode, int fresh,
-                                         const sc_guard *g, const int *kind,
-                                         int ng, double tmax, double onset_gap,
-                                         sc_root *r, int *bothp, long *steps,
+static BK2_ALWAYS_INLINE int first_event(const bk2_inst *b, int mode,
+                                         int fresh, const sc_guard *g,
+                                         const int *kind, int ng, double tmax,
+                                         double onset_gap, sc_root *r,
+                                         int *bothp, long *steps,
                                          sc_msg *msg) {
   double atol = b->acc.event_atol, rtol = b->acc.event_rtol;
   /* each root's window, computed once when first needed (ng <= 2:
@@ -753,9 +755,9 @@ static int exact_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
   double tmax = phase_horizon(g, ng);
   int first = -1, both = 0, atmax = 0;
   if (!ev->force) {
-    first =
-        first_event(b, mode, fresh, g, kind, ng, tmax,
-                    ev->onset ? ev->onset_gap : NAN, r, &both, &ev->steps, msg);
+    first = first_event(b, mode, fresh, g, kind, ng, tmax,
+                        ev->onset ? ev->onset_gap : NAN, r, &both,
+                        &ev->steps, msg);
     if (first < 0) return first;
   } else {
     /* Follow the code: the forced guard's first rise through zero after
@@ -996,8 +998,8 @@ static int value_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
   sc_root r[2];
   int both = 0;
   long steps = 0;
-  int first = first_event(b, mode, fresh, g, kind, ng, NAN, onset_gap, r, &both,
-                          &steps, msg);
+  int first = first_event(b, mode, fresh, g, kind, ng, NAN, onset_gap, r,
+                          &both, &steps, msg);
   if (first < 0) return first;
   vflow_at(P, &f, r[first].t, &r[first], x);
   if (both) {
