@@ -958,9 +958,6 @@ int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
   guard_ctx c; /* sizes once per search */
   double wmax = search_setup(g, tmax, atol, rtol, &c);
   if (wmax < 0) return SC_EINVAL;
-  /* A guard that starts within rounding of zero: a root at 0 if it moves
-   * up through zero there (the events of docs/model.md are all upward
-   * crossings), otherwise the start root is skipped. */
   /* g, g', g'' at 0 (cos = 1, sin = 0); the terms' own values are not
    * kept: only the march without sinusoids (n = 0) starts from them */
   double g0 = g->c0, g1 = g->c1, g2 = 0;
@@ -968,6 +965,9 @@ int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
     double w = g->w[k], v = g->a[k];
     g0 += v, g1 += w * g->b[k], g2 -= w * w * v;
   }
+  /* A guard that starts within rounding of zero: a root at 0 if it moves
+   * up through zero there (the events of docs/model.md are all upward
+   * crossings), otherwise the start root is skipped. */
   if (fabs(g0) <= round_at(&c.z, 0)) {
     int upward = g1 > 0 || (g1 == 0 && g2 > 0);
     if (!skip_start && upward) {

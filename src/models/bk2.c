@@ -609,6 +609,14 @@ static BK2_ALWAYS_INLINE int falls_from_zero(const sc_guard *g) {
          g1 < -ROOT_ROUND_ULPS * DBL_EPSILON * wsize;
 }
 
+/* Whether the search of a guard of kind `kind` skips a root at 0: a
+ * re-stick guard of a block that starts slipping with the phase (fresh)
+ * or falls from zero (falls_from_zero()); a threshold guard never. */
+static BK2_ALWAYS_INLINE int skips_start(int kind, int fresh,
+                                         const sc_guard *g) {
+  return kind < 3 && ((fresh & kind) || falls_from_zero(g));
+}
+
 /* The slope of the stuck block's threshold guard where it reaches zero,
  * for a trigger the search took at the onset itself: the guard's exact
  * value there, gap = (1 + 2 alpha)(d - d*) < 0 up to sign, lies within
@@ -670,7 +678,7 @@ static BK2_ALWAYS_INLINE int first_event(const bk2_inst *b, int mode,
   if (paired) {
     int skip[2];
     for (int i = 0; i < 2; i++)
-      skip[i] = (fresh & kind[i]) || falls_from_zero(&g[i]);
+      skip[i] = skips_start(kind[i], fresh, &g[i]);
     if (isnan(tmax)) tmax = phase_horizon(g, ng);
     r[0].ntrig = r[1].ntrig = 0;
     tie_ctx tc = {atol, rtol, g, r, rw};
@@ -682,7 +690,7 @@ static BK2_ALWAYS_INLINE int first_event(const bk2_inst *b, int mode,
     }
   }
   for (int i = 0; i < ng && !paired; i++) {
-    int skip = kind[i] < 3 && ((fresh & kind[i]) || falls_from_zero(&g[i]));
+    int skip = skips_start(kind[i], fresh, &g[i]);
     double lim = first < 0 ? NAN
                            : past_tie(atol, rtol, &r[first],
                                       window_once(g, r, first, rw));
