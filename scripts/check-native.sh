@@ -1,10 +1,14 @@
 #!/usr/bin/env bash
 # A build for this processor (SLIPCONT_NATIVE=ON, -march=native) computes
-# the same numbers as the portable build, bit for bit: both run the same
-# scenes (a chart, a sweep, an orbit, a branch with its special points, a
-# fold curve) and every data file they write must be byte-identical, and
-# their summaries identical but for the date, the output directory and
-# the run time.
+# the same numbers as the portable build, bit for bit.  Two checks:
+#   - no fused multiply-add in the native libraries' machine code: the
+#     compiler was told not to fuse (-ffp-contract=off), and a fused
+#     operation anywhere would round differently from the portable build
+#     on some input, whether or not the scenes below meet it;
+#   - both builds run the same scenes (a chart, a sweep, an orbit, a
+#     branch with its special points, a fold curve) and every data file
+#     they write must be byte-identical, and their summaries identical but
+#     for the date, the output directory and the run time.
 #
 # usage: scripts/check-native.sh PORTABLE_BUILD_DIR [NATIVE_BUILD_DIR]
 #   PORTABLE_BUILD_DIR  a configured and built default build (its slipcont)
@@ -21,6 +25,31 @@ native=${2:-build-native}
 cmake -S . -B "$native" -DCMAKE_BUILD_TYPE=Release -DSLIPCONT_WERROR=ON \
   -DSLIPCONT_NATIVE=ON -DSLIPCONT_TESTS=OFF >/dev/null
 cmake --build "$native" -j"$(nproc)" --target slipcont_cli >/dev/null
+# fused multiply-add mnemonics: x86-64 (vfmadd231sd, vfmaddsub132pd,
+# vfnmsub213pd, ...) and AArch64 (fmadd, fmsub, fnmadd, fnmsub, fmla, fmls)
+fused='[[:space:]](v?fn?m(add|sub|addsub|subadd)[0-9]*[ps][sdh]|fn?m(add|sub)|fml[as])[[:space:]]'
+libs=$(find "$native" -maxdepth 1 -name 'libslipcont*.a')
+if [ -z "$libs" ]; then
+  echo "check-native: no library archive in $native" >&2
+  exit 1
+fi
+fail=0
+for lib in $libs; do
+  hits=$(objdump -d "$lib" | grep -E -c "$fused" || true)
+  if [ "$hits" != 0 ]; then
+    echo "check-native: $(basename "$lib") holds $hits fused multiply-add" \
+      "instructions; the first:" >&2
+    objdump -d "$lib" | awk -v re="$fused" '/^[0-9a-f]+ <.*>:$/ { f = $2 }
+      $0 ~ re { print "  " f " " $0; if (++n == 5) exit }' >&2
+    fail=1
+  fi
+done
+if [ "$fail" != 0 ]; then
+  echo "check-native: the native build fuses operations the portable" \
+    "build rounds one by one" >&2
+  exit 1
+fi
+echo "check-native: no fused multiply-add in the native libraries"
 work="$native/native-check"
 rm -rf "$work"
 mkdir -p "$work"
@@ -35,7 +64,6 @@ scenes=(
 untimed() {
   grep -v '^written ' "$1" | sed -E 's/[0-9]+\.[0-9]+ s([ ,;)]|$)/T s\1/g'
 }
-fail=0
 for s in "${scenes[@]}"; do
   set -- $s
   name=$1
