@@ -70,9 +70,9 @@ typedef struct {
 
 /* The sizes, and each sinusoid's amplitude into amp[] (coefficients are
  * far from overflow: sqrt of the sum of squares, not hypot). */
-static guard_size guard_sizes(const sc_guard *g, double *amp) {
+static inline guard_size guard_sizes(const sc_guard *g, int n, double *amp) {
   guard_size z = {fabs(g->c0), fabs(g->c1), 0, 0};
-  for (int k = 0; k < g->n; k++) {
+  for (int k = 0; k < n; k++) {
     amp[k] = sqrt(g->a[k] * g->a[k] + g->b[k] * g->b[k]);
     z.amp += amp[k];
     z.wamp += amp[k] * g->w[k];
@@ -330,6 +330,15 @@ static void refine(const sc_guard *g, const guard_size *z, double M3,
     refine_n(g, g->n, z, M3, lo, glo, dlo, hi, ghi, dhi, atol, rtol, out);
 }
 
+/* Inlined into every caller, whatever the compiler's estimate of the cost
+ * (closed_form() in each specialisation of a search); a plain inline
+ * elsewhere. */
+#if defined(__GNUC__)
+#define GUARD_ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define GUARD_ALWAYS_INLINE inline
+#endif
+
 /* 2 pi as a sum of two doubles (the second is 2 pi - fl(2 pi)). */
 #define GUARD_TWO_PI_HI (2 * SC_PI)
 #define GUARD_TWO_PI_LO 2.4492935982947064e-16
@@ -351,8 +360,10 @@ static void refine(const sc_guard *g, const guard_size *z, double M3,
  * atan2's own rounding (half an ulp of |psi| <= pi) and a few roundings
  * of the products: cos and sin within a few ulps of libm's cos(w * t),
  * sin(w * t) (tests/test_guard.c), handed over in out->cs, out->sn. */
-static int closed_form(const sc_guard *g, const guard_size *z, double R,
-                       double tmax, int skip_start, sc_root *out) {
+static GUARD_ALWAYS_INLINE int closed_form(const sc_guard *g,
+                                           const guard_size *z, double R,
+                                           double tmax, int skip_start,
+                                           sc_root *out) {
   double a = g->a[0], b = g->b[0], w = g->w[0], c0 = g->c0;
   double E = round_at(z, 0);
   if (R <= E) return 0;
@@ -934,16 +945,16 @@ static inline void root_none(sc_root *out, double tmax) {
  * or NaN (a w that is, with a zero amplitude, 0 * w = NaN), and so does
  * one whose square overflows (|a| > 1e154), which the sizes could not
  * bound anyway (a sum past DBL_MAX, refused as well). */
-static inline double search_setup(const sc_guard *g, double tmax, double atol,
-                                  double rtol, guard_ctx *c) {
-  if (!g || g->n < 0 || g->n > SC_GUARD_MAXFREQ || !(tmax > 0) ||
+static inline double search_setup(const sc_guard *g, int n, double tmax,
+                                  double atol, double rtol, guard_ctx *c) {
+  if (!g || n < 0 || n > SC_GUARD_MAXFREQ || !(tmax > 0) ||
       !(tmax < INFINITY) || !(atol > 0) || !(rtol >= 0))
     return -1;
   c->g = g;
-  c->z = guard_sizes(g, c->amp);
+  c->z = guard_sizes(g, n, c->amp);
   c->atol = atol, c->rtol = rtol;
   double wmin = INFINITY, wmax = 0;
-  for (int k = 0; k < g->n; k++) {
+  for (int k = 0; k < n; k++) {
     double w = g->w[k];
     wmin = w < wmin ? w : wmin; /* (a NaN w is caught by the sizes) */
     wmax = w > wmax ? w : wmax;
@@ -952,16 +963,19 @@ static inline double search_setup(const sc_guard *g, double tmax, double atol,
   return wmin > 0 && all < INFINITY ? wmax : -1;
 }
 
-int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
-                        double atol, double rtol, sc_root *out) {
+/* sc_guard_first_root with the number of terms n a constant where it is
+ * one (sc_guard_first_root()), g->n otherwise (g may be NULL then). */
+static inline int first_root_n(const sc_guard *g, int n, double tmax,
+                               int skip_start, double atol, double rtol,
+                               sc_root *out) {
   root_none(out, tmax);
   guard_ctx c; /* sizes once per search */
-  double wmax = search_setup(g, tmax, atol, rtol, &c);
+  double wmax = search_setup(g, n, tmax, atol, rtol, &c);
   if (wmax < 0) return SC_EINVAL;
   /* g, g', g'' at 0 (cos = 1, sin = 0); the terms' own values are not
    * kept: only the march without sinusoids (n = 0) starts from them */
   double g0 = g->c0, g1 = g->c1, g2 = 0;
-  for (int k = 0; k < g->n; k++) {
+  for (int k = 0; k < n; k++) {
     double w = g->w[k], v = g->a[k];
     g0 += v, g1 += w * g->b[k], g2 -= w * w * v;
   }
@@ -979,7 +993,7 @@ int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
     }
     skip_start = 1;
   }
-  if (g->n == 1 && g->c1 == 0 &&
+  if (n == 1 && g->c1 == 0 &&
       closed_form(g, &c.z, c.amp[0], tmax, skip_start, out))
     return SC_OK;
   out->tangent = 0;
@@ -993,7 +1007,7 @@ int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
   }
   /* The bound M3 on the third derivative, term by term. */
   c.M3 = 0;
-  for (int k = 0; k < g->n; k++) {
+  for (int k = 0; k < n; k++) {
     double w = g->w[k];
     c.m3[k] = c.amp[k] * w * w * w;
     c.M3 += c.m3[k];
@@ -1005,6 +1019,16 @@ int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
     march(&c, 0, tmax, &e, skip_start, tmax, out);
   }
   return SC_OK;
+}
+
+int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
+                        double atol, double rtol, sc_root *out) {
+  /* (bk2's guards have one or two terms: their loops unrolled) */
+  if (g && g->n == 1)
+    return first_root_n(g, 1, tmax, skip_start, atol, rtol, out);
+  if (g && g->n == 2)
+    return first_root_n(g, 2, tmax, skip_start, atol, rtol, out);
+  return first_root_n(g, g ? g->n : 0, tmax, skip_start, atol, rtol, out);
 }
 
 /* Whether h is g with each term times +-1 (the same c0, c1 and
@@ -1051,7 +1075,7 @@ int sc_guard_first_root_pair(const sc_guard *g, double tmax, const int *skip,
   /* one context: the guards' sizes are equal (and g[1] is finite where
    * g[0] is: the same numbers, +-) */
   guard_ctx c;
-  double wmax = search_setup(ga, tmax, atol, rtol, &c);
+  double wmax = search_setup(ga, n, tmax, atol, rtol, &c);
   if (wmax < 0) return SC_EINVAL;
   /* each guard at 0, as sc_guard_first_root() takes it */
   double E0 = round_at(&c.z, 0);
