@@ -2,8 +2,9 @@
 # Install what slipcont needs to build, test and plot (Debian/Ubuntu).
 # Skips apt when everything is already there, so reruns are quick.
 set -euo pipefail
-pkgs=(build-essential binutils cmake pkg-config libgsl-dev liblapack-dev libblas-dev
-      libsuitesparse-dev libinih-dev gnuplot-nox libopenmpi-dev openmpi-bin)
+pkgs=(build-essential binutils cmake pkg-config libgsl-dev liblapack-dev
+      libblas-dev libsuitesparse-dev libinih-dev gnuplot-nox libopenmpi-dev
+      openmpi-bin)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")
