@@ -27,7 +27,9 @@ cmake -S . -B "$native" -DCMAKE_BUILD_TYPE=Release -DSLIPCONT_WERROR=ON \
 cmake --build "$native" -j"$(nproc)" --target slipcont_cli >/dev/null
 # fused multiply-add mnemonics: x86-64 (vfmadd231sd, vfmaddsub132pd,
 # vfnmsub213pd, ...) and AArch64 (fmadd, fmsub, fnmadd, fnmsub, fmla, fmls)
-fused='[[:space:]](v?fn?m(add|sub|addsub|subadd)[0-9]*[ps][sdh]|fn?m(add|sub)|fml[as])[[:space:]]'
+x86='v?fn?m(add|sub|addsub|subadd)[0-9]*[ps][sdh]'
+arm='fn?m(add|sub)|fml[as]'
+fused="[[:space:]]($x86|$arm)[[:space:]]"
 libs=$(find "$native" -maxdepth 1 -name 'libslipcont*.a')
 if [ -z "$libs" ]; then
   echo "check-native: no library archive in $native" >&2
