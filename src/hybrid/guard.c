@@ -330,15 +330,6 @@ static void refine(const sc_guard *g, const guard_size *z, double M3,
     refine_n(g, g->n, z, M3, lo, glo, dlo, hi, ghi, dhi, atol, rtol, out);
 }
 
-/* Inlined into every caller, whatever the compiler's estimate of the cost
- * (closed_form() in each specialisation of a search); a plain inline
- * elsewhere. */
-#if defined(__GNUC__)
-#define GUARD_ALWAYS_INLINE inline __attribute__((always_inline))
-#else
-#define GUARD_ALWAYS_INLINE inline
-#endif
-
 /* 2 pi as a sum of two doubles (the second is 2 pi - fl(2 pi)). */
 #define GUARD_TWO_PI_HI (2 * SC_PI)
 #define GUARD_TWO_PI_LO 2.4492935982947064e-16
@@ -359,11 +350,12 @@ static void refine(const sc_guard *g, const guard_size *z, double M3,
  * the angle is below 1e-15, its square below rounding.  What is left is
  * atan2's own rounding (half an ulp of |psi| <= pi) and a few roundings
  * of the products: cos and sin within a few ulps of libm's cos(w * t),
- * sin(w * t) (tests/test_guard.c), handed over in out->cs, out->sn. */
-static GUARD_ALWAYS_INLINE int closed_form(const sc_guard *g,
-                                           const guard_size *z, double R,
-                                           double tmax, int skip_start,
-                                           sc_root *out) {
+ * sin(w * t) (tests/test_guard.c), handed over in out->cs, out->sn.
+ * Inlined into each specialisation of a search (the compiler had stopped
+ * inlining it there). */
+static SC_ALWAYS_INLINE int closed_form(const sc_guard *g, const guard_size *z,
+                                        double R, double tmax, int skip_start,
+                                        sc_root *out) {
   double a = g->a[0], b = g->b[0], w = g->w[0], c0 = g->c0;
   double E = round_at(z, 0);
   if (R <= E) return 0;

@@ -7,6 +7,15 @@
 /* C11 has no M_PI. */
 #define SC_PI 3.14159265358979323846
 
+/* Inlined into every caller, whatever the compiler's estimate of the cost
+ * (the hot helpers of the event search and of bk2's phases); a plain
+ * inline elsewhere. */
+#if defined(__GNUC__)
+#define SC_ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define SC_ALWAYS_INLINE inline
+#endif
+
 /* The search limit of the later guard of a pair, from the earlier one's
  * guard and root (bk2: the root plus twice its tie tolerance). */
 typedef double (*sc_guard_limit_fn)(void *ctx, const sc_guard *g,

@@ -413,17 +413,8 @@ static void phase_borders(const bk2_dpar *P, const mode_flow *f, int fresh,
  * coefficients of size (1 - mu) T_i): ~50 eps of the guard's size. */
 #define BK2_SAME_GUARD_EPS (50 * DBL_EPSILON)
 
-/* Inlined into every caller, whatever the compiler's estimate of the cost
- * (first_event()); a plain inline elsewhere. */
-#if defined(__GNUC__)
-#define BK2_ALWAYS_INLINE inline __attribute__((always_inline))
-#else
-#define BK2_ALWAYS_INLINE inline
-#endif
-
 /* Two guards equal up to the rounding of building them from a state. */
-static BK2_ALWAYS_INLINE int same_guard(const sc_guard *g,
-                                        const sc_guard *h) {
+static SC_ALWAYS_INLINE int same_guard(const sc_guard *g, const sc_guard *h) {
   if (g->n != 1 || h->n != 1 || g->c1 != 0 || h->c1 != 0 || g->w[0] != h->w[0])
     return 0;
   double tol =
@@ -598,7 +589,7 @@ static void set_onset_gap(sc_guard *g, double gap) {
  * D5 in docs/accuracy.md).  The window is START_ROUND_ULPS of the terms'
  * size, a few times the search's step-grown bound. */
 #define START_ROUND_ULPS 64.0
-static BK2_ALWAYS_INLINE int falls_from_zero(const sc_guard *g) {
+static SC_ALWAYS_INLINE int falls_from_zero(const sc_guard *g) {
   double g0, g1, size = fabs(g->c0), wsize = fabs(g->c1);
   guard_at_zero(g, &g0, &g1);
   for (int k = 0; k < g->n; k++) {
@@ -612,8 +603,8 @@ static BK2_ALWAYS_INLINE int falls_from_zero(const sc_guard *g) {
 /* Whether the search of a guard of kind `kind` skips a root at 0: a
  * re-stick guard of a block that starts slipping with the phase (fresh)
  * or falls from zero (falls_from_zero()); a threshold guard never. */
-static BK2_ALWAYS_INLINE int skips_start(int kind, int fresh,
-                                         const sc_guard *g) {
+static SC_ALWAYS_INLINE int skips_start(int kind, int fresh,
+                                        const sc_guard *g) {
   return kind < 3 && ((fresh & kind) || falls_from_zero(g));
 }
 
@@ -659,12 +650,11 @@ static double onset_trigger_slope(const sc_guard *g, double gap) {
  * in g and r (*bothp: it ends the slip of both blocks), or a negative
  * status.  Inlined into both: in a call of its own, moving its twelve
  * arguments and the search results cost 3% of a chart's instructions. */
-static BK2_ALWAYS_INLINE int first_event(const bk2_inst *b, int mode,
-                                         int fresh, const sc_guard *g,
-                                         const int *kind, int ng, double tmax,
-                                         double onset_gap, sc_root *r,
-                                         int *bothp, long *steps,
-                                         sc_msg *msg) {
+static SC_ALWAYS_INLINE int first_event(const bk2_inst *b, int mode, int fresh,
+                                        const sc_guard *g, const int *kind,
+                                        int ng, double tmax, double onset_gap,
+                                        sc_root *r, int *bothp, long *steps,
+                                        sc_msg *msg) {
   double atol = b->acc.event_atol, rtol = b->acc.event_rtol;
   /* each root's window, computed once when first needed (ng <= 2:
    * phase_kinds) */
