@@ -15,7 +15,10 @@
  * d0 = 0 or 0.02, uniform d, points 1e-6 .. 1e-14 on both sides of every
  * itinerary border found by bisection (grazing, crossing-sliding), d*
  * itself and its neighbours 1e-6 .. 1e-14 away.  And a known undefined
- * case (a slip cycle, docs/model.md), where both must fail alike. */
+ * case (a slip cycle, docs/model.md), where both must fail alike.
+ * Then the cached first re-stick of a GSP onset (test_cache()): taken at
+ * every onset, |d| up to 1e6 / (1 + alpha), and the same f as a search. */
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -163,6 +166,87 @@ static void one_set(bk2_inst *b, stats *s, long budget) {
   }
 }
 
+/* The cached first re-stick of a GSP onset (sc_bk2_first_restick()):
+ * the onset's guard is d-free in exact arithmetic, and the cache is to be
+ * taken at every onset, however far the state's rounding (positions of
+ * size ~1 + alpha |d|) moves the guard built from it.  At each point:
+ * with the cache, f and the itinerary are those of a search of the
+ * phase's own guard (first_ok cleared) within the accuracy promise's
+ * rounding, 1024 eps (S + V), S = 1 + beta + (1 + alpha) |d|; and a
+ * poisoned cache (a root 1e-9 of the way in) changes f, which shows that
+ * the cache was taken. */
+typedef struct {
+  long n, taken, itin, fbad;
+  double fmax; /* largest |f - f_search| / (S + V), in eps */
+} cache_stats;
+
+static void cache_point(bk2_inst *b, const double p[4], double d,
+                        cache_stats *c) {
+  sc_map_value v, vs, vp;
+  sc_msg m;
+  if (eval(b, 0, d, SC_EVAL_ITINERARY, &v, &m)) return;
+  int ok[2] = {b->first_ok[0], b->first_ok[1]};
+  b->first_ok[0] = b->first_ok[1] = 0;
+  int ss = eval(b, 0, d, SC_EVAL_ITINERARY, &vs, &m);
+  b->first_ok[0] = ok[0], b->first_ok[1] = ok[1];
+  sc_root r[2] = {b->first_r[0], b->first_r[1]};
+  for (int i = 0; i < 2; i++) {
+    double t = 1e-9 * r[i].t, w = b->first_g[i].w[0];
+    b->first_r[i].t = t;
+    b->first_r[i].cs[0] = cos(w * t), b->first_r[i].sn[0] = sin(w * t);
+  }
+  int sp = eval(b, 0, d, SC_EVAL_ITINERARY, &vp, &m);
+  b->first_r[0] = r[0], b->first_r[1] = r[1];
+  c->n++;
+  if (!sp && vp.f != v.f) c->taken++;
+  else if (c->n - c->taken <= 3)
+    printf("  cache not taken: alpha %.17g beta %.17g phi %.17g v %.17g "
+           "d %.17g\n",
+           p[0], p[1], p[2], p[3], d);
+  if (ss || strcmp(vs.itinerary, v.itinerary) != 0) {
+    if (c->itin++ < 3)
+      printf("  itinerary %s with the cache, %s without (status %d) at "
+             "alpha %.17g beta %.17g phi %.17g v %.17g d %.17g\n",
+             v.itinerary, vs.itinerary, ss, p[0], p[1], p[2], p[3], d);
+    return;
+  }
+  double S = 1 + p[1] + (1 + p[0]) * fabs(d), e = fabs(v.f - vs.f) /
+                                                  (DBL_EPSILON * (S + p[3]));
+  if (e > c->fmax) c->fmax = e;
+  if (e > 1024 && c->fbad++ < 3)
+    printf("  f %.17g with the cache, %.17g without at alpha %.17g beta "
+           "%.17g phi %.17g v %.17g d %.17g\n",
+           v.f, vs.f, p[0], p[1], p[2], p[3], d);
+}
+
+static void test_cache(void) {
+  static bk2_inst b;
+  cache_stats c = {0};
+  for (int set = 0; set < 200; set++) {
+    double p[4];
+    p[0] = exp(uni(log(0.5), log(20)));
+    p[1] = uni(0, 1) < 0.4 ? 1 : uni(1, 20);
+    p[2] = uni(0, 1) < 0.5 ? 1.25 : uni(1.05, 3);
+    p[3] = uni(0, 1) < 0.1 ? 0 : uni(0.001, 0.05);
+    if (setup(&b, p, uni(0, 1) < 0.5)) continue;
+    double span = 1.2 * (1 + p[1]) / (1 + 2 * p[0]);
+    for (int k = 0; k < 20; k++)
+      cache_point(&b, p, uni(-span, span), &c);
+    /* far outside the GSPs' range: positions of size ~1e3 .. 1e6 */
+    for (int k = 3; k <= 6; k++) {
+      cache_point(&b, p, pow(10, k) / (1 + p[0]), &c);
+      cache_point(&b, p, -pow(10, k) / (1 + p[0]), &c);
+    }
+  }
+  printf("cached re-sticks: %ld points, cache taken at %ld, largest |f - "
+         "f_search| %.3g eps (S + V)\n",
+         c.n, c.taken, c.fmax);
+  tu_true(c.n > 5000, "points compared with and without the cache: %ld", c.n);
+  tu_int("points where the cached re-stick is not taken", c.n - c.taken, 0);
+  tu_int("itineraries that differ without the cache", c.itin, 0);
+  tu_int("f beyond 1024 eps (S + V) of the search's", c.fbad, 0);
+}
+
 int main(int argc, char **argv) {
   long want = argc > 1 ? atol(argv[1]) : 40000;
   if (want < 1) want = 40000;
@@ -185,5 +269,6 @@ int main(int argc, char **argv) {
   tu_int("points where a path differs from the value-only path", s.differ, 0);
   tu_true(s.border_pts > 0, "points next to itinerary borders: %ld",
           s.border_pts);
+  test_cache();
   return tu_finish();
 }

@@ -410,17 +410,35 @@ static void phase_borders(const bk2_dpar *P, const mode_flow *f, int fresh,
 
 /* Two guards built from different onsets differ by the rounding of the
  * states (positions of size ~1 + alpha |d|, a few ulps each, against
- * coefficients of size (1 - mu) T_i): ~50 eps of the guard's size. */
+ * coefficients of size (1 - mu) T_i): ~50 eps of the guard's size, or
+ * of the size of the numbers they are built from (build_size()). */
 #define BK2_SAME_GUARD_EPS (50 * DBL_EPSILON)
 
-/* Two guards equal up to the rounding of building them from a state. */
-static SC_ALWAYS_INLINE int same_guard(const sc_guard *g, const sc_guard *h) {
+/* The size of the numbers a slip's guards are built from: the positions
+ * at its start and the springs' constant terms.  The re-stick guard of a
+ * block that starts slipping from a GSP is d-free in exact arithmetic,
+ * but its sine coefficient -w (y_i - s0), s0 = (k_i + alpha y_j) / w^2,
+ * is a difference of such numbers: the guard built from a state carries
+ * their rounding, a few ulps of this size times w, which at |d| >> 1 is
+ * far above the rounding of the coefficient itself (its constant and
+ * cosine terms come from the parameters alone, the same operations in
+ * every onset). */
+static inline double build_size(const bk2_dpar *P, double y1, double y2) {
+  return 1 + fabs(y1) + fabs(y2) + fabs(P->k1.v) + fabs(P->k2.v);
+}
+
+/* Two guards equal up to the rounding of building them from a state:
+ * within BK2_SAME_GUARD_EPS of their size, and the sine coefficients also
+ * within that of w bsize (bsize: the two states' build_size() summed, for
+ * the re-stick guards of GSP onsets; 0 otherwise). */
+static SC_ALWAYS_INLINE int same_guard(const sc_guard *g, const sc_guard *h,
+                                       double bsize) {
   if (g->n != 1 || h->n != 1 || g->c1 != 0 || h->c1 != 0 || g->w[0] != h->w[0])
     return 0;
   double tol =
       BK2_SAME_GUARD_EPS * (fabs(h->c0) + fabs(h->a[0]) + fabs(h->b[0]));
   return fabs(g->c0 - h->c0) <= tol && fabs(g->a[0] - h->a[0]) <= tol &&
-         fabs(g->b[0] - h->b[0]) <= tol;
+         fabs(g->b[0] - h->b[0]) <= tol + BK2_SAME_GUARD_EPS * h->w[0] * bsize;
 }
 
 static mode_flow flow_make(const bk2_dpar *P, int mode, const bk2_state *x0);
@@ -435,6 +453,7 @@ void sc_bk2_first_restick(bk2_inst *b) {
     int mode = sc_bk2_onset(b, &b->p0, sc_dconst(d, 0), &x);
     mode_flow f = flow_make(&b->p0, mode, &x);
     b->first_g[i - 1] = guard_restick(&b->p0, &f, i);
+    b->first_bsize[i - 1] = build_size(&b->p0, x.y1.v, x.y2.v);
     b->first_r[i - 1].ntrig = 0;
     b->first_ok[i - 1] =
         mode == i &&
@@ -645,16 +664,18 @@ static double onset_trigger_slope(const sc_guard *g, double gap) {
  * taken at the onset itself gets the slope at its true root
  * (onset_trigger_slope()), also for the tie windows (its slope at 0,
  * ~ (1 + alpha) V_s, would make the window of a root known to ~1e-13
- * as long as the whole phase).  The dual and the value-only paths share
- * it, so they take the same events.  Returns the index of the first event
- * in g and r (*bothp: it ends the slip of both blocks), or a negative
- * status.  Inlined into both: in a call of its own, moving its twelve
- * arguments and the search results cost 3% of a chart's instructions. */
+ * as long as the whole phase).  bsize: build_size() of the phase's start,
+ * for same_guard()'s test of a re-stick guard against the cache.  The dual
+ * and the value-only paths share it, so they take the same events.
+ * Returns the index of the first event in g and r (*bothp: it ends the
+ * slip of both blocks), or a negative status.  Inlined into both: in a
+ * call of its own, moving its arguments and the search results cost 3% of
+ * a chart's instructions. */
 static SC_ALWAYS_INLINE int first_event(const bk2_inst *b, int mode, int fresh,
                                         const sc_guard *g, const int *kind,
                                         int ng, double tmax, double onset_gap,
-                                        sc_root *r, int *bothp, long *steps,
-                                        sc_msg *msg) {
+                                        double bsize, sc_root *r, int *bothp,
+                                        long *steps, sc_msg *msg) {
   double atol = b->acc.event_atol, rtol = b->acc.event_rtol;
   /* each root's window, computed once when first needed (ng <= 2:
    * phase_kinds) */
@@ -691,7 +712,9 @@ static SC_ALWAYS_INLINE int first_event(const bk2_inst *b, int mode, int fresh,
      * root lies within that (sc_bk2_first_restick()). */
     if (skip && mode != SC_BK2_SLIP12 && b->first_ok[kind[i] - 1] &&
         (first < 0 || b->first_r[kind[i] - 1].t <= lim) &&
-        same_guard(&g[i], &b->first_g[kind[i] - 1]))
+        same_guard(&g[i], &b->first_g[kind[i] - 1],
+                   (fresh & kind[i]) ? bsize + b->first_bsize[kind[i] - 1]
+                                     : 0))
       r[i] = b->first_r[kind[i] - 1]; /* the slip from a GSP: d-free */
     else {
       if (first < 0) {
@@ -754,7 +777,8 @@ static int exact_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
   int first = -1, both = 0, atmax = 0;
   if (!ev->force) {
     first = first_event(b, mode, fresh, g, kind, ng, tmax,
-                        ev->onset ? ev->onset_gap : NAN, r, &both,
+                        ev->onset ? ev->onset_gap : NAN,
+                        build_size(P, x->y1.v, x->y2.v), r, &both,
                         &ev->steps, msg);
     if (first < 0) return first;
   } else {
@@ -996,8 +1020,8 @@ static int value_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
   sc_root r[2];
   int both = 0;
   long steps = 0;
-  int first = first_event(b, mode, fresh, g, kind, ng, NAN, onset_gap, r,
-                          &both, &steps, msg);
+  int first = first_event(b, mode, fresh, g, kind, ng, NAN, onset_gap,
+                          build_size(P, x->y1, x->y2), r, &both, &steps, msg);
   if (first < 0) return first;
   vflow_at(P, &f, r[first].t, &r[first], x);
   if (both) {

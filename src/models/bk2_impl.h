@@ -71,6 +71,7 @@ typedef struct {
   int dual_only;
   sc_guard first_g[2];
   sc_root first_r[2];
+  double first_bsize[2]; /* build_size() of the onset they come from */
   int first_ok[2];
 } bk2_inst;
 
