@@ -444,6 +444,7 @@ static SC_ALWAYS_INLINE int same_guard(const sc_guard *g, const sc_guard *h,
 static mode_flow flow_make(const bk2_dpar *P, int mode, const bk2_state *x0);
 static sc_guard guard_restick(const bk2_dpar *P, const mode_flow *f, int i);
 static double guard_horizon(const sc_guard *g);
+static double root_window(const sc_guard *g, const sc_root *r);
 
 void sc_bk2_first_restick(bk2_inst *b) {
   for (int i = 1; i <= 2; i++) {
@@ -465,6 +466,8 @@ void sc_bk2_first_restick(bk2_inst *b) {
          * this one, never needs its horizon to take the cached root:
          * first_event()) */
         b->first_r[i - 1].t <= guard_horizon(&b->first_g[i - 1]);
+    if (b->first_ok[i - 1])
+      b->first_w[i - 1] = root_window(&b->first_g[i - 1], &b->first_r[i - 1]);
   }
 }
 
@@ -715,8 +718,12 @@ static SC_ALWAYS_INLINE int first_event(const bk2_inst *b, int mode, int fresh,
         same_guard(&g[i], &b->first_g[kind[i] - 1],
                    (fresh & kind[i]) ? bsize + b->first_bsize[kind[i] - 1]
                                      : 0))
-      r[i] = b->first_r[kind[i] - 1]; /* the slip from a GSP: d-free */
-    else {
+    {
+      /* the slip from a GSP: d-free, and so is the root's window (the
+       * guards differ by rounding, the windows by less than an ulp) */
+      r[i] = b->first_r[kind[i] - 1];
+      rw[i] = b->first_w[kind[i] - 1];
+    } else {
       if (first < 0) {
         if (isnan(tmax)) tmax = phase_horizon(g, ng);
         lim = tmax;

@@ -61,17 +61,19 @@ typedef struct {
   int (*search_pair)(const sc_guard *g, double tmax, const int *skip,
                      double atol, double rtol, sc_guard_limit_fn limit,
                      void *ctx, sc_root *out);
-  /* The re-stick guard of block i in a slip that starts from a GSP does
-   * not depend on d (its amplitude is (1 - mu) T_i / (1 + alpha)): its
-   * guard and first root, found once by sc_bk2_first_restick() (exact
-   * flows), and whether they are there. */
   /* Plain evaluations go through the dual path (nd = 0) instead of the
    * value-only path: set by tests that compare the two (they must give
    * bit-identical results); 0 after bk2_setup. */
   int dual_only;
+  /* The re-stick guard of block i in a slip that starts from a GSP does
+   * not depend on d (its amplitude is (1 - mu) T_i / (1 + alpha)): its
+   * guard and first root, found once by sc_bk2_first_restick() (exact
+   * flows), the root's window (first_event()), the size of the numbers the
+   * guard was built from (same_guard()), and whether they are there. */
   sc_guard first_g[2];
   sc_root first_r[2];
-  double first_bsize[2]; /* build_size() of the onset they come from */
+  double first_w[2];
+  double first_bsize[2];
   int first_ok[2];
 } bk2_inst;
 
