@@ -198,7 +198,8 @@ static void cache_point(bk2_inst *b, const double p[4], double d,
   int sp = eval(b, 0, d, SC_EVAL_ITINERARY, &vp, &m);
   b->first_r[0] = r[0], b->first_r[1] = r[1];
   c->n++;
-  if (!sp && vp.f != v.f) c->taken++;
+  if (!sp && vp.f != v.f)
+    c->taken++;
   else if (c->n - c->taken <= 3)
     printf("  cache not taken: alpha %.17g beta %.17g phi %.17g v %.17g "
            "d %.17g\n",
@@ -210,8 +211,8 @@ static void cache_point(bk2_inst *b, const double p[4], double d,
              v.itinerary, vs.itinerary, ss, p[0], p[1], p[2], p[3], d);
     return;
   }
-  double S = 1 + p[1] + (1 + p[0]) * fabs(d), e = fabs(v.f - vs.f) /
-                                                  (DBL_EPSILON * (S + p[3]));
+  double S = 1 + p[1] + (1 + p[0]) * fabs(d),
+         e = fabs(v.f - vs.f) / (DBL_EPSILON * (S + p[3]));
   if (e > c->fmax) c->fmax = e;
   if (e > 1024 && c->fbad++ < 3)
     printf("  f %.17g with the cache, %.17g without at alpha %.17g beta "

@@ -717,10 +717,10 @@ static SC_ALWAYS_INLINE int first_event(const bk2_inst *b, int mode, int fresh,
         (first < 0 || b->first_r[kind[i] - 1].t <= lim) &&
         same_guard(&g[i], &b->first_g[kind[i] - 1],
                    (fresh & kind[i]) ? bsize + b->first_bsize[kind[i] - 1]
-                                     : 0))
-    {
+                                     : 0)) {
       /* the slip from a GSP: d-free, and so is the root's window (the
-       * guards differ by rounding, the windows by less than an ulp) */
+       * guards differ by rounding, the windows by 8 eps of that over the
+       * slope: far below an ulp of the root) */
       r[i] = b->first_r[kind[i] - 1];
       rw[i] = b->first_w[kind[i] - 1];
     } else {
@@ -783,10 +783,9 @@ static int exact_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
   double tmax = phase_horizon(g, ng);
   int first = -1, both = 0, atmax = 0;
   if (!ev->force) {
-    first = first_event(b, mode, fresh, g, kind, ng, tmax,
-                        ev->onset ? ev->onset_gap : NAN,
-                        build_size(P, x->y1.v, x->y2.v), r, &both,
-                        &ev->steps, msg);
+    first = first_event(
+        b, mode, fresh, g, kind, ng, tmax, ev->onset ? ev->onset_gap : NAN,
+        build_size(P, x->y1.v, x->y2.v), r, &both, &ev->steps, msg);
     if (first < 0) return first;
   } else {
     /* Follow the code: the forced guard's first rise through zero after
