@@ -667,9 +667,11 @@ static double onset_trigger_slope(const sc_guard *g, double gap) {
  * taken at the onset itself gets the slope at its true root
  * (onset_trigger_slope()), also for the tie windows (its slope at 0,
  * ~ (1 + alpha) V_s, would make the window of a root known to ~1e-13
- * as long as the whole phase).  bsize: build_size() of the phase's start,
- * for same_guard()'s test of a re-stick guard against the cache.  The dual
- * and the value-only paths share it, so they take the same events.
+ * as long as the whole phase).  y1, y2: the positions at the phase's
+ * start, whose build_size() same_guard() needs where it tests a GSP
+ * onset's re-stick guard against the cache (and only there: it is not
+ * computed in other phases).  The dual and the value-only paths share
+ * it, so they take the same events.
  * Returns the index of the first event in g and r (*bothp: it ends the
  * slip of both blocks), or a negative status.  Inlined into both: in a
  * call of its own, moving its arguments and the search results cost 3% of
@@ -677,8 +679,8 @@ static double onset_trigger_slope(const sc_guard *g, double gap) {
 static SC_ALWAYS_INLINE int first_event(const bk2_inst *b, int mode, int fresh,
                                         const sc_guard *g, const int *kind,
                                         int ng, double tmax, double onset_gap,
-                                        double bsize, sc_root *r, int *bothp,
-                                        long *steps, sc_msg *msg) {
+                                        double y1, double y2, sc_root *r,
+                                        int *bothp, long *steps, sc_msg *msg) {
   double atol = b->acc.event_atol, rtol = b->acc.event_rtol;
   /* each root's window, computed once when first needed (ng <= 2:
    * phase_kinds) */
@@ -716,7 +718,8 @@ static SC_ALWAYS_INLINE int first_event(const bk2_inst *b, int mode, int fresh,
     if (skip && mode != SC_BK2_SLIP12 && b->first_ok[kind[i] - 1] &&
         (first < 0 || b->first_r[kind[i] - 1].t <= lim) &&
         same_guard(&g[i], &b->first_g[kind[i] - 1],
-                   (fresh & kind[i]) ? bsize + b->first_bsize[kind[i] - 1]
+                   (fresh & kind[i]) ? build_size(&b->p0, y1, y2) +
+                                           b->first_bsize[kind[i] - 1]
                                      : 0)) {
       /* the slip from a GSP: d-free, and so is the root's window (the
        * guards differ by rounding, the windows by 8 eps of that over the
@@ -785,7 +788,7 @@ static int exact_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
   if (!ev->force) {
     first = first_event(
         b, mode, fresh, g, kind, ng, tmax, ev->onset ? ev->onset_gap : NAN,
-        build_size(P, x->y1.v, x->y2.v), r, &both, &ev->steps, msg);
+        x->y1.v, x->y2.v, r, &both, &ev->steps, msg);
     if (first < 0) return first;
   } else {
     /* Follow the code: the forced guard's first rise through zero after
@@ -1027,7 +1030,7 @@ static int value_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
   int both = 0;
   long steps = 0;
   int first = first_event(b, mode, fresh, g, kind, ng, NAN, onset_gap,
-                          build_size(P, x->y1, x->y2), r, &both, &steps, msg);
+                          x->y1, x->y2, r, &both, &steps, msg);
   if (first < 0) return first;
   vflow_at(P, &f, r[first].t, &r[first], x);
   if (both) {
