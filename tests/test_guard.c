@@ -95,6 +95,52 @@ static void test_fast_sincos(void) {
   tu_true(s == sin(3e7) && c == cos(3e7), "fast sincos beyond its range: libm");
 }
 
+/* One ulp of the exact value v (long double), in double. */
+static double ulp_of(long double v) {
+  double d = (double)v;
+  return nextafter(fabs(d), INFINITY) - fabs(d);
+}
+
+/* sc_atan2 against long double's atan2l (64-bit significand: its own
+ * error is 1/2048 of a double's ulp): within SC_ATAN2_ULPS ulps of the
+ * result on 4e6 arguments spread over every octant, next to the axes and
+ * diagonals and to the table's points (where the reduction's difference
+ * is smallest), over 60 binades of scale; libm's own values at zeros,
+ * infinities, NaN and extreme ratios. */
+static void test_atan2(void) {
+  double worst = 0, wx = 0, wy = 0;
+  for (int i = 0; i < 4000000; i++) {
+    double ang = uni(-SC_PI, SC_PI), rad = ldexp(1, (int)uni(-30, 30));
+    double x = rad * cos(ang), y = rad * sin(ang);
+    if (i % 5 == 1) y = x * (1 + uni(-1e-12, 1e-12)); /* a diagonal */
+    if (i % 5 == 2) y = x * uni(-1e-9, 1e-9);         /* an axis */
+    if (i % 5 == 3) /* next to a table point k / 32 of the ratio */
+      y = x * ((double)(i % 33) / 32 + uni(-1e-14, 1e-14)) *
+          (i % 2 ? 1 : -1);
+    if (i % 5 == 4) x = y * uni(-1e-6, 1e-6);         /* the other axis */
+    long double ref = atan2l((long double)y, (long double)x);
+    double e = (double)fabsl((long double)sc_atan2(y, x) - ref) / ulp_of(ref);
+    if (e > worst) worst = e, wx = x, wy = y;
+  }
+  tu_true(worst <= SC_ATAN2_ULPS,
+          "sc_atan2: largest error %.3f ulps, at (y, x) = (%.17g, %.17g) "
+          "(bound %.1f)",
+          worst, wy, wx, SC_ATAN2_ULPS);
+  const double sp[][2] = {{0, 1},       {-0.0, 1},     {0, -1},
+                          {-0.0, -1},   {1, 0},        {-1, 0},
+                          {0, 0},       {INFINITY, 1}, {1, -INFINITY},
+                          {NAN, 1},     {1e-320, 1},   {1, 1e300},
+                          {1e300, 1e-300}};
+  int same = 1;
+  for (size_t i = 0; i < sizeof sp / sizeof sp[0]; i++) {
+    double a = sc_atan2(sp[i][0], sp[i][1]), b = atan2(sp[i][0], sp[i][1]);
+    if (!(a == b && signbit(a) == signbit(b)) && !(isnan(a) && isnan(b)))
+      same = 0;
+  }
+  tu_true(same, "sc_atan2: libm's values at zeros, infinities, NaN and "
+                "extreme ratios");
+}
+
 /* The pair search's limit in these tests: the earlier root plus a fixed
  * margin (bk2's is twice the tie tolerance; a long one here lets the
  * later guard's root be found too). */
@@ -236,6 +282,7 @@ static void test_pair(void) {
 
 int main(void) {
   test_fast_sincos();
+  test_atan2();
   test_pair();
   /* Random guards of the shape bk2 produces: a constant, sometimes a
    * linear term, two incommensurate frequencies. */

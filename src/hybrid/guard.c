@@ -339,18 +339,18 @@ static void refine(const sc_guard *g, const guard_size *z, double M3,
  * ones at phi + theta (mod 2 pi), cos theta = -c0 / R.  Returns 0 when the
  * case is degenerate and the march should decide.
  *
- * The root's angle psi = phi -+ theta is that of a phase vector (x, y),
- * the product of (cos phi, sin phi) and (cos theta, -+ sin theta) times
- * R^2: one atan2 gives psi, and (x, y) / |(x, y)| gives cos psi and
- * sin psi without sincos.  The root is t = alpha / w, alpha = psi or
- * psi + 2 pi; the flow at the event evaluates cos and sin of the rounded
- * product fl(w t), which differs from alpha by an ulp or two.  So the
- * phase vector is turned by that small angle fl(w t) - alpha (exact), less
- * the rounding of alpha's 2 pi (kept as a second double), to first order:
- * the angle is below 1e-15, its square below rounding.  What is left is
- * atan2's own rounding (half an ulp of |psi| <= pi) and a few roundings
- * of the products: cos and sin within a few ulps of libm's cos(w * t),
- * sin(w * t) (tests/test_guard.c), handed over in out->cs, out->sn.
+ * The root's angle psi = phi -+ theta is that of a phase vector (x, y), the
+ * product of (cos phi, sin phi) and (cos theta, -+ sin theta) times R^2: one
+ * sc_atan2 (trig.h) gives psi, and (x, y) / |(x, y)| gives cos psi and sin psi
+ * without sincos.  The root is t = alpha / w, alpha = psi or psi + 2 pi; the
+ * flow at the event evaluates cos and sin of the rounded product fl(w t), which
+ * differs from alpha by an ulp or two.  So the phase vector is turned by that
+ * small angle fl(w t) - alpha (exact), less the rounding of alpha's 2 pi (kept
+ * as a second double), to first order: the angle is below 1e-15, its square
+ * below rounding.  What is left is sc_atan2's own error (below one ulp of |psi|
+ * <= pi, 2 eps, where the root's window E / |g'| >= 8 eps / w allows 8 eps) and
+ * a few roundings of the products: cos and sin within a few ulps of libm's
+ * cos(w * t), sin(w * t) (tests/test_guard.c), handed over in out->cs, out->sn.
  * Inlined into each specialisation of a search (the compiler had stopped
  * inlining it there). */
 static SC_ALWAYS_INLINE int closed_form(const sc_guard *g, const guard_size *z,
@@ -386,7 +386,7 @@ static SC_ALWAYS_INLINE int closed_form(const sc_guard *g, const guard_size *z,
     if (asc) x = -a * c0 + b * rs, y = -b * c0 - a * rs;
     else x = -a * c0 - b * rs, y = a * rs - b * c0;
   }
-  alpha = atan2(y, x);
+  alpha = sc_atan2(y, x);
   if (alpha < 0) {
     /* Fast2Sum: |2 pi| > |alpha|, so the rounding of the sum is exact */
     double s = alpha + GUARD_TWO_PI_HI;

@@ -1,4 +1,4 @@
-/* cos and sin without a libm call, for the root search's anchors
+/* cos and sin, and atan2, without a libm call, for the root search
  * (src/hybrid/guard.c): private to the hybrid layer. */
 #ifndef SC_HYBRID_TRIG_H
 #define SC_HYBRID_TRIG_H
@@ -50,6 +50,69 @@ static inline void sc_fast_sincos(double x, double *s, double *c) {
   case 2: *s = -sr, *c = -cr; break;
   default: *s = -cr, *c = sr; break;
   }
+}
+
+#include "atan_table.h"
+
+/* Its error bound, in ulps of the result (tests/test_guard.c). */
+#define SC_ATAN2_ULPS 1.0
+
+/* a * b = *hi + *lo exactly (Dekker's product, with Veltkamp's split
+ * into 26-bit halves: no fused multiply-add, so that every build computes
+ * the same bits), for |a|, |b| well inside 2^-900..2^900. */
+static inline void sc_two_prod(double a, double b, double *hi, double *lo) {
+  const double split = 134217729.0; /* 2^27 + 1 */
+  double ca = split * a, ah = ca - (ca - a), al = a - ah;
+  double cb = split * b, bh = cb - (cb - b), bl = b - bh;
+  *hi = a * b;
+  *lo = ((ah * bh - *hi) + ah * bl + al * bh) + al * bl;
+}
+
+/* atan2(y, x) within one ulp (tests/test_guard.c measures it against
+ * long double on 4e6 arguments), with one division and no call.  r =
+ * min(|x|, |y|) / max(|x|, |y|) in [0, 1], and its rounding error r_lo =
+ * (num - r den) / den, from Dekker's exact product, folded in at the end
+ * (without it, r's half ulp alone costs up to 0.94 ulp of the result).
+ * For r < 3/64 the odd series through r^13; else c = k / 32, the nearest
+ * table point, and atan(r) = atan(c) + p(r - c), p the Taylor polynomial
+ * of degree 9 around c (exact coefficients rounded once; |r - c| <= 1/64
+ * puts the truncation below 1e-19; r - c is exact by Sterbenz's lemma),
+ * both by Estrin's scheme.  The octant's base (atan c, pi/2 - atan c,
+ * pi - atan c or pi/2 + atan c) is a sum of two doubles, so that the
+ * rounding that matters is the last addition's.  glibc's atan2 took 18
+ * ns a call here, 29 ns on a dependent chain (docs/performance.md).
+ * Zeros, infinities, NaN, and magnitudes or ratios beyond 2^-900..2^900
+ * go to libm. */
+static inline double sc_atan2(double y, double x) {
+  double ax = fabs(x), ay = fabs(y);
+  int sw = ay > ax;
+  double num = sw ? ax : ay, den = sw ? ay : ax, r = num / den;
+  if (!(num >= 0x1p-900 && den <= 0x1p900)) return atan2(y, x);
+  double ph, pl;
+  sc_two_prod(r, den, &ph, &pl);
+  double r_lo = ((num - ph) - pl) / den; /* num - ph: Sterbenz, exact */
+  int k = (int)(r * SC_ATAN_N + 0.5);
+  int q = sw + 2 * (x < 0); /* 0: atan c, 1: pi/2 - .., 2: pi - .., 3 */
+  double p;
+  if (k <= 1) {
+    /* r < 3/64: the odd series through r^13 around 0 (truncation below
+     * 2^-61 of r), so that no base cancels against p */
+    k = 0;
+    double z = r * r, z2 = z * z, z4 = z2 * z2;
+    double s01 = -1.0 / 3 + z * (1.0 / 5), s23 = -1.0 / 7 + z * (1.0 / 9);
+    double s45 = -1.0 / 11 + z * (1.0 / 13);
+    p = r + (r_lo + r * (z * ((s01 + z2 * s23) + z4 * s45)));
+  } else {
+    const double *b = sc_atan_coef[k];
+    double e = r - (double)k * (1.0 / SC_ATAN_N), e2 = e * e, e4 = e2 * e2;
+    double p01 = b[0] + e * b[1], p23 = b[2] + e * b[3];
+    double p45 = b[4] + e * b[5], p67 = b[6] + e * b[7];
+    p = e * (((p01 + e2 * p23) + e4 * (p45 + e2 * p67)) + (e4 * e4) * b[8]) +
+        r_lo * b[0];
+  }
+  const double *base = sc_atan_base[q][k];
+  double v = base[0] + (base[1] + ((q == 1 || q == 2) ? -p : p));
+  return y < 0 ? -v : v;
 }
 
 #endif
