@@ -28,9 +28,8 @@
  *  - at alpha = (a_(K-1) + a_K) / 2 the orbit polished by multiple
  *    shooting from an attractor sample has minimal period 2^K, a defect
  *    max |d_(i+1) - f(d_i)| within the double map's own noise (below), a
- *    multiplier |mu| < 1 (stable),
- *    and the period-2^(K-1) orbit there is unstable with mu < -1 (past its
- *    flip): the window is the right one;
+ *    multiplier |mu| < 1 (stable), and the period-2^(K-1) orbit there is
+ *    unstable with mu < -1 (past its flip): the window is the right one;
  *  - against the quad path at every point of the orbit: the same
  *    itinerary, f within 4 eps, and the orbit's distance to the exact
  *    period-2^K orbit, to first order: the correction delta solving

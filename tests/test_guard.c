@@ -130,7 +130,8 @@ static void test_atan2(void) {
                           {-0.0, -1},   {1, 0},        {-1, 0},
                           {0, 0},       {INFINITY, 1}, {1, -INFINITY},
                           {NAN, 1},     {1e-320, 1},   {1, 1e300},
-                          {1e300, 1e-300}};
+                          {1e300, 1e-300}, {1e-200, 1e120},
+                          {-1e120, 1e-200}};
   int same = 1;
   for (size_t i = 0; i < sizeof sp / sizeof sp[0]; i++) {
     double a = sc_atan2(sp[i][0], sp[i][1]), b = atan2(sp[i][0], sp[i][1]);
