@@ -13,8 +13,17 @@
  * run counter per lag, since only the newest failure in the window
  * matters.  Tolerances are kept per iterate so that each difference is
  * compared with the tolerance of its own iterate, as a run counter does.
- * Due times (and the ends of the settling test's blocks) are kept in a
- * timing wheel of bit sets, one slot per ring slot. */
+ * Due times are kept in a timing wheel of bit sets, one slot per ring
+ * slot.
+ *
+ * The settling test's block maxima are taken in batches, not at every
+ * push: once the iterates not yet looked at fill the ring but for its
+ * longest lag (cap - maxp of them), each lag runs through them at once
+ * (settle()), and sc_period_settling() runs through the rest on copies.
+ * Maxima and block ends are those of a push-by-push update, so the
+ * answer is the same (tests/test_period.c checks it against a reference
+ * that updates at every push); per push it cost 10% of a chart's run in
+ * a loop over the lags and a wheel of block ends. */
 #include <float.h>
 #include <math.h>
 #include <stdint.h>
@@ -36,7 +45,8 @@ struct sc_period {
   int confirm;   /* confirmation cycles */
   double rtol;   /* tolerance relative to the extent */
   long cap;      /* ring capacity: (confirm + 1) maxp + SETTLE_BLOCK
-                    iterates, more than any due time lies ahead */
+                    iterates, more than any due time lies ahead; the
+                    settling test's batches take up to cap - maxp */
   int nw;        /* 64-bit words in a set of lags 0..maxp */
   long slot;     /* ring slot of the newest iterate: n - 1 modulo cap */
   double *rev;   /* the last cap iterates, twice, in reverse: x_{k-i} at
@@ -53,12 +63,14 @@ struct sc_period {
   long *lf, *seen, *due_at;
   uint64_t *due;      /* lags with due_at <= the newest iterate */
   uint64_t *wheel_c;  /* cap sets: lags falling due at that slot */
-  uint64_t *wheel_b;  /* cap sets: lags whose block ends at that slot */
   /* Settling (sc_period_settling()): per lag p, the largest lag-p
    * difference of the current block of blk[p] iterates and of the one
-   * before, and how many blocks in a row the maximum decreased. */
-  long *blk, *streak;
+   * before, how many blocks in a row the maximum decreased, and the
+   * iterate that ends the current block; all of them up to the iterate
+   * sdone (the ones after it are taken in the next batch, settle()). */
+  long *blk, *streak, *bnext;
   double *blk_max, *prev_max;
+  long sdone;
 };
 
 int sc_period_alloc(int max_period, int confirm, double rtol,
@@ -81,8 +93,9 @@ int sc_period_alloc(int max_period, int confirm, double rtol,
   pd->maxp = max_period;
   pd->confirm = confirm;
   pd->rtol = rtol;
-  /* Due times lie at most confirm maxp iterates ahead, block ends at most
-   * 2 maxp + SETTLE_BLOCK - 2 (the first one after a reset). */
+  /* Due times lie at most confirm maxp iterates ahead; the ring keeps
+   * SETTLE_BLOCK more, so that a batch of the settling test (cap - maxp
+   * iterates, settle()) is never shorter than a block of lag 1. */
   pd->cap = (long)(confirm + 1) * max_period + SETTLE_BLOCK;
   pd->nw = max_period / 64 + 1;
   size_t np = (size_t)max_period + 1, cap = (size_t)pd->cap;
@@ -94,14 +107,14 @@ int sc_period_alloc(int max_period, int confirm, double rtol,
   pd->due_at = calloc(np, sizeof *pd->due_at);
   pd->due = calloc(nw, sizeof *pd->due);
   pd->wheel_c = calloc(cap * nw, sizeof *pd->wheel_c);
-  pd->wheel_b = calloc(cap * nw, sizeof *pd->wheel_b);
   pd->blk = calloc(np, sizeof *pd->blk);
   pd->streak = calloc(np, sizeof *pd->streak);
+  pd->bnext = calloc(np, sizeof *pd->bnext);
   pd->blk_max = calloc(np, sizeof *pd->blk_max);
   pd->prev_max = calloc(np, sizeof *pd->prev_max);
   if (!pd->rev || !pd->tolk || !pd->lf || !pd->seen || !pd->due_at ||
-      !pd->due || !pd->wheel_c || !pd->wheel_b || !pd->blk ||
-      !pd->streak || !pd->blk_max || !pd->prev_max)
+      !pd->due || !pd->wheel_c || !pd->blk || !pd->streak ||
+      !pd->bnext || !pd->blk_max || !pd->prev_max)
     goto fail;
   for (int p = 1; p <= max_period; p++)
     pd->blk[p] = (long)p * ((SETTLE_BLOCK + p - 1) / p);
@@ -122,9 +135,9 @@ void sc_period_free(sc_period *pd) {
   free(pd->due_at);
   free(pd->due);
   free(pd->wheel_c);
-  free(pd->wheel_b);
   free(pd->blk);
   free(pd->streak);
+  free(pd->bnext);
   free(pd->blk_max);
   free(pd->prev_max);
   free(pd);
@@ -143,21 +156,11 @@ static uint64_t *wheel_at(const sc_period *pd, uint64_t *wheel, long t) {
   return wheel + (size_t)(t % pd->cap) * (size_t)pd->nw;
 }
 
-/* The end of lag p's block pending after iterate k: blocks end with the
- * iterates p - 1 + m blk[p], m >= 1. */
-static long block_end(const sc_period *pd, int p, long k) {
-  const long b = pd->blk[p];
-  if (k < p + b - 1) return p + b - 1;
-  return k + b - (k - p + 1) % b;
-}
-
 void sc_period_reset(sc_period *pd, double x0) {
-  /* Take every lag off the wheels: lag p is in at most one set of each,
-   * the one of its pending due time and block end. */
-  for (int p = 1; p <= pd->maxp; p++) {
+  /* Take every lag off the wheel: lag p is in at most one of its sets,
+   * the one of its pending due time. */
+  for (int p = 1; p <= pd->maxp; p++)
     clear_bit(wheel_at(pd, pd->wheel_c, pd->due_at[p]), p);
-    clear_bit(wheel_at(pd, pd->wheel_b, block_end(pd, p, pd->n - 1)), p);
-  }
   for (int w = 0; w < pd->nw; w++) pd->due[w] = 0;
   pd->slot = 0;
   pd->rev[pd->cap - 1] = pd->rev[2 * pd->cap - 1] = x0;
@@ -167,16 +170,18 @@ void sc_period_reset(sc_period *pd, double x0) {
   pd->tol = SC_PERIOD_FLOOR_ULPS * DBL_EPSILON * pd->amax;
   pd->tolk[pd->cap - 1] = pd->tolk[2 * pd->cap - 1] = pd->tol;
   pd->found = 0;
+  /* Lag p's blocks end with the iterates p - 1 + m blk[p], m >= 1. */
   for (int p = 0; p <= pd->maxp; p++) {
     pd->streak[p] = 0;
     pd->blk_max[p] = pd->prev_max[p] = 0;
+    pd->bnext[p] = p - 1 + pd->blk[p];
   }
+  pd->sdone = 0;
   /* Lag p's first difference is the one of x_p: as if x_{p-1} failed. */
   for (int p = 1; p <= pd->maxp; p++) {
     pd->lf[p] = pd->seen[p] = p - 1;
     pd->due_at[p] = (long)(pd->confirm + 1) * p - 1;
     set_bit(wheel_at(pd, pd->wheel_c, pd->due_at[p]), p);
-    set_bit(wheel_at(pd, pd->wheel_b, block_end(pd, p, 0)), p);
   }
 }
 
@@ -270,13 +275,53 @@ static int confirmed(sc_period *pd, int p, long k) {
   return 0;
 }
 
-/* m[i] = max(m[i], |x - y[i]|) for i < n: the block maxima of every lag
- * at once (a loop the compiler vectorizes). */
-static void lag_maxima(int n, double x, const double *restrict y,
-                       double *restrict m) {
-  for (int i = 0; i < n; i++) {
-    double dx = fabs(x - y[i]);
-    m[i] = dx > m[i] ? dx : m[i];
+/* The settling test's blocks of every lag through the iterates x_k0 ..
+ * x_k1, into the per-lag state streak, prev, bm, bnext (the detector's
+ * own, or copies): each lag-p difference |x_k - x_{k-p}|, k >= p, goes
+ * into its block's maximum, and at a block's end the maximum is compared
+ * with the previous block's (a decrease extends the streak) and starts
+ * again from 0, as a push-by-push update does.  The iterates k0 - maxp
+ * .. k1 must all be in the ring: k1 - k0 < cap - maxp. */
+static void settle(const sc_period *pd, long k0, long k1, long *streak,
+                   double *prev, double *bm, long *bnext) {
+  /* x_k = xr[n - 1 - k] */
+  const double *xr = pd->rev + (pd->cap - 1 - pd->slot);
+  const long last = pd->n - 1;
+  for (int p = 1; p <= pd->maxp; p++) {
+    double m = bm[p], pv = prev[p];
+    long st = streak[p], nb = bnext[p], k = k0 > p ? k0 : p;
+    while (k <= k1) {
+      long e = nb < k1 ? nb : k1; /* this block's iterates k .. e */
+      /* four maxima side by side (max is exact and ignores a NaN either
+       * way: the same maximum as one chain, which waits on each compare) */
+      double m1 = 0, m2 = 0, m3 = 0;
+      long i = last - k, i1 = last - e;
+      for (; i - 3 >= i1; i -= 4) {
+        double d0 = fabs(xr[i] - xr[i + p]);
+        double d1 = fabs(xr[i - 1] - xr[i - 1 + p]);
+        double d2 = fabs(xr[i - 2] - xr[i - 2 + p]);
+        double d3 = fabs(xr[i - 3] - xr[i - 3 + p]);
+        m = d0 > m ? d0 : m;
+        m1 = d1 > m1 ? d1 : m1;
+        m2 = d2 > m2 ? d2 : m2;
+        m3 = d3 > m3 ? d3 : m3;
+      }
+      for (; i >= i1; i--) {
+        double dx = fabs(xr[i] - xr[i + p]);
+        m = dx > m ? dx : m;
+      }
+      m1 = m2 > m1 ? m2 : m1;
+      m1 = m3 > m1 ? m3 : m1;
+      m = m1 > m ? m1 : m;
+      if (e == nb) {
+        st = m < pv ? st + 1 : 0;
+        pv = m;
+        m = 0;
+        nb += pd->blk[p];
+      }
+      k = e + 1;
+    }
+    bm[p] = m, prev[p] = pv, streak[p] = st, bnext[p] = nb;
   }
 }
 
@@ -297,25 +342,12 @@ int sc_period_push(sc_period *pd, double x) {
   pd->tol = pd->rtol * (pd->hi - pd->lo) +
             SC_PERIOD_FLOOR_ULPS * DBL_EPSILON * pd->amax;
   pd->tolk[cap - 1 - slot] = pd->tolk[2 * cap - 1 - slot] = pd->tol;
-  /* Block maxima of the settling test, every lag. */
-  int maxp = k < pd->maxp ? (int)k : pd->maxp;
-  lag_maxima(maxp, x, xr + 1, pd->blk_max + 1);
-  double *bm = pd->blk_max;
-  /* Lags whose block ends with x_k. */
-  uint64_t *wb = pd->wheel_b + (size_t)slot * (size_t)nw;
-  for (int w = 0; w < nw; w++) {
-    uint64_t m = wb[w];
-    wb[w] = 0;
-    while (m) {
-      int p = 64 * w + __builtin_ctzll(m);
-      m &= m - 1;
-      pd->streak[p] = bm[p] < pd->prev_max[p] ? pd->streak[p] + 1 : 0;
-      pd->prev_max[p] = bm[p];
-      bm[p] = 0;
-      long s = slot + pd->blk[p];
-      if (s >= cap) s -= cap;
-      set_bit(pd->wheel_b + (size_t)s * (size_t)nw, p);
-    }
+  /* The settling test's blocks, once the iterates not taken yet would
+   * otherwise leave the ring. */
+  if (k - pd->sdone >= cap - pd->maxp) {
+    settle(pd, pd->sdone + 1, k, pd->streak, pd->prev_max, pd->blk_max,
+           pd->bnext);
+    pd->sdone = k;
   }
   /* Lags that fall due with x_k join the due set; the smallest confirmed
    * one is accepted, or waits for the divisor the orbit is converging to
@@ -384,10 +416,19 @@ int sc_period_find(sc_period *pd, sc_map *m, double d0, long max_iter,
  * last blocks covering at least half of the orbit (and at least
  * SETTLE_BLOCKS blocks), still above the tolerance. */
 int sc_period_settling(const sc_period *pd) {
+  /* the iterates after the last batch, on copies of the state */
+  long streak[SC_PERIOD_MAX + 1], bnext[SC_PERIOD_MAX + 1];
+  double prev[SC_PERIOD_MAX + 1], bm[SC_PERIOD_MAX + 1];
   for (int p = 1; p <= pd->maxp; p++) {
-    long covered = pd->streak[p] * pd->blk[p];
-    if (pd->streak[p] >= SETTLE_BLOCKS && 2 * covered >= pd->n - 1 &&
-        pd->prev_max[p] > pd->tol)
+    streak[p] = pd->streak[p], bnext[p] = pd->bnext[p];
+    prev[p] = pd->prev_max[p], bm[p] = pd->blk_max[p];
+  }
+  if (pd->n - 1 > pd->sdone)
+    settle(pd, pd->sdone + 1, pd->n - 1, streak, prev, bm, bnext);
+  for (int p = 1; p <= pd->maxp; p++) {
+    long covered = streak[p] * pd->blk[p];
+    if (streak[p] >= SETTLE_BLOCKS && 2 * covered >= pd->n - 1 &&
+        prev[p] > pd->tol)
       return p;
   }
   return 0;
