@@ -111,9 +111,11 @@ SC_API int sc_period_push(sc_period *pd, double x);
 /**
  * @brief Whether the orbit pushed so far is still converging to a
  * periodic orbit: the smallest p <= max_period whose largest lag-p
- * differences over the last three cycles of p iterates decrease
- * geometrically with an extrapolated (Aitken) limit within the tolerance;
- * 0 if none (or too few iterates).  Used when no period was accepted.
+ * difference decreased from each block of iterates to the next (blocks
+ * of at least 8 iterates, a whole number of p) over the last blocks,
+ * at least 4 of them and covering at least half of the orbit, and is
+ * still above the tolerance; 0 if none (or too few iterates).  Used when
+ * no period was accepted.
  */
 SC_API int sc_period_settling(const sc_period *pd);
 
