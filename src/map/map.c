@@ -237,6 +237,12 @@ double sc_map_precision(const sc_map *m) {
  * GCC lays out as `rep stos`: their start-up cost was 6% of a chart's
  * time (docs/performance.md, sixteenth round). */
 static void clear_value(sc_map_value *v) {
+  /* every field is named below: a field added to sc_map_value changes its
+   * size and stops the build here until it is cleared too */
+  _Static_assert(sizeof(sc_map_value) ==
+                     (4 + 3 * SC_MAXPARAM) * sizeof(double) + 2 * sizeof(int) +
+                         SC_ITIN_LEN,
+                 "clear_value() names every field of sc_map_value");
   v->f = v->dfdd = 0;
   v->neutral = v->nphases = 0;
   v->itinerary[0] = '\0';
