@@ -257,7 +257,22 @@ static inline void refine_n(const sc_guard *g, int n, const guard_size *z,
   double cs[SC_GUARD_MAXFREQ], sn[SC_GUARD_MAXFREQ];
   int how = 0; /* 1: |g| within rounding, 2: step below tol, 3: Taylor */
   for (int it = 0; it < GUARD_MAX_REFINE; it++) {
-    eval_near(g, n, wt0, c0, s0, t, &v, &d, &d2, cs, sn);
+    if (it == 0) {
+      /* at the anchor itself: cos and sin as they are (eval_near()'s
+       * angle addition with the angle fl(w t0) - wt0 = 0 gives them back
+       * unchanged), without the series and the rotation on the chain */
+      double g0 = g->c0 + g->c1 * t, g1 = g->c1, g2 = 0;
+      for (int k = 0; k < n; k++) {
+        double w = g->w[k], ck = c0[k], sk = s0[k];
+        cs[k] = ck, sn[k] = sk;
+        double a = g->a[k] * ck + g->b[k] * sk;
+        g0 += a, g2 -= w * w * a;
+        g1 += w * (g->b[k] * ck - g->a[k] * sk);
+      }
+      v = g0, d = g1, d2 = g2;
+    } else {
+      eval_near(g, n, wt0, c0, s0, t, &v, &d, &d2, cs, sn);
+    }
     te = t;
     if (fabs(v) <= round_at(z, t)) {
       how = 1;
