@@ -1,5 +1,7 @@
 sc_add_test(test_common)
 sc_add_test(test_guard)
+# the searches once more without the pair march's lanes, to compare
+target_sources(test_guard PRIVATE guard_scalar.c)
 sc_add_test(test_bk2)
 # The 1:n resonance of a slip of both blocks: BR = 0 at alpha = (n^2-1)/2.
 sc_add_test(test_bk2_resonance)

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "hybrid/hybrid_impl.h"
+#include "guard_scalar.h"
 #include "hybrid/trig.h"
 #include "slipcont/hybrid.h"
 #include "test_util.h"
@@ -281,6 +282,89 @@ static void test_pair(void) {
   }
 }
 
+/* Whether two results agree bit for bit in everything a search reports
+ * (cos and sin only for the terms it says it filled). */
+static int same_root(const sc_root *a, const sc_root *b) {
+  if (a->found != b->found || a->tangent != b->tangent ||
+      a->steps != b->steps || a->ntrig != b->ntrig)
+    return 0;
+  double x[4] = {a->t, a->bracket, a->slope, a->curv};
+  double y[4] = {b->t, b->bracket, b->slope, b->curv};
+  if (memcmp(x, y, sizeof x)) return 0;
+  for (int k = 0; k < a->ntrig && k < SC_GUARD_MAXFREQ; k++)
+    if (memcmp(&a->cs[k], &b->cs[k], sizeof(double)) ||
+        memcmp(&a->sn[k], &b->sn[k], sizeof(double)))
+      return 0;
+  return 1;
+}
+
+/* The pair march decides both guards of a two-term pair in two SIMD
+ * lanes where the target has them (src/hybrid/guard.c, "Two guards in
+ * two lanes"); tests/guard_scalar.c is the same source with the lanes
+ * compiled out.  Every result must agree bit for bit: bk2's chart shape
+ * (no constant, no drift, frequencies 1 and sqrt(1 + 2 alpha), the fast
+ * term the smaller), a driver's drift, every sign pattern, a guard that
+ * starts at a zero it skips, short horizons (the step past tmax and the
+ * tail), and near-tangent pairs (the adaptive march inside the grid). */
+static void test_lanes(void) {
+  int n = 20000, differ = 0, roots = 0, both = 0, tangent = 0, near = 0;
+  for (int i = 0; i < n; i++) {
+    sc_guard g[2];
+    memset(g, 0, sizeof g);
+    g[0].n = 2;
+    double alpha = uni(1, 20), rs = uni(0.05, 0.5), rf = rs * uni(0.05, 1.5);
+    double ps = uni(0, 6.283), pf = uni(0, 6.283);
+    g[0].w[0] = 1, g[0].w[1] = sqrt(1 + 2 * alpha);
+    g[0].a[0] = rs * cos(ps), g[0].b[0] = rs * sin(ps);
+    g[0].a[1] = rf * cos(pf), g[0].b[1] = rf * sin(pf);
+    int shape = i % 5;
+    g[0].c0 = shape < 2 ? 0 : uni(-0.5, 0.1);
+    g[0].c1 = shape == 3 ? uni(-0.05, 0.05) : 0;
+    double s0 = i % 7 == 0 ? -1 : 1, s1 = i % 3 == 0 ? 1 : -1;
+    g[1] = g[0];
+    g[1].a[0] *= s0, g[1].b[0] *= s0, g[1].a[1] *= s1, g[1].b[1] *= s1;
+    int skip[2] = {0, 0};
+    if (shape == 1 || shape == 4) {
+      /* one guard starts at zero (a block that has just started to slip):
+       * the shared constant set so that guard j is 0 at t = 0 */
+      int j = i % 2;
+      g[0].c0 = g[1].c0 = -(g[j].a[0] + g[j].a[1]);
+      skip[j] = 1;
+    }
+    if (i % 11 == 0) {
+      /* near tangency: the first guard's highest point within 1e-12 of 0 */
+      double t1 = uni(0.5, 3), d = uni(-1e-12, 1e-12);
+      g[0].c1 = 0, skip[0] = skip[1] = 0;
+      g[0].a[0] = rs * cos(t1), g[0].b[0] = rs * sin(t1);
+      g[0].a[1] = rf * cos(g[0].w[1] * t1), g[0].b[1] = rf * sin(g[0].w[1] * t1);
+      g[0].c0 = d - rs - rf;
+      g[1] = g[0];
+      g[1].a[1] = -g[0].a[1], g[1].b[1] = -g[0].b[1];
+      near++;
+    }
+    double tmax = i % 4 == 0 ? uni(0.05, 2) : 20;
+    pair_margin = i % 3 == 0 ? 0.5 : i % 3 == 1 ? 3 : 1e-9;
+    sc_root r[2], q[2];
+    memset(r, 0, sizeof r), memset(q, 0, sizeof q);
+    int st = sc_guard_first_root_pair(g, tmax, skip, 1e-15, 1e-14,
+                                      pair_limit, NULL, r);
+    int sq = guard_scalar_first_root_pair(g, tmax, skip, 1e-15, 1e-14,
+                                          pair_limit, NULL, q);
+    if (st != sq || !same_root(&r[0], &q[0]) || !same_root(&r[1], &q[1]))
+      differ++;
+    roots += r[0].found || r[1].found;
+    both += r[0].found && r[1].found;
+    tangent += r[0].tangent || r[1].tangent;
+  }
+  tu_true(roots > n / 2 && both > n / 20 && near > n / 20,
+          "lanes: %d pairs with a root, %d with both, %d near-tangent "
+          "(%d touches)",
+          roots, both, near, tangent);
+  tu_int("lanes: pair searches that differ in any bit from the one-guard "
+         "code",
+         differ, 0);
+}
+
 int main(void) {
   test_fast_sincos();
   test_atan2();
@@ -452,7 +536,7 @@ int main(void) {
    * psi, 7.6 without the turn). */
   {
     double worst = 0;
-    int handed = 0, roots = 0;
+    int handed = 0, roots = 0, odd = 0;
     for (int i = 0; i < 300000; i++) {
       sc_guard g = {0};
       g.n = 1;
@@ -468,15 +552,22 @@ int main(void) {
       sc_guard_first_root(&g, 1e3, skip, 1e-15, 1e-14, &r);
       if (!r.found) continue;
       roots++;
-      if (r.ntrig != 1) continue;
+      if (r.ntrig != 1) {
+        /* the closed form leaves a double root at a skipped start (g'(0)
+         * = w b within rounding of 0) to the march, whose touches are
+         * found without cos and sin */
+        odd += !(skip && fabs(g.w[0] * g.b[0]) <= 1e-6 * g.w[0] * R);
+        continue;
+      }
       handed++;
       double x = g.w[0] * r.t;
       worst = fmax(worst,
                    fmax(fabs(r.cs[0] - cos(x)), fabs(r.sn[0] - sin(x))));
     }
-    tu_true(roots > 250000 && handed == roots,
-            "closed form: %d of %d roots hand over cos and sin", handed,
-            roots);
+    tu_true(roots > 250000 && handed >= roots - roots / 10000 && odd == 0,
+            "closed form: %d of %d roots hand over cos and sin (the others "
+            "double roots at a skipped start, left to the march; %d not)",
+            handed, roots, odd);
     tu_true(worst <= 3 * DBL_EPSILON,
             "closed form: handed-over cos and sin within %.3g ulps of "
             "libm's at the root (3)",
@@ -550,5 +641,8 @@ int main(void) {
     tu_int("negative rtol refused",
            sc_guard_first_root(&g, 1, 0, 1e-15, -1, &r), SC_EINVAL);
   }
+  /* last, so that its draws leave the other tests' random cases as
+   * they were */
+  test_lanes();
   return tu_finish();
 }

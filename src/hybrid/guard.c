@@ -32,6 +32,18 @@
 #include "hybrid/trig.h"
 #include "slipcont/hybrid.h"
 
+/* The pair march's two guards side by side in SSE2's two lanes, where
+ * the target has them (every x86-64); elsewhere, or with
+ * SC_GUARD_NO_LANES defined (tests/guard_scalar.c), the same steps one
+ * guard at a time.  Either way the same numbers (below, "Two guards in
+ * two lanes"; tests/test_guard.c compares the two bit for bit). */
+#if defined(__SSE2__) && !defined(SC_GUARD_NO_LANES)
+#include <emmintrin.h>
+#define GUARD_PAIR_LANES 1
+#else
+#define GUARD_PAIR_LANES 0
+#endif
+
 /* Rounding bound on one evaluation of g: a few ulps of each term's size,
  * the sinusoids' arguments w t included (their rounding grows with t). */
 #define GUARD_ROUND_ULPS 8.0
@@ -672,6 +684,78 @@ static inline void vals_pair(const sc_guard *g, const double *sgn, int n,
   vb[0] = h0, vb[1] = h1, vb[2] = h2;
 }
 
+#if GUARD_PAIR_LANES
+/* ---- Two guards in two lanes ------------------------------------------
+ * A pair of two-term guards (bk2's re-sticks in a slip of both blocks)
+ * has each step's values and test (A) computed for both guards at once,
+ * lane 0 the first guard, lane 1 the second.  Every lane operation is the
+ * IEEE operation the one-guard code does on that guard's numbers, in the
+ * same order (products, sums, minima: minpd(a, b) is a < b ? a : b, as
+ * min2()), and sigma times a number (sigma = +-1) is that number with its
+ * sign bit flipped or not, exactly, so the values and the decisions are
+ * those of vals_pair() and grid_step(), bit for bit.  The lanes only ever
+ * prove a step free of roots by test (A)'s Bernstein bound; any other
+ * outcome (a start root, a value within rounding of zero, a bound that
+ * fails) is left to grid_step() for each guard, from the same values. */
+typedef struct {
+  __m128d a, b, w, w2; /* term k's coefficients in lane k */
+  __m128d s0, s1;      /* term k's sign in guard 0 and guard 1: (1, sgn_k) */
+} pair_lanes;
+
+static inline pair_lanes pair_lanes_make(const sc_guard *g,
+                                         const double *sgn) {
+  pair_lanes L;
+  L.a = _mm_loadu_pd(g->a), L.b = _mm_loadu_pd(g->b);
+  L.w = _mm_loadu_pd(g->w), L.w2 = _mm_mul_pd(L.w, L.w);
+  L.s0 = _mm_set_pd(sgn[0], 1), L.s1 = _mm_set_pd(sgn[1], 1);
+  return L;
+}
+
+/* g, g', g'' of both guards at t from cos and sin of the two terms (C, S:
+ * term k in lane k), into G0, G1, G2 (guard i in lane i): vals_pair()
+ * with n = 2. */
+static inline void pair_vals(const pair_lanes *L, const sc_guard *g,
+                             double t, __m128d C, __m128d S, __m128d *G0,
+                             __m128d *G1, __m128d *G2) {
+  __m128d ta = _mm_add_pd(_mm_mul_pd(L->a, C), _mm_mul_pd(L->b, S));
+  __m128d td =
+      _mm_mul_pd(L->w, _mm_sub_pd(_mm_mul_pd(L->b, C), _mm_mul_pd(L->a, S)));
+  __m128d tdd = _mm_mul_pd(L->w2, ta);
+  __m128d base = _mm_set1_pd(g->c0 + g->c1 * t);
+  *G0 = _mm_add_pd(
+      _mm_add_pd(base, _mm_mul_pd(_mm_unpacklo_pd(ta, ta), L->s0)),
+      _mm_mul_pd(_mm_unpackhi_pd(ta, ta), L->s1));
+  *G1 = _mm_add_pd(_mm_add_pd(_mm_set1_pd(g->c1),
+                              _mm_mul_pd(_mm_unpacklo_pd(td, td), L->s0)),
+                   _mm_mul_pd(_mm_unpackhi_pd(td, td), L->s1));
+  *G2 = _mm_sub_pd(_mm_sub_pd(_mm_setzero_pd(),
+                              _mm_mul_pd(_mm_unpacklo_pd(tdd, tdd), L->s0)),
+                   _mm_mul_pd(_mm_unpackhi_pd(tdd, tdd), L->s1));
+}
+
+/* Test (A) of grid_step() for both guards, from g, g' at the step's start
+ * (E0, E1) and end (F0, F1): bit i of the result is set when guard i's
+ * start is not within rounding E of zero and the cubic of its g keeps the
+ * start's sign by the Bernstein bound with margin marg (STEP_FREE in
+ * grid_step() when the guard does not start at a root). */
+static inline int pair_free(__m128d E0, __m128d E1, __m128d F0, __m128d F1,
+                            double h, double E, double marg) {
+  const __m128d sign = _mm_set1_pd(-0.0), H = _mm_set1_pd(h);
+  const __m128d three = _mm_set1_pd(3), Ev = _mm_set1_pd(E);
+  __m128d sb = _mm_and_pd(E0, sign); /* sigma's sign: g0 != 0 below */
+  __m128d p0 = _mm_andnot_pd(sign, E0), p1 = _mm_xor_pd(F0, sb);
+  __m128d q0 = _mm_mul_pd(_mm_xor_pd(E1, sb), H);
+  __m128d q1 = _mm_mul_pd(_mm_xor_pd(F1, sb), H);
+  __m128d a0 = _mm_mul_pd(three, p0), a1 = _mm_mul_pd(three, p1);
+  __m128d m = _mm_min_pd(_mm_min_pd(a0, a1),
+                         _mm_min_pd(_mm_add_pd(a0, q0), _mm_sub_pd(a1, q1)));
+  __m128d ok = _mm_and_pd(_mm_cmpgt_pd(m, _mm_set1_pd(3 * marg)),
+                          _mm_and_pd(_mm_cmpgt_pd(p1, Ev),
+                                     _mm_cmpgt_pd(p0, Ev)));
+  return _mm_movemask_pd(ok);
+}
+#endif
+
 /* What one guard's step [t, t + h] of the grid march proves. */
 enum { STEP_UNDECIDED, STEP_FREE, STEP_ROOT };
 
@@ -781,6 +865,16 @@ static inline int grid_march_n(const guard_ctx *c, const guard_pair *pr,
   int live[2] = {1, ng == 2}, alone = 0;
   if (ng == 1) vals_from(g, n, 0, cs, sn, ve[0]);
   else vals_pair(g, pr->sgn, n, 0, cs, sn, ve[0], ve[1]);
+#if GUARD_PAIR_LANES
+  /* a pair of two-term guards in two lanes: g, g' at the step's start */
+  const int lanes = ng == 2 && n == 2;
+  pair_lanes L;
+  __m128d LE0 = _mm_setzero_pd(), LE1 = _mm_setzero_pd();
+  if (lanes) {
+    L = pair_lanes_make(g, pr->sgn);
+    LE0 = _mm_set_pd(ve[1][0], ve[0][0]), LE1 = _mm_set_pd(ve[1][1], ve[0][1]);
+  }
+#endif
   /* t = q dt with one rounding (not a running sum, whose rounding would
    * grow with the steps while the rotations follow the exact sum) */
   double t = 0, rerr = 0;
@@ -813,20 +907,49 @@ static inline int grid_march_n(const guard_ctx *c, const guard_pair *pr,
       cr = rc[m], sr = rs[m];
     }
     double ncs[SC_GUARD_MAXFREQ], nsn[SC_GUARD_MAXFREQ];
-    for (int k = 0; k < n; k++) {
-      ncs[k] = cs[k] * cr[k] - sn[k] * sr[k];
-      nsn[k] = sn[k] * cr[k] + cs[k] * sr[k];
-    }
     double nerr = rerr + rot_ulps;
-    if (ng == 1) vals_from(g, n, tn, ncs, nsn, vf[0]);
-    else vals_pair(g, pr->sgn, n, tn, ncs, nsn, vf[0], vf[1]);
+    int dec[2] = {STEP_FREE, STEP_FREE}, undecided = 0, roots = 0;
+#if GUARD_PAIR_LANES
+    __m128d LF0 = LE0, LF1 = LE1;
+    if (lanes) {
+      /* the rotation (term k in lane k), both guards' values (guard i in
+       * lane i), and test (A) for both where neither starts at a root */
+      __m128d C = _mm_loadu_pd(cs), S = _mm_loadu_pd(sn);
+      __m128d RC = _mm_loadu_pd(cr), RS = _mm_loadu_pd(sr);
+      __m128d NC = _mm_sub_pd(_mm_mul_pd(C, RC), _mm_mul_pd(S, RS));
+      __m128d NS = _mm_add_pd(_mm_mul_pd(S, RC), _mm_mul_pd(C, RS));
+      _mm_storeu_pd(ncs, NC), _mm_storeu_pd(nsn, NS);
+      __m128d LF2;
+      pair_vals(&L, g, tn, NC, NS, &LF0, &LF1, &LF2);
+      _mm_storel_pd(&vf[0][0], LF0), _mm_storeh_pd(&vf[1][0], LF0);
+      _mm_storel_pd(&vf[0][1], LF1), _mm_storeh_pd(&vf[1][1], LF1);
+      _mm_storel_pd(&vf[0][2], LF2), _mm_storeh_pd(&vf[1][2], LF2);
+    } else
+#endif
+    {
+      for (int k = 0; k < n; k++) {
+        ncs[k] = cs[k] * cr[k] - sn[k] * sr[k];
+        nsn[k] = sn[k] * cr[k] + cs[k] * sr[k];
+      }
+      if (ng == 1) vals_from(g, n, tn, ncs, nsn, vf[0]);
+      else vals_pair(g, pr->sgn, n, tn, ncs, nsn, vf[0], vf[1]);
+    }
     double E = e00 + e01 * tn + r0 * nerr;
     double E1 = e10 + e11 * tn + r1 * nerr;
-    double E2 = e20 + e21 * tn + r2 * nerr;
-    int dec[2] = {STEP_FREE, STEP_FREE}, undecided = 0, roots = 0;
+    /* guards proved free by the lanes (bit i: guard i); the others, and
+     * any guard that starts at a root, are decided one by one */
+    int freed = 0;
+#if GUARD_PAIR_LANES
+    if (lanes)
+      freed = pair_free(LE0, LE1, LF0, LF1, h, E, rem0 + E + h * E1) &
+              ~(start[0] | start[1] << 1);
+#endif
+    double E2 = NAN;
     for (int i = 0; i < ng; i++) {
       if (!live[i]) continue;
       out[i].steps++;
+      if (freed >> i & 1) continue; /* dec[i] = STEP_FREE */
+      if (isnan(E2)) E2 = e20 + e21 * tn + r2 * nerr;
       dec[i] = grid_step(ve[i], vf[i], start[i], past, h, E, E1, E2, rem0,
                          rem1);
       undecided |= dec[i] == STEP_UNDECIDED;
@@ -898,6 +1021,12 @@ static inline int grid_march_n(const guard_ctx *c, const guard_pair *pr,
       anchor(g, t, cs, sn);
       if (ng == 1) vals_from(g, n, t, cs, sn, ve[0]);
       else vals_pair(g, pr->sgn, n, t, cs, sn, ve[0], ve[1]);
+#if GUARD_PAIR_LANES
+      if (lanes) {
+        LE0 = _mm_set_pd(ve[1][0], ve[0][0]);
+        LE1 = _mm_set_pd(ve[1][1], ve[0][1]);
+      }
+#endif
       rerr = SC_FAST_TRIG_ULPS;
       m = 0;
       continue;
@@ -908,6 +1037,9 @@ static inline int grid_march_n(const guard_ctx *c, const guard_pair *pr,
     for (int k = 0; k < n; k++) cs[k] = ncs[k], sn[k] = nsn[k];
     for (int i = 0; i < ng; i++)
       ve[i][0] = vf[i][0], ve[i][1] = vf[i][1], ve[i][2] = vf[i][2];
+#if GUARD_PAIR_LANES
+    LE0 = LF0, LE1 = LF1;
+#endif
     if (m + 1 < GUARD_GRID_LEVELS) m++;
   }
   if (ng == 2)
