@@ -870,9 +870,14 @@ static inline int grid_march_n(const guard_ctx *c, const guard_pair *pr,
   const int lanes = ng == 2 && n == 2;
   pair_lanes L;
   __m128d LE0 = _mm_setzero_pd(), LE1 = _mm_setzero_pd();
+  /* cos and sin of the two terms, carried in registers from step to step
+   * (cs[], sn[] hold them for the code one term at a time): a vector load
+   * of two numbers just stored one by one would wait for the stores */
+  __m128d LC = _mm_setzero_pd(), LS = _mm_setzero_pd();
   if (lanes) {
     L = pair_lanes_make(g, pr->sgn);
     LE0 = _mm_set_pd(ve[1][0], ve[0][0]), LE1 = _mm_set_pd(ve[1][1], ve[0][1]);
+    LC = _mm_loadu_pd(cs), LS = _mm_loadu_pd(sn);
   }
 #endif
   /* t = q dt with one rounding (not a running sum, whose rounding would
@@ -910,14 +915,14 @@ static inline int grid_march_n(const guard_ctx *c, const guard_pair *pr,
     double nerr = rerr + rot_ulps;
     int dec[2] = {STEP_FREE, STEP_FREE}, undecided = 0, roots = 0;
 #if GUARD_PAIR_LANES
-    __m128d LF0 = LE0, LF1 = LE1;
+    __m128d LF0 = LE0, LF1 = LE1, LNC = LC, LNS = LS;
     if (lanes) {
       /* the rotation (term k in lane k), both guards' values (guard i in
        * lane i), and test (A) for both where neither starts at a root */
-      __m128d C = _mm_loadu_pd(cs), S = _mm_loadu_pd(sn);
       __m128d RC = _mm_loadu_pd(cr), RS = _mm_loadu_pd(sr);
-      __m128d NC = _mm_sub_pd(_mm_mul_pd(C, RC), _mm_mul_pd(S, RS));
-      __m128d NS = _mm_add_pd(_mm_mul_pd(S, RC), _mm_mul_pd(C, RS));
+      LNC = _mm_sub_pd(_mm_mul_pd(LC, RC), _mm_mul_pd(LS, RS));
+      LNS = _mm_add_pd(_mm_mul_pd(LS, RC), _mm_mul_pd(LC, RS));
+      __m128d NC = LNC, NS = LNS;
       _mm_storeu_pd(ncs, NC), _mm_storeu_pd(nsn, NS);
       __m128d LF2;
       pair_vals(&L, g, tn, NC, NS, &LF0, &LF1, &LF2);
@@ -1025,6 +1030,7 @@ static inline int grid_march_n(const guard_ctx *c, const guard_pair *pr,
       if (lanes) {
         LE0 = _mm_set_pd(ve[1][0], ve[0][0]);
         LE1 = _mm_set_pd(ve[1][1], ve[0][1]);
+        LC = _mm_loadu_pd(cs), LS = _mm_loadu_pd(sn);
       }
 #endif
       rerr = SC_FAST_TRIG_ULPS;
@@ -1038,7 +1044,7 @@ static inline int grid_march_n(const guard_ctx *c, const guard_pair *pr,
     for (int i = 0; i < ng; i++)
       ve[i][0] = vf[i][0], ve[i][1] = vf[i][1], ve[i][2] = vf[i][2];
 #if GUARD_PAIR_LANES
-    LE0 = LF0, LE1 = LF1;
+    LE0 = LF0, LE1 = LF1, LC = LNC, LS = LNS;
 #endif
     if (m + 1 < GUARD_GRID_LEVELS) m++;
   }
