@@ -702,11 +702,19 @@ typedef struct {
   __m128d s0, s1;      /* term k's sign in guard 0 and guard 1: (1, sgn_k) */
 } pair_lanes;
 
+/* Two numbers into the lanes by two loads, not one vector load: numbers
+ * stored one by one just before (a guard built for this phase, a table
+ * filled by this search) reach a vector load only once both stores have
+ * left the store buffer, a stall of some 15 cycles each time. */
+static inline __m128d pair_load(const double *x) {
+  return _mm_set_pd(x[1], x[0]);
+}
+
 static inline pair_lanes pair_lanes_make(const sc_guard *g,
                                          const double *sgn) {
   pair_lanes L;
-  L.a = _mm_loadu_pd(g->a), L.b = _mm_loadu_pd(g->b);
-  L.w = _mm_loadu_pd(g->w), L.w2 = _mm_mul_pd(L.w, L.w);
+  L.a = pair_load(g->a), L.b = pair_load(g->b);
+  L.w = pair_load(g->w), L.w2 = _mm_mul_pd(L.w, L.w);
   L.s0 = _mm_set_pd(sgn[0], 1), L.s1 = _mm_set_pd(sgn[1], 1);
   return L;
 }
@@ -861,7 +869,12 @@ static inline int grid_march_n(const guard_ctx *c, const guard_pair *pr,
     hl[l] = dt * s, rem0l[l] = M4 * h40 * s4, rem1l[l] = M5 * h40 * s4;
     ulpl[l] = GUARD_ROT_ULPS + 4 * l;
   }
-  double ve[2][3], vf[2][3];
+  /* g, g', g'' of each guard at the step's start (ve) and end (vf): two
+   * buffers that trade places when the march moves on, not copied (a
+   * copy compiled to a vector load of numbers just stored one by one
+   * waits for the stores) */
+  double vbuf[2][2][3];
+  double(*ve)[3] = vbuf[0], (*vf)[3] = vbuf[1];
   int live[2] = {1, ng == 2}, alone = 0;
   if (ng == 1) vals_from(g, n, 0, cs, sn, ve[0]);
   else vals_pair(g, pr->sgn, n, 0, cs, sn, ve[0], ve[1]);
@@ -874,10 +887,13 @@ static inline int grid_march_n(const guard_ctx *c, const guard_pair *pr,
    * (cs[], sn[] hold them for the code one term at a time): a vector load
    * of two numbers just stored one by one would wait for the stores */
   __m128d LC = _mm_setzero_pd(), LS = _mm_setzero_pd();
+  __m128d LRC[GUARD_GRID_LEVELS], LRS[GUARD_GRID_LEVELS]; /* rc, rs */
   if (lanes) {
     L = pair_lanes_make(g, pr->sgn);
     LE0 = _mm_set_pd(ve[1][0], ve[0][0]), LE1 = _mm_set_pd(ve[1][1], ve[0][1]);
-    LC = _mm_loadu_pd(cs), LS = _mm_loadu_pd(sn);
+    LC = pair_load(cs), LS = pair_load(sn);
+    for (int l = 0; l < GUARD_GRID_LEVELS; l++)
+      LRC[l] = pair_load(rc[l]), LRS[l] = pair_load(rs[l]);
   }
 #endif
   /* t = q dt with one rounding (not a running sum, whose rounding would
@@ -919,7 +935,8 @@ static inline int grid_march_n(const guard_ctx *c, const guard_pair *pr,
     if (lanes) {
       /* the rotation (term k in lane k), both guards' values (guard i in
        * lane i), and test (A) for both where neither starts at a root */
-      __m128d RC = _mm_loadu_pd(cr), RS = _mm_loadu_pd(sr);
+      __m128d RC = tail ? pair_load(cr) : LRC[m];
+      __m128d RS = tail ? pair_load(sr) : LRS[m];
       LNC = _mm_sub_pd(_mm_mul_pd(LC, RC), _mm_mul_pd(LS, RS));
       LNS = _mm_add_pd(_mm_mul_pd(LS, RC), _mm_mul_pd(LC, RS));
       __m128d NC = LNC, NS = LNS;
@@ -1030,7 +1047,7 @@ static inline int grid_march_n(const guard_ctx *c, const guard_pair *pr,
       if (lanes) {
         LE0 = _mm_set_pd(ve[1][0], ve[0][0]);
         LE1 = _mm_set_pd(ve[1][1], ve[0][1]);
-        LC = _mm_loadu_pd(cs), LS = _mm_loadu_pd(sn);
+        LC = pair_load(cs), LS = pair_load(sn);
       }
 #endif
       rerr = SC_FAST_TRIG_ULPS;
@@ -1041,8 +1058,10 @@ static inline int grid_march_n(const guard_ctx *c, const guard_pair *pr,
     t = tn, rerr = nerr;
     if (!tail) q += 1L << m;
     for (int k = 0; k < n; k++) cs[k] = ncs[k], sn[k] = nsn[k];
-    for (int i = 0; i < ng; i++)
-      ve[i][0] = vf[i][0], ve[i][1] = vf[i][1], ve[i][2] = vf[i][2];
+    {
+      double(*tmp)[3] = ve;
+      ve = vf, vf = tmp;
+    }
 #if GUARD_PAIR_LANES
     LE0 = LF0, LE1 = LF1, LC = LNC, LS = LNS;
 #endif
