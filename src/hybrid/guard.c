@@ -702,10 +702,13 @@ typedef struct {
   __m128d s0, s1;      /* term k's sign in guard 0 and guard 1: (1, sgn_k) */
 } pair_lanes;
 
-/* Two numbers into the lanes by two loads, not one vector load: numbers
- * stored one by one just before (a guard built for this phase, a table
- * filled by this search) reach a vector load only once both stores have
- * left the store buffer, a stall of some 15 cycles each time. */
+/* Two numbers into the lanes from the scalars, not by a vector load of
+ * the array: numbers stored one by one just before (a table filled by
+ * this search, cos and sin at an anchor) reach a vector load only once
+ * both stores have left the store buffer, a stall of some 15 cycles each
+ * time.  (The compiler may still merge the two loads where it sees no
+ * store in between; for the guard's frequencies it does, at no measured
+ * cost.) */
 static inline __m128d pair_load(const double *x) {
   return _mm_set_pd(x[1], x[0]);
 }
