@@ -942,10 +942,9 @@ static inline int grid_march_n(const guard_ctx *c, const guard_pair *pr,
       __m128d RS = tail ? pair_load(sr) : LRS[m];
       LNC = _mm_sub_pd(_mm_mul_pd(LC, RC), _mm_mul_pd(LS, RS));
       LNS = _mm_add_pd(_mm_mul_pd(LS, RC), _mm_mul_pd(LC, RS));
-      __m128d NC = LNC, NS = LNS;
-      _mm_storeu_pd(ncs, NC), _mm_storeu_pd(nsn, NS);
+      _mm_storeu_pd(ncs, LNC), _mm_storeu_pd(nsn, LNS);
       __m128d LF2;
-      pair_vals(&L, g, tn, NC, NS, &LF0, &LF1, &LF2);
+      pair_vals(&L, g, tn, LNC, LNS, &LF0, &LF1, &LF2);
       _mm_storel_pd(&vf[0][0], LF0), _mm_storeh_pd(&vf[1][0], LF0);
       _mm_storel_pd(&vf[0][1], LF1), _mm_storeh_pd(&vf[1][1], LF1);
       _mm_storel_pd(&vf[0][2], LF2), _mm_storeh_pd(&vf[1][2], LF2);
