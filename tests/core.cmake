@@ -16,6 +16,18 @@ target_sources(test_map_equiv PRIVATE ref/guard_v0.c)
 # bk2's value-only path against its dual path, bit for bit.
 sc_add_test(test_bk2_value)
 
+# The searches have no state: recorded inside the map and replayed alone
+# they return the same roots bit for bit (bench_searches checks it and
+# exits 1 otherwise; its timings are printed, never asserted).
+add_executable(search_replay ${PROJECT_SOURCE_DIR}/bench/bench_searches.c)
+target_include_directories(search_replay PRIVATE ${PROJECT_SOURCE_DIR}/src
+                                                 ${PROJECT_SOURCE_DIR}/bench)
+target_compile_options(search_replay PRIVATE ${SC_WARNINGS})
+target_link_libraries(search_replay PRIVATE slipcont_static)
+add_test(NAME search_replay_chart COMMAND search_replay chart 20)
+add_test(NAME search_replay_fig56 COMMAND search_replay fig56 3000)
+set_tests_properties(search_replay_chart search_replay_fig56 PROPERTIES
+  ENVIRONMENT SLIPCONT_BENCH_REPEAT=1)
 # bench/side_by_side.sh's refusals (the benchmark itself is not a test).
 add_test(NAME bench_args
   COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/bench_args.sh ${PROJECT_SOURCE_DIR})
