@@ -97,7 +97,6 @@ static double round_at(const guard_size *z, double t) {
          (z->c0 + z->amp + (z->c1 + z->wamp) * fabs(t));
 }
 
-
 static double tol_at(double t, double atol, double rtol) {
   return atol + rtol * fabs(t);
 }
@@ -202,6 +201,20 @@ static inline void near_sincos(double x, double *s, double *c) {
   else sc_fast_sincos(x, s, c);
 }
 
+/* g, g', g'' at t from cos and sin of each term. */
+static inline void vals_from(const sc_guard *g, int n, double t,
+                             const double *cs, const double *sn, double *v) {
+  double g0 = g->c0 + g->c1 * t, g1 = g->c1, g2 = 0;
+  for (int k = 0; k < n; k++) {
+    double w = g->w[k];
+    double a = g->a[k] * cs[k] + g->b[k] * sn[k];
+    g0 += a;
+    g1 += w * (g->b[k] * cs[k] - g->a[k] * sn[k]);
+    g2 -= w * w * a;
+  }
+  v[0] = g0, v[1] = g1, v[2] = g2;
+}
+
 /* g, g', g'' at t near the anchor, where the arguments are wt0[] (the
  * rounded products w t0) and cos and sin of them c0[], s0[]: by angle
  * addition with the small angles fl(w t) - wt0 (a difference of two
@@ -273,15 +286,10 @@ static inline void refine_n(const sc_guard *g, int n, const guard_size *z,
       /* at the anchor itself: cos and sin as they are (eval_near()'s
        * angle addition with the angle fl(w t0) - wt0 = 0 gives them back
        * unchanged), without the series and the rotation on the chain */
-      double g0 = g->c0 + g->c1 * t, g1 = g->c1, g2 = 0;
-      for (int k = 0; k < n; k++) {
-        double w = g->w[k], ck = c0[k], sk = s0[k];
-        cs[k] = ck, sn[k] = sk;
-        double a = g->a[k] * ck + g->b[k] * sk;
-        g0 += a, g2 -= w * w * a;
-        g1 += w * (g->b[k] * ck - g->a[k] * sk);
-      }
-      v = g0, d = g1, d2 = g2;
+      double vv[3];
+      for (int k = 0; k < n; k++) cs[k] = c0[k], sn[k] = s0[k];
+      vals_from(g, n, t, cs, sn, vv);
+      v = vv[0], d = vv[1], d2 = vv[2];
     } else {
       eval_near(g, n, wt0, c0, s0, t, &v, &d, &d2, cs, sn);
     }
@@ -606,20 +614,6 @@ static double hermite_min(double p0, double q0, double p1, double q1,
     if (r[i] > 0 && r[i] < h)
       m = min2(m, p0 + r[i] * (q0 + r[i] * (c2 + r[i] * c3)));
   return m;
-}
-
-/* g, g', g'' at t from cos and sin of each term. */
-static inline void vals_from(const sc_guard *g, int n, double t,
-                             const double *cs, const double *sn, double *v) {
-  double g0 = g->c0 + g->c1 * t, g1 = g->c1, g2 = 0;
-  for (int k = 0; k < n; k++) {
-    double w = g->w[k];
-    double a = g->a[k] * cs[k] + g->b[k] * sn[k];
-    g0 += a;
-    g1 += w * (g->b[k] * cs[k] - g->a[k] * sn[k]);
-    g2 -= w * w * a;
-  }
-  v[0] = g0, v[1] = g1, v[2] = g2;
 }
 
 /* cos and sin of every term at t (sc_fast_sincos: within
