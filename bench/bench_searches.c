@@ -125,7 +125,8 @@ static void set_params(const workload *w, long i, long j, double p[5]) {
   }
 }
 
-static int setup(bk2_inst *b, const workload *w, long i, long j) {
+/* The model at grid point (i, j), or exit with the model's message. */
+static void setup(bk2_inst *b, const workload *w, long i, long j) {
   sc_accuracy acc;
   sc_msg msg;
   double p[5];
@@ -136,7 +137,6 @@ static int setup(bk2_inst *b, const workload *w, long i, long j) {
     fprintf(stderr, "bench_searches: %s\n", msg.text);
     exit(1);
   }
-  return 0;
 }
 
 /* Runs the workload once; returns the iterates evaluated. */
