@@ -51,6 +51,14 @@
  * bracket of length <= tmax down to 1 ulp within ~1100 steps; Newton ends
  * far sooner, so this cap is never the reason to stop in practice. */
 #define GUARD_MAX_REFINE 200
+/* The refinement's Taylor certificate stops only where it bounds the
+ * step's truncation error by this many ulps of the root, whatever
+ * tolerance the search was asked for: the roots stay those of the
+ * evaluations' rounding (as from the bound on Newton's error the
+ * certificate replaced, whose threshold left Halley's error at ~dl^3,
+ * far below an ulp), so that f is as smooth in d and p under every
+ * preset (tests/test_jet.c differences f' at steps down to 1e-8). */
+#define GUARD_CERT_ULPS 1.0
 
 void sc_guard_eval(const sc_guard *g, double t, double *g0, double *g1,
                    double *g2) {
@@ -313,16 +321,23 @@ static inline void refine_n(const sc_guard *g, int n, const guard_size *z,
         how = 2;
         break;
       }
-      /* Taylor: the root r has g(t) + g'(t)(r - t) + g''(xi)(r - t)^2/2
-       * = 0, so Newton's point is within |g''| (r - t)^2 / (2 |g'|) of r,
-       * with |r - t| <= 2 dl once that bound is below dl, and Halley's
-       * within as much again: if the bound est is below the tolerance,
-       * stop without evaluating g again (slope moved to tn to first
-       * order).  Tested multiplied out: est |g'| against tol |g'|. */
-      double estd = 4 * (fabs(d2) + 2 * M3 * dl) * dl * dl, ad = fabs(d);
-      if (estd <= tol * ad && estd < 0.25 * dl * ad) {
-        est = estd / ad;
-        d += d2 * (tn - t);
+      /* Taylor at t: with s = tn - t, g(tn) = q + R, q = g + g' s +
+       * g'' s^2 / 2 (computed from the values here), |R| <= M3 dl^3 / 6.
+       * Within 2 dl of t, |g'| >= m = |g'| - 2 dl (|g''| + M3 dl), so
+       * if m > 0, g is monotone there and has its root within
+       * est = (|q| + M3 dl^3 / 6) / m of tn; when est <= tol (< dl, so
+       * the root is within 2 dl of t, where m holds) stop without
+       * evaluating g again (slope moved to tn to first order).  Halley's
+       * step makes q of order dl^3, so one step from an iterate within
+       * ~1e-5 of the root is certified here (a bound on Newton's error
+       * alone, |g''| dl^2 / |g'|, needed ~1e-7 and a third evaluation).
+       * Tested multiplied out: est m against tol m. */
+      double s = tn - t, q = v + s * (d + s * (0.5 * d2));
+      double m = fabs(d) - 2 * dl * (fabs(d2) + M3 * dl);
+      double estd = fabs(q) + M3 * dl * dl * dl * (1.0 / 6);
+      double tolc = min2(tol, GUARD_CERT_ULPS * DBL_EPSILON * fabs(tn));
+      if (m > 0 && estd <= tolc * m) {
+        est = estd / m;
         t = tn;
         how = 3;
         break;
@@ -336,12 +351,20 @@ static inline void refine_n(const sc_guard *g, int n, const guard_size *z,
   }
   if (how == 3) bracket = est;
   else if (how == 1) bracket = 0;
-  /* cos and sin at the returned t: from the last evaluation's, rotated */
+  /* cos and sin at the returned t: from the last evaluation's, rotated;
+   * after a certified step, the slope and curvature there from them (the
+   * step is up to ~1e-5: the slope moved by g'' alone would be off by
+   * M3 s^2 / 2, ~1e-10 of it, and f' with it) */
   if (t != te) {
     for (int k = 0; k < n; k++) {
       double sx, cx, ck = cs[k], sk = sn[k];
       near_sincos(g->w[k] * t - g->w[k] * te, &sx, &cx);
       cs[k] = ck * cx - sk * sx, sn[k] = sk * cx + ck * sx;
+    }
+    if (how == 3) {
+      double vv[3];
+      vals_from(g, n, t, cs, sn, vv);
+      d = vv[1], d2 = vv[2];
     }
   }
   for (int k = 0; k < n; k++) out->cs[k] = cs[k], out->sn[k] = sn[k];
@@ -408,7 +431,9 @@ static SC_ALWAYS_INLINE int closed_form(const sc_guard *g, const guard_size *z,
     asc = c0 + a < 0;
     x = c0 < 0 ? a : -a, y = c0 < 0 ? b : -b;
   } else {
-    rs = sqrt(gap * (R + fabs(c0))); /* R sin(theta) */
+    /* R sin(theta), from the squares (the square root of R^2 stays off
+     * this chain) */
+    rs = sqrt((a * a + b * b) - c0 * c0);
     if (skip_start) {
       double g1 = w * b; /* g'(0) */
       if (g1 == 0) return 0;
@@ -433,7 +458,7 @@ static SC_ALWAYS_INLINE int closed_form(const sc_guard *g, const guard_size *z,
     alo += (alpha - (s - GUARD_TWO_PI_HI)) + GUARD_TWO_PI_LO;
     alpha = s;
   }
-  double t = alpha / w;
+  double t = alpha * (1 / w); /* (1 / w waits on nothing: off the chain) */
   if (t <= tmax) {
     out->found = 1;
     out->t = t;
