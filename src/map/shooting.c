@@ -331,6 +331,14 @@ int sc_shoot_solve_orbit(sc_shoot *s, const double *d0, sc_shoot_result *res,
       if (st == SC_OK) {
         if (tiny || norm2(s->Ftry, n) < merit || maxabs(s->Ftry, n) <= ftol)
           break;
+        if (h >= SC_SHOOT_MAX_HALVINGS && fnorm <= ftol) {
+          /* Already within tolerance, and no step decreases the residual:
+           * the noise floor, reached before any step was tested against
+           * it (a start at a fold itself, from a points.csv row: the
+           * Jacobian is singular there and its step goes far) */
+          res->step = it == 0 ? 0 : last;
+          return finish(s, res, 0, msg);
+        }
         if (h >= SC_SHOOT_MAX_HALVINGS)
           return sc_fail(msg, SC_ENOCONV,
                          "sc_shoot_solve: no Newton step decreases the "
