@@ -31,14 +31,16 @@ typedef struct {
   sc_dual s0, s1, A, B, w;
 } osc;
 
-static osc osc_make(sc_dual q0, sc_dual p0, sc_dual F0, sc_dual F1, sc_dual w,
-                    int nd) {
+/* The oscillator from q(0) = q0, q'(0) = p0, with the force's constant
+ * F0, the drift s1 = F1 / w^2 (a parameter), and rw = 1 / w, rw2 =
+ * 1 / w^2 (bk2_dpar): s0 = F0 / w^2, B = (p0 - s1) / w by products. */
+static osc osc_make(sc_dual q0, sc_dual p0, sc_dual F0, sc_dual s1, sc_dual w,
+                    sc_dual rw, sc_dual rw2, int nd) {
   osc o;
-  sc_dual w2 = sc_dmul(w, w, nd);
-  o.s0 = sc_ddiv(F0, w2, nd);
-  o.s1 = sc_ddiv(F1, w2, nd);
+  o.s0 = sc_dmul(F0, rw2, nd);
+  o.s1 = s1;
   o.A = sc_dsub(q0, o.s0, nd);
-  o.B = sc_ddiv(sc_dsub(p0, o.s1, nd), w, nd);
+  o.B = sc_dmul(sc_dsub(p0, o.s1, nd), rw, nd);
   o.w = w;
   return o;
 }
@@ -111,19 +113,20 @@ static mode_flow flow_make(const bk2_dpar *P, int mode, const bk2_state *x0) {
   if (mode == SC_BK2_SLIP1) {
     /* Y1'' = mu - (1+alpha) Y1 + alpha (Y20 + Vs t) */
     f.o1 = osc_make(x0->y1, x0->u1,
-                    sc_dadd(P->k1, sc_dmul(P->alpha, x0->y2, nd), nd),
-                    sc_dmul(P->alpha, P->vs, nd), P->w1, nd);
+                    sc_dadd(P->k1, sc_dmul(P->alpha, x0->y2, nd), nd), P->s1,
+                    P->w1, P->rw1, P->rw1sq, nd);
   } else if (mode == SC_BK2_SLIP2) {
     f.o1 = osc_make(x0->y2, x0->u2,
-                    sc_dadd(P->k2, sc_dmul(P->alpha, x0->y1, nd), nd),
-                    sc_dmul(P->alpha, P->vs, nd), P->w1, nd);
+                    sc_dadd(P->k2, sc_dmul(P->alpha, x0->y1, nd), nd), P->s1,
+                    P->w1, P->rw1, P->rw1sq, nd);
   } else {
     /* Sum'' + Sum = mu (1 + beta), Dif'' + w2^2 Dif = mu (1 - beta) */
+    sc_dual zero = sc_dconst(0, nd), one = sc_dconst(1, nd);
     f.o1 = osc_make(sc_dadd(x0->y1, x0->y2, nd), sc_dadd(x0->u1, x0->u2, nd),
-                    sc_dadd(P->k1, P->k2, nd), sc_dconst(0, nd),
-                    sc_dconst(1, nd), nd);
+                    sc_dadd(P->k1, P->k2, nd), zero, one, one, one, nd);
     f.o2 = osc_make(sc_dsub(x0->y1, x0->y2, nd), sc_dsub(x0->u1, x0->u2, nd),
-                    sc_dsub(P->k1, P->k2, nd), sc_dconst(0, nd), P->w2, nd);
+                    sc_dsub(P->k1, P->k2, nd), zero, P->w2, P->rw2, P->rw2sq,
+                    nd);
   }
   return f;
 }
@@ -892,14 +895,13 @@ typedef struct {
   double s0, s1, A, B, w;
 } vosc;
 
-static inline vosc vosc_make(double q0, double p0, double F0, double F1,
-                             double w) {
+static inline vosc vosc_make(double q0, double p0, double F0, double s1,
+                             double w, double rw, double rw2) {
   vosc o;
-  double w2 = w * w;
-  o.s0 = F0 / w2;
-  o.s1 = F1 / w2;
+  o.s0 = F0 * rw2;
+  o.s1 = s1;
   o.A = q0 - o.s0;
-  o.B = (p0 - o.s1) / w;
+  o.B = (p0 - o.s1) * rw;
   o.w = w;
   return o;
 }
@@ -931,16 +933,16 @@ static inline vflow vflow_make(const bk2_dpar *P, int mode, const vstate *x0) {
   f.x0 = *x0;
   double al = P->alpha.v;
   if (mode == SC_BK2_SLIP1) {
-    f.o1 = vosc_make(x0->y1, x0->u1, P->k1.v + al * x0->y2, al * P->vs.v,
-                     P->w1.v);
+    f.o1 = vosc_make(x0->y1, x0->u1, P->k1.v + al * x0->y2, P->s1.v,
+                     P->w1.v, P->rw1.v, P->rw1sq.v);
   } else if (mode == SC_BK2_SLIP2) {
-    f.o1 = vosc_make(x0->y2, x0->u2, P->k2.v + al * x0->y1, al * P->vs.v,
-                     P->w1.v);
+    f.o1 = vosc_make(x0->y2, x0->u2, P->k2.v + al * x0->y1, P->s1.v,
+                     P->w1.v, P->rw1.v, P->rw1sq.v);
   } else {
     f.o1 = vosc_make(x0->y1 + x0->y2, x0->u1 + x0->u2, P->k1.v + P->k2.v, 0,
-                     1);
+                     1, 1, 1);
     f.o2 = vosc_make(x0->y1 - x0->y2, x0->u1 - x0->u2, P->k1.v - P->k2.v, 0,
-                     P->w2.v);
+                     P->w2.v, P->rw2.v, P->rw2sq.v);
   }
   return f;
 }

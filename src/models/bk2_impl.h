@@ -35,6 +35,10 @@ typedef struct bk2_flows bk2_flows;
 typedef struct {
   int nd;
   sc_dual alpha, beta, mu, k1, k2, t2, v, vs, w1, w2;
+  /* 1 / w and 1 / w^2 of both frequencies, and the drift alpha Vs / w1^2
+   * of a single block's slip: the flows multiply by them (a division on
+   * every phase's chain from its start state to its guards, otherwise) */
+  sc_dual rw1, rw1sq, rw2, rw2sq, s1;
 } bk2_dpar;
 
 typedef struct {

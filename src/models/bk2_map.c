@@ -123,6 +123,12 @@ void sc_bk2_dparams(const bk2_inst *b, int nd, bk2_dpar *P) {
   P->vs = b->frozen ? sc_dconst(0, nd) : P->v;
   P->w1 = sc_dsqrt(sc_daddc(P->alpha, 1), nd);
   P->w2 = sc_dsqrt(sc_daddc(sc_dscale(P->alpha, 2, nd), 1), nd);
+  sc_dual one = sc_dconst(1, nd);
+  P->rw1 = sc_ddiv(one, P->w1, nd);
+  P->rw1sq = sc_ddiv(one, sc_dmul(P->w1, P->w1, nd), nd);
+  P->rw2 = sc_ddiv(one, P->w2, nd);
+  P->rw2sq = sc_ddiv(one, sc_dmul(P->w2, P->w2, nd), nd);
+  P->s1 = sc_dmul(sc_dmul(P->alpha, P->vs, nd), P->rw1sq, nd);
 }
 
 
