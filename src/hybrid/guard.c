@@ -831,6 +831,52 @@ static inline int grid_step(const double *ve, const double *vf, int start,
   return STEP_UNDECIDED;
 }
 
+/* Whether guard h, monotone over a grid step from t (where it is g0 != 0)
+ * to tn, keeps the sign of g0 up to lim (< tn), given the root r of the
+ * other guard of its pair in the same step (r <= lim), where cos and sin
+ * of the shared terms are r->cs, r->sn: h there, bounded from its
+ * rounding and moved to lim by the largest slope h can have, keeps that
+ * sign.  Then h has no root up to lim (it is monotone on the step). */
+static inline int pair_beyond(const guard_ctx *c, const sc_guard *h, int n,
+                              double g0, const sc_root *r, double lim,
+                              double tn) {
+  if (r->ntrig != n || !(lim < tn) || !(lim >= r->t)) return 0;
+  double v[3];
+  vals_from(h, n, r->t, r->cs, r->sn, v);
+  double sigma = g0 > 0 ? 1 : -1;
+  return sigma * v[0] - (lim - r->t) * (c->z.c1 + c->z.wamp) >
+         round_at(&c->z, lim);
+}
+
+/* Both guards of a pair have a root in the grid step [t, tn] (values ve
+ * at t, vf at tn): the one whose secant point comes first is refined
+ * first, and the other only if pair_beyond() cannot prove its root to lie
+ * beyond the first's limit, where the march would drop it (two thirds of
+ * such steps on the chart).  Returns the guard whose root comes first,
+ * both refined; or -1 when the other's root is beyond the limit (out[] as
+ * the march leaves it then: the other's t the limit).  Out of line: the
+ * case is rare, and inlined it cost the march's loop its registers. */
+static __attribute__((noinline)) int refine_both(
+    const guard_ctx *c, const guard_pair *pr, const sc_guard *const *gg, int n,
+    double t, double tn, double (*ve)[3], double (*vf)[3], sc_root *out) {
+  int a = 0;
+  if (ve[1][0] / (ve[1][0] - vf[1][0]) < ve[0][0] / (ve[0][0] - vf[0][0]))
+    a = 1;
+  int b = 1 - a;
+  if (!out[a].found)
+    refine(gg[a], &c->z, c->M3, t, ve[a][0], ve[a][1], tn, vf[a][0],
+           vf[a][1], c->atol, c->rtol, &out[a]);
+  double lim = pr->limit(pr->ctx, gg[a], &out[a]);
+  if (pair_beyond(c, gg[b], n, ve[b][0], &out[a], lim, tn)) {
+    out[b] = (sc_root){.t = lim, .steps = out[b].steps};
+    return -1;
+  }
+  if (!out[b].found)
+    refine(gg[b], &c->z, c->M3, t, ve[b][0], ve[b][1], tn, vf[b][0],
+           vf[b][1], c->atol, c->rtol, &out[b]);
+  return out[1].t < out[0].t; /* (a tie to guard 0, as the march's loop) */
+}
+
 /* The grid march of one guard (ng = 1: c->g into out[0]) or of a pair
  * (ng = 2: c->g and pr->gb, whose sizes are equal, into out[0], out[1]),
  * from 0 over (0, tmax]; start[i]: guard i starts at a root to skip.  One
@@ -1032,10 +1078,17 @@ static inline int grid_march_n(const guard_ctx *c, const guard_pair *pr,
     }
     if (roots) {
       /* refine the roots bracketed by [t, tn] (the adaptive march's are
-       * found), then the earliest decides */
+       * found), then the earliest decides; both guards of a pair with a
+       * root in this grid step: refine_both() */
       int e = -1;
+      if (ng == 2 && !alone && !marched && dec[0] == STEP_ROOT &&
+          dec[1] == STEP_ROOT && !start[0] && !start[1]) {
+        live[0] = live[1] = 0;
+        e = refine_both(c, pr, gg, n, t, tn, ve, vf, out);
+        if (e < 0) return 1;
+      }
       for (int i = 0; i < ng; i++) {
-        if (dec[i] != STEP_ROOT) continue;
+        if (dec[i] != STEP_ROOT || !live[i]) continue;
         if (!out[i].found)
           refine(gg[i], &c->z, c->M3, t, ve[i][0], ve[i][1], tn, vf[i][0],
                  vf[i][1], c->atol, c->rtol, &out[i]);
