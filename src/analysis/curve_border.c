@@ -329,7 +329,7 @@ static int blocate(btrace *B, size_t k, const double *a, const double *b,
     snprintf(note, sizeof note, "not located: %.50s; bisection: %s",
              msg.text,
              bs == SC_EUNDEF ? "the border jumps (not a zero), the curve goes on"
-                             : "failed");
+                             : "failed, the curve ends here");
     return bemit(B, rej, mid, cert.residual, note);
   }
   if (st) {
