@@ -260,8 +260,9 @@ static inline void eval_near(const sc_guard *g, int n, const double *wt0,
  * rounding of zero, when a step inside the bracket is below the
  * tolerance (convergence is at least quadratic there, so the step bounds
  * the error, and the slope at the last point is the root's to O(step)),
- * or when the Taylor bound on the next error is below it.  Each step has
- * one division on its critical path.  cos and sin of every term at the
+ * or when a Taylor certificate puts the root within it (and within an
+ * ulp: GUARD_CERT_ULPS) of the next point.  Each step has one division on
+ * its critical path.  cos and sin of every term at the
  * returned root go to out->cs, out->sn (a few ulps: the flow at the event
  * takes them instead of calling libm). */
 static inline void refine_n(const sc_guard *g, int n, const guard_size *z,
@@ -325,13 +326,14 @@ static inline void refine_n(const sc_guard *g, int n, const guard_size *z,
        * g'' s^2 / 2 (computed from the values here), |R| <= M3 dl^3 / 6.
        * Within 2 dl of t, |g'| >= m = |g'| - 2 dl (|g''| + M3 dl), so
        * if m > 0, g is monotone there and has its root within
-       * est = (|q| + M3 dl^3 / 6) / m of tn; when est <= tol (< dl, so
-       * the root is within 2 dl of t, where m holds) stop without
-       * evaluating g again (slope moved to tn to first order).  Halley's
-       * step makes q of order dl^3, so one step from an iterate within
-       * ~1e-5 of the root is certified here (a bound on Newton's error
-       * alone, |g''| dl^2 / |g'|, needed ~1e-7 and a third evaluation).
-       * Tested multiplied out: est m against tol m. */
+       * est = (|q| + M3 dl^3 / 6) / m of tn; when est <= tolc (the
+       * tolerance, or GUARD_CERT_ULPS of tn if smaller; < dl, so the root
+       * is within 2 dl of t, where m holds) stop without evaluating g
+       * again (the slope at tn is taken after the loop).  Halley's step
+       * makes q of order dl^3, so one step from an iterate within ~1e-5
+       * of the root is certified here (a bound on Newton's error alone,
+       * |g''| dl^2 / |g'|, needed ~1e-7 and a third evaluation).  Tested
+       * multiplied out: est m against tolc m. */
       double s = tn - t, q = v + s * (d + s * (0.5 * d2));
       double m = fabs(d) - 2 * dl * (fabs(d2) + M3 * dl);
       double estd = fabs(q) + M3 * dl * dl * dl * (1.0 / 6);
