@@ -765,6 +765,14 @@ static inline void pair_vals(const pair_lanes *L, const sc_guard *g,
                    _mm_mul_pd(_mm_unpackhi_pd(tdd, tdd), L->s1));
 }
 
+/* g, g', g'' of both guards (guard i in lane i) into v[i][0..2]. */
+static inline void pair_store(__m128d G0, __m128d G1, __m128d G2,
+                              double (*v)[3]) {
+  _mm_storel_pd(&v[0][0], G0), _mm_storeh_pd(&v[1][0], G0);
+  _mm_storel_pd(&v[0][1], G1), _mm_storeh_pd(&v[1][1], G1);
+  _mm_storel_pd(&v[0][2], G2), _mm_storeh_pd(&v[1][2], G2);
+}
+
 /* Test (A) of grid_step() for both guards, from g, g' at the step's start
  * (E0, E1) and end (F0, F1): bit i of the result is set when guard i's
  * start is not within rounding E of zero and the cubic of its g keeps the
@@ -953,6 +961,7 @@ static inline int grid_march_n(const guard_ctx *c, const guard_pair *pr,
   const int lanes = ng == 2 && n == 2;
   pair_lanes L;
   __m128d LE0 = _mm_setzero_pd(), LE1 = _mm_setzero_pd();
+  __m128d LE2 = _mm_setzero_pd();
   /* cos and sin of the two terms, carried in registers from step to step
    * (cs[], sn[] hold them for the code one term at a time): a vector load
    * of two numbers just stored one by one would wait for the stores */
@@ -961,6 +970,7 @@ static inline int grid_march_n(const guard_ctx *c, const guard_pair *pr,
   if (lanes) {
     L = pair_lanes_make(g, pr->sgn);
     LE0 = _mm_set_pd(ve[1][0], ve[0][0]), LE1 = _mm_set_pd(ve[1][1], ve[0][1]);
+    LE2 = _mm_set_pd(ve[1][2], ve[0][2]);
     LC = pair_load(cs), LS = pair_load(sn);
     for (int l = 0; l < GUARD_GRID_LEVELS; l++)
       LRC[l] = pair_load(rc[l]), LRS[l] = pair_load(rs[l]);
@@ -1001,20 +1011,17 @@ static inline int grid_march_n(const guard_ctx *c, const guard_pair *pr,
     double nerr = rerr + rot_ulps;
     int dec[2] = {STEP_FREE, STEP_FREE}, undecided = 0, roots = 0;
 #if GUARD_PAIR_LANES
-    __m128d LF0 = LE0, LF1 = LE1, LNC = LC, LNS = LS;
+    __m128d LF0 = LE0, LF1 = LE1, LF2 = LE2, LNC = LC, LNS = LS;
     if (lanes) {
       /* the rotation (term k in lane k), both guards' values (guard i in
-       * lane i), and test (A) for both where neither starts at a root */
+       * lane i), and test (A) for both where neither starts at a root;
+       * the values reach ve, vf (and cos and sin cs, sn) only where a
+       * guard is decided one by one below */
       __m128d RC = tail ? pair_load(cr) : LRC[m];
       __m128d RS = tail ? pair_load(sr) : LRS[m];
       LNC = _mm_sub_pd(_mm_mul_pd(LC, RC), _mm_mul_pd(LS, RS));
       LNS = _mm_add_pd(_mm_mul_pd(LS, RC), _mm_mul_pd(LC, RS));
-      _mm_storeu_pd(ncs, LNC), _mm_storeu_pd(nsn, LNS);
-      __m128d LF2;
       pair_vals(&L, g, tn, LNC, LNS, &LF0, &LF1, &LF2);
-      _mm_storel_pd(&vf[0][0], LF0), _mm_storeh_pd(&vf[1][0], LF0);
-      _mm_storel_pd(&vf[0][1], LF1), _mm_storeh_pd(&vf[1][1], LF1);
-      _mm_storel_pd(&vf[0][2], LF2), _mm_storeh_pd(&vf[1][2], LF2);
     } else
 #endif
     {
@@ -1034,6 +1041,14 @@ static inline int grid_march_n(const guard_ctx *c, const guard_pair *pr,
     if (lanes)
       freed = pair_free(LE0, LE1, LF0, LF1, h, E, rem0 + E + h * E1) &
               ~(start[0] | start[1] << 1);
+#endif
+#if GUARD_PAIR_LANES
+    if (lanes && ((live[0] && !(freed & 1)) || (live[1] && !(freed & 2)))) {
+      /* a guard not proved free: both ends' values as grid_step() and
+       * the refinement read them */
+      pair_store(LE0, LE1, LE2, ve);
+      pair_store(LF0, LF1, LF2, vf);
+    }
 #endif
     double E2 = NAN;
     for (int i = 0; i < ng; i++) {
@@ -1123,6 +1138,7 @@ static inline int grid_march_n(const guard_ctx *c, const guard_pair *pr,
       if (lanes) {
         LE0 = _mm_set_pd(ve[1][0], ve[0][0]);
         LE1 = _mm_set_pd(ve[1][1], ve[0][1]);
+        LE2 = _mm_set_pd(ve[1][2], ve[0][2]);
         LC = pair_load(cs), LS = pair_load(sn);
       }
 #endif
@@ -1133,14 +1149,18 @@ static inline int grid_march_n(const guard_ctx *c, const guard_pair *pr,
     past_tried = 0;
     t = tn, rerr = nerr;
     if (!tail) q += 1L << m;
+#if GUARD_PAIR_LANES
+    if (lanes) {
+      LE0 = LF0, LE1 = LF1, LE2 = LF2, LC = LNC, LS = LNS;
+      if (m + 1 < GUARD_GRID_LEVELS) m++;
+      continue;
+    }
+#endif
     for (int k = 0; k < n; k++) cs[k] = ncs[k], sn[k] = nsn[k];
     {
       double(*tmp)[3] = ve;
       ve = vf, vf = tmp;
     }
-#if GUARD_PAIR_LANES
-    LE0 = LF0, LE1 = LF1, LC = LNC, LS = LNS;
-#endif
     if (m + 1 < GUARD_GRID_LEVELS) m++;
   }
   if (ng == 2)
