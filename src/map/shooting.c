@@ -248,6 +248,13 @@ static int finish(sc_shoot *s, sc_shoot_result *res, int neutral,
   return SC_OK;
 }
 
+/* Whether every one of x[0..n-1] is finite. */
+static int finite_all(const double *x, int n) {
+  for (int i = 0; i < n; i++)
+    if (!isfinite(x[i])) return 0;
+  return 1;
+}
+
 int sc_shoot_solve_orbit(sc_shoot *s, const double *d0, sc_shoot_result *res,
                          sc_msg *msg) {
   memset(res, 0, sizeof *res);
@@ -313,6 +320,12 @@ int sc_shoot_solve_orbit(sc_shoot *s, const double *d0, sc_shoot_result *res,
                      s->method == SC_SHOOT_SINGLE ? "single" : "multiple",
                      fnorm, last, s->x[0]);
     st = newton_step(s, msg);
+    if (st == SC_ESING && fnorm <= ftol && finite_all(s->fd, n)) {
+      /* within tolerance where the Jacobian is exactly singular: a start
+       * at a fold itself (below) */
+      res->step = it == 0 ? 0 : last;
+      return finish(s, res, 0, msg);
+    }
     if (st) return st;
     s->nnewton++;
     /* Damped Newton: halve a step that lands where the map is undefined
