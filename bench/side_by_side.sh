@@ -17,7 +17,11 @@
 # every round (the summary's third column).
 #
 # Prints one line per measurement and a summary of medians over the
-# rounds (rates per CPU second; the 1000 x 1000 chart's wall and user s).
+# rounds (rates per CPU second; the 1000 x 1000 chart's wall and user s),
+# then the 90th percentile of each build's rates (the 10th of its times):
+# a shared machine's load only slows a run down, so with 20 rounds or
+# more this quantile moves less than the median (docs/performance.md,
+# the twenty-first round).
 set -eu
 if [ $# -lt 1 ]; then
   sed -n '2,18p' "$0" | sed 's/^# \{0,1\}//'
@@ -103,15 +107,27 @@ done
 
 echo "== medians over $ROUNDS rounds (base $REV | this checkout [| native])"
 awk '
-  function med(a, n,   i, j, t) {
+  function sort_(a, n,   i, j, t) {
     for (i = 1; i <= n; i++) for (j = i + 1; j <= n; j++)
       if (a[j] < a[i]) { t = a[i]; a[i] = a[j]; a[j] = t }
+  }
+  function med(a, n) {
+    sort_(a, n)
     return n % 2 ? a[(n + 1) / 2] : (a[n / 2] + a[n / 2 + 1]) / 2
   }
-  # the median of the values of key under label l
-  function medof(l, key,   i, c) {
+  # the p-quantile of a[1..n], the nearest rank below (p n rounded down,
+  # at least 1)
+  function quant(a, n, p,   r) {
+    sort_(a, n)
+    r = int(p * n); if (r < 1) r = 1
+    return a[r]
+  }
+  # the median of the values of key under label l; with q, the 90th
+  # percentile of a rate (the 10th of a time)
+  function medof(l, key, q,   i, c) {
     for (i = 1; i <= n[l, key]; i++) c[i] = v[l, key, i]
-    return med(c, n[l, key])
+    if (!q) return med(c, n[l, key])
+    return quant(c, n[l, key], (key == "wall" || key == "user") ? 0.1 : 0.9)
   }
   # the ratio "faster than the base" of value x against the base mb
   function ratio(key, mb, x) {
@@ -122,16 +138,19 @@ awk '
                 n[$1, "user"]++; v[$1, "user", n[$1, "user"]] = $4 }
   END {
     split("fig56 fig58 bare chart wall user", keys, " ")
-    for (k = 1; k <= 6; k++) {
-      key = keys[k]
-      if (!n["base", key] || !n["now", key]) continue
-      mb = medof("base", key); mc = medof("now", key)
-      printf "%-6s %12.4g | %12.4g   (%.3fx)", key, mb, mc, ratio(key, mb, mc)
-      if (n["native", key]) {
-        mn = medof("native", key)
-        printf " | %12.4g   (%.3fx)", mn, ratio(key, mb, mn)
+    for (q = 0; q <= 1; q++) {
+      if (q) printf "== 90th percentiles of the rates, 10th of the times\n"
+      for (k = 1; k <= 6; k++) {
+        key = keys[k]
+        if (!n["base", key] || !n["now", key]) continue
+        mb = medof("base", key, q); mc = medof("now", key, q)
+        printf "%-6s %12.4g | %12.4g   (%.3fx)", key, mb, mc, ratio(key, mb, mc)
+        if (n["native", key]) {
+          mn = medof("native", key, q)
+          printf " | %12.4g   (%.3fx)", mn, ratio(key, mb, mn)
+        }
+        printf "\n"
       }
-      printf "\n"
     }
   }' "$OUT"
 echo "(rates: iterates per CPU second; wall, user: seconds; ratio > 1: faster than the base)"
