@@ -1,5 +1,5 @@
 /* Private to src/analysis: the borders of an orbit of f^m in a list that
- * grows as needed, and a border found again by name (branch_orbit.c,
+ * grows as needed, and a border found again by name (branch_*.c,
  * curve.c, curve_border.c). */
 #ifndef SC_ANALYSIS_BORDER_LIST_H
 #define SC_ANALYSIS_BORDER_LIST_H

@@ -1,7 +1,11 @@
 # sources of src/analysis
 list(APPEND SC_SOURCES src/analysis/period.c src/analysis/chart.c)
 list(APPEND SC_SOURCES src/analysis/sweep.c)
-list(APPEND SC_SOURCES src/analysis/fixed_points.c src/analysis/branch_orbit.c)
+list(APPEND SC_SOURCES src/analysis/fixed_points.c)
+list(APPEND SC_SOURCES src/analysis/branch_orbit.c
+  src/analysis/branch_segment.c
+  src/analysis/branch_border.c
+  src/analysis/branch_switch.c)
 list(APPEND SC_SOURCES src/analysis/curve.c
   src/analysis/curve_border.c
   src/analysis/border_list.c)

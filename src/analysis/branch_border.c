@@ -1,0 +1,389 @@
+/* Orbit branches: a border of a segment's orbit located by Newton's
+ * method on its defining system, where it changed sign between two
+ * accepted points (sc_ob_border_crossed) or lies just ahead of where the
+ * corrector stopped (sc_ob_locate_ahead).  See branch_orbit_impl.h. */
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "analysis/branch_orbit_impl.h"
+
+/* Newton iterations on a border's defining system: from the linear
+ * interpolation between two accepted points it converges quadratically
+ * in a handful; more means it is not converging. */
+#define BORDER_NEWTON_MAX 40
+
+/* A border located by Newton must lie between the two accepted points
+ * that bracket its sign change, up to this fraction of their distance
+ * (the interpolated start is already inside). */
+#define BRACKET_SLACK 0.5
+
+/* ------------------------------------------------------------------ */
+/* Locating a border: Newton on its defining system                     */
+
+/* Rounding level of a Newton step on a border's system, in ulps of the
+ * unknown: f^m is computed to a few ulps and the system's Jacobian
+ * amplifies that near a grazing or a switching; a tolerance below it
+ * (the "precise" preset) is met at that floor. */
+#define BORDER_NOISE_ULPS 256.0
+
+/* A Newton step on a border's system that is within tolerance, or at
+ * the rounding floor. */
+static int step_done(double dx, double x, const sc_accuracy *acc) {
+  return sc_test_delta(dx, x, acc->newton_atol, acc->newton_rtol) == SC_OK ||
+         fabs(dx) <= BORDER_NOISE_ULPS * DBL_EPSILON * (1 + fabs(x));
+}
+
+/* The border of `like` at (d, p) along the segment's codes. */
+static int border_at(sc_orbit_branch *b, int period, double d, double p,
+                     const sc_itin_code *codes, const sc_border *like,
+                     sc_border *out, sc_map_value *v) {
+  if (sc_ob_set_p(b->m, b->sp.param, p)) return SC_EINVAL;
+  int st = sc_ob_orbit_borders(b, d, period, codes, NULL, &b->bl_tmp, v, NULL);
+  if (st) return st;
+  const sc_border *x = sc_border_list_find(&b->bl_tmp, like);
+  if (!x) return SC_EUNDEF;
+  *out = *x;
+  return SC_OK;
+}
+
+/* Newton in (d0, p) on {f^m(d0) - d0 = 0, m_k(d0, p) = 0} from the
+ * interpolation between (pa, da) and (pb, db); the codes are those of the
+ * segment. */
+static void newton_2d(sc_orbit_branch *b, int period, const sc_itin_code *codes,
+                      const sc_border *like, double pa, double da, double ma,
+                      double pb, double db, double mb, border_fix *fx) {
+  const sc_accuracy *acc = &b->acc;
+  size_t ip = b->sp.param;
+  double t = ma / (ma - mb);
+  if (!(t >= 0 && t <= 1)) t = 0.5;
+  double p = pa + t * (pb - pa), d = da + t * (db - da);
+  sc_map_value v;
+  sc_border bd;
+  for (int it = 0; it < BORDER_NEWTON_MAX; it++) {
+    int st = border_at(b, period, d, p, codes, like, &bd, &v);
+    if (st) {
+      snprintf(fx->why, sizeof fx->why,
+               "the defining system cannot be evaluated at %s = %.17g, "
+               "d = %.17g (%s)",
+               sc_map_type(b->m)->params[ip].name, p, d, sc_strerror(st));
+      return;
+    }
+    double F = v.f - d;
+    double J11 = v.dfdd - 1, J12 = v.dfdp[ip], J21 = bd.dd, J22 = bd.dp[ip];
+    double det = J11 * J22 - J12 * J21;
+    fx->m = bd.value, fx->F = F, fx->mult = v.dfdd, fx->iterations = it;
+    if (!isfinite(det) || det == 0) {
+      snprintf(fx->why, sizeof fx->why,
+               "singular Jacobian of the defining system (det %.3g)", det);
+      return;
+    }
+    double dd = (F * J22 - J12 * bd.value) / det;
+    double dpp = (J11 * bd.value - F * J21) / det;
+    d -= dd;
+    p -= dpp;
+    fx->step = fabs(dpp);
+    if (step_done(dpp, p, acc) && step_done(dd, d, acc)) {
+      /* the certificate: the system at the returned point */
+      if (border_at(b, period, d, p, codes, like, &bd, &v)) {
+        snprintf(fx->why, sizeof fx->why,
+                 "the last Newton point cannot be evaluated");
+        return;
+      }
+      fx->ok = 1;
+      fx->p = p, fx->d0 = d, fx->m = bd.value, fx->F = v.f - d;
+      fx->mult = v.dfdd, fx->iterations = it + 1;
+      return;
+    }
+  }
+  snprintf(fx->why, sizeof fx->why,
+           "Newton did not converge in %d iterations (last step %.3g in "
+           "the parameter)",
+           BORDER_NEWTON_MAX, fx->step);
+}
+
+/* A border in the state itself (m = +-(d_k - d_on(p))): Newton in p on
+ * G(p) = f^m(d_on(p)) - d_on(p) with the orbit started on the border at
+ * iterate k (the codes rotated to start there).  The map may be singular
+ * next to such a border, the orbit through it is not. */
+static void newton_on_state(sc_orbit_branch *b, int period,
+                            const sc_itin_code *codes, const sc_border *like,
+                            double pa, double ma, double pb, double mb,
+                            border_fix *fx) {
+  const sc_accuracy *acc = &b->acc;
+  size_t ip = b->sp.param;
+  int k = like->iterate;
+  for (int i = 0; i < period; i++) b->codes3[i] = codes[(i + k) % period];
+  double t = ma / (ma - mb);
+  if (!(t >= 0 && t <= 1)) t = 0.5;
+  double p = pa + t * (pb - pa);
+  sc_map_value v;
+  for (int it = 0; it < BORDER_NEWTON_MAX; it++) {
+    /* d_on(p): the border of any one iterate at p says where it is */
+    sc_border_list *l = &b->bl_tmp;
+    if (sc_ob_set_p(b->m, ip, p) ||
+        sc_map_eval_ex(b->m, like->d_on, SC_EVAL_VALUE, NULL, NULL,
+                       (l->n = 0, l), &v, NULL)) {
+      snprintf(fx->why, sizeof fx->why, "cannot evaluate the map at %.17g",
+               p);
+      return;
+    }
+    double don = NAN, don_p = NAN;
+    for (size_t i = 0; i < l->n && i < l->cap; i++)
+      if (l->b[i].on_state) don = l->b[i].d_on, don_p = l->b[i].d_on_dp[ip];
+    int st = sc_map_iterate_ex(b->m, don, period, SC_EVAL_DERIV, b->codes3,
+                               NULL, NULL, &v, NULL);
+    if (st || !isfinite(don)) {
+      snprintf(fx->why, sizeof fx->why,
+               "the orbit from the border cannot be evaluated at %.17g (%s)",
+               p, sc_strerror(st));
+      return;
+    }
+    double G = v.f - don;
+    double Gp = v.dfdp[ip] + (v.dfdd - 1) * don_p;
+    fx->F = G, fx->m = 0, fx->mult = v.dfdd, fx->iterations = it;
+    if (!isfinite(Gp) || Gp == 0) {
+      snprintf(fx->why, sizeof fx->why, "singular derivative (%.3g)", Gp);
+      return;
+    }
+    double dp = G / Gp;
+    if (fx->iterations > 0 && step_done(dp, p, acc)) {
+      fx->ok = 1;
+      fx->p = p, fx->dk = don, fx->step = fabs(dp);
+      fx->iterations = it + 1;
+      /* the orbit's first point: iterate back is not possible; report
+       * the continued point by iterating forward the remaining steps */
+      double *o = b->seed;
+      if (sc_ob_iterate_orbit_forced(b, don, period, b->codes3, o) == SC_OK)
+        fx->d0 = o[(period - k) % period];
+      else
+        fx->d0 = NAN;
+      return;
+    }
+    p -= dp;
+    fx->step = fabs(dp);
+  }
+  snprintf(fx->why, sizeof fx->why,
+           "Newton did not converge in %d iterations (last step %.3g)",
+           BORDER_NEWTON_MAX, fx->step);
+}
+
+void sc_ob_locate_border(sc_orbit_branch *b, int period,
+                         const sc_itin_code *codes, const sc_border *like,
+                         double pa, double da, double ma, double pb,
+                         double db, double mb, border_fix *fx) {
+  memset(fx, 0, sizeof *fx);
+  /* the border's own code for its iterate, where it has one */
+  if (like->alt.n > 0) {
+    sc_itin_code *c = b->codes4;
+    for (int i = 0; i < period; i++) c[i] = codes[i];
+    c[like->iterate] = like->alt;
+    codes = c;
+  }
+  if (like->on_state)
+    newton_on_state(b, period, codes, like, pa, ma, pb, mb, fx);
+  else
+    newton_2d(b, period, codes, like, pa, da, ma, pb, db, mb, fx);
+  if (!fx->ok) return;
+  /* It must lie between the two points that bracket the sign change. */
+  double lo = fmin(pa, pb), hi = fmax(pa, pb);
+  double w = BRACKET_SLACK * (hi - lo) + BISECTION_REACH * (1 + fabs(pa));
+  if (fx->p < lo - w || fx->p > hi + w) {
+    fx->ok = 0;
+    snprintf(fx->why, sizeof fx->why,
+             "Newton converged to %.17g, outside the bracket [%.17g, %.17g]",
+             fx->p, lo, hi);
+    return;
+  }
+  double *o = b->seed;
+  if (!like->on_state) {
+    if (sc_ob_set_p(b->m, b->sp.param, fx->p) ||
+        sc_ob_iterate_orbit_forced(b, fx->d0, period, codes, o)) {
+      fx->ok = 0;
+      snprintf(fx->why, sizeof fx->why, "the located orbit cannot be "
+                                        "iterated");
+      return;
+    }
+    fx->dk = o[like->iterate];
+  }
+  /* The orbit located must be the segment's, not one of lower period
+   * through the same border (bk2 with beta = 1: the synchronous orbit
+   * d = d* = 0 is a fixed point of every f^m). */
+  int q = sc_orbit_minimal_period(o, period, 1e-9 * (1 + fabs(o[0])));
+  if (q < period) {
+    fx->ok = 0;
+    snprintf(fx->why, sizeof fx->why,
+             "Newton converged to an orbit of minimal period %d, not %d", q,
+             period);
+  }
+}
+
+/* Record a located (or not located) border point. */
+special_rec *sc_ob_record_border(sc_orbit_branch *b, int branch, int period,
+                                 const sc_border *bd, const border_fix *fx,
+                                 double p_est, double d_est, double width) {
+  sc_point_label l = sc_point_label_of_border(bd->kind);
+  special_rec *r;
+  if (fx->ok) {
+    r = sc_ob_add_special(b, l, branch, period, fx->p, fx->dk, fx->mult, fx->m);
+    if (!r) return NULL;
+    r->residual = fmax(fabs(fx->F), fabs(fx->m));
+    r->error = fx->step;
+    r->iterations = fx->iterations;
+    snprintf(r->note, sizeof r->note,
+             "%s of iterate %d: %s; Newton on {f^%d(d) = d, border = 0}, %d "
+             "iterations, residual %.2g",
+             sc_point_label_text(l), bd->iterate + 1, bd->name, period,
+             fx->iterations, r->residual);
+  } else {
+    r = sc_ob_add_special(b, l, branch, period, p_est, d_est, NAN, bd->value);
+    if (!r) return NULL;
+    r->method = SC_LOC_FAILED;
+    r->error = width;
+    snprintf(r->note, sizeof r->note,
+             "NOT LOCATED: %s of iterate %d (%s) changed sign here but %s",
+             sc_point_label_text(l), bd->iterate + 1, bd->name, fx->why);
+  }
+  snprintf(r->border, sizeof r->border, "%s", bd->name);
+  return r;
+}
+
+/* Detect: a border of the orbit at (u) that changed sign since the last
+ * accepted point (whose borders are in bl_prev).  Locates every such
+ * border, records the one met first, hands over, and returns 1; 0 when
+ * none changed sign.  The borders at u are left in bl_cur. */
+int sc_ob_border_crossed(sc_orbit_branch *b, segment *S, const double *u) {
+  if (!b->ctx.force) return 0;
+  int period = S->period;
+  sc_map_value v;
+  if (sc_ob_set_p(b->m, b->sp.param, u[1]) ||
+      sc_ob_orbit_borders(b, u[0], period, b->codes, NULL, &b->bl_cur, &v,
+                          NULL))
+    return 0; /* the corrector accepted it, so this does not happen */
+  int dir = u[1] > S->last_p ? 1 : -1;
+  border_fix best = {0}, fx;
+  sc_border bbest, bfail;
+  int nfail = 0, nchanged = 0;
+  char whyfail[200] = "";
+  double dist_best = HUGE_VAL;
+  for (size_t i = 0; i < b->bl_cur.n && i < b->bl_cur.cap; i++) {
+    const sc_border *c = &b->bl_cur.b[i];
+    if (c->value > 0) continue;
+    const sc_border *a = sc_border_list_find(&b->bl_prev, c);
+    if (!a || !(a->value > 0)) continue;
+    nchanged++;
+    sc_border like = *c;
+    sc_ob_locate_border(b, period, b->codes, &like, S->last_p, S->last_d,
+                        a->value, u[1], u[0], c->value, &fx);
+    if (!fx.ok) {
+      if (!nfail) bfail = like, snprintf(whyfail, sizeof whyfail, "%s", fx.why);
+      nfail++;
+      continue;
+    }
+    double dist = fabs(fx.p - S->last_p);
+    if (dist < dist_best) dist_best = dist, best = fx, bbest = like;
+  }
+  if (!nchanged) return 0;
+  special_rec *r;
+  double *orb = b->orb_a;
+  if (best.ok) {
+    r = sc_ob_record_border(b, S->branch, period, &bbest, &best, 0, 0, 0);
+    if (r && nchanged > 1) {
+      size_t n = strlen(r->note);
+      snprintf(r->note + n, sizeof r->note - n,
+               "; %d other border(s) changed sign in the same step, beyond "
+               "it (the orbit there is not real)",
+               nchanged - 1);
+    }
+    sc_ob_set_p(b->m, b->sp.param, best.p);
+    if (sc_ob_iterate_orbit_forced(b, best.d0, period, b->codes, orb))
+      memcpy(orb, b->orb_c, (size_t)period * sizeof *orb);
+    sc_ob_hand_over(b, r, period, b->codes, b->ctx.itin, best.p, orb, dir);
+    return 1;
+  }
+  /* None located: say so (the row is replaced if the fallback below
+   * locates the point), and let the caller fall back to a bisection from
+   * the last point. */
+  fx = (border_fix){0};
+  snprintf(fx.why, sizeof fx.why, "%s", whyfail);
+  r = sc_ob_record_border(b, S->branch, period, &bfail, &fx, S->last_p,
+                          S->last_d, fabs(u[1] - S->last_p));
+  if (r && nfail > 1) {
+    size_t n = strlen(r->note);
+    snprintf(r->note + n, sizeof r->note - n,
+             "; %d border(s) changed sign in this step, none located",
+             nfail);
+  }
+  return 2;
+}
+
+/* Where the corrector cannot go on from the last point A: the borders of
+ * A whose zero lies just ahead along the tangent, each located by Newton
+ * on its own defining system (a grazing met from the side where the
+ * guard fires: with the event at the guard's maximum; a switching: with
+ * the orbit started on d*).  Records the nearest certified one ahead,
+ * hands over, and returns 1; 0 when none is found. */
+int sc_ob_locate_ahead(sc_orbit_branch *b, segment *S, int dir) {
+  if (!b->ctx.force) return 0;
+  int period = S->period;
+  size_t ip = b->sp.param;
+  border_fix best = {0}, fx;
+  sc_border bbest;
+  double reach = 8 * S->set.hmax;
+  for (size_t i = 0; i < b->bl_prev.n && i < b->bl_prev.cap; i++) {
+    const sc_border *x = &b->bl_prev.b[i];
+    sc_border like = *x;
+    if (x->on_state) {
+      /* a border in the state is met tangentially by the branch (the
+       * orbit point approaches d* like the square of the distance in the
+       * parameter), so no rate predicts it: Newton from A itself, within
+       * the reach ahead */
+      if (!(x->value > 0)) continue;
+      sc_ob_locate_border(b, period, b->codes, &like, S->last_p, S->last_d, 0,
+                    S->last_p + dir * reach, S->last_d, -1, &fx);
+    } else {
+      double rate = x->dd * S->last_td + x->dp[ip] * S->last_t;
+      double ds = x->value > 0 && rate < 0 ? -x->value / rate : HUGE_VAL;
+      if (!(ds <= reach)) continue;
+      double dpar = S->last_t * ds, dd = S->last_td * ds;
+      sc_ob_locate_border(b, period, b->codes, &like, S->last_p, S->last_d,
+                    x->value, S->last_p + 2 * dpar, S->last_d + 2 * dd,
+                    -x->value, &fx);
+    }
+    /* A border in the state is met tangentially: the orbit point sits
+     * within rounding of it over a stretch of the parameter (its
+     * distance grows like the square of the parameter's), so the last
+     * accepted point may lie a little past the solution. */
+    double behind = (x->on_state ? BISECTION_REACH : 1e-12) *
+                    (1 + fabs(S->last_p));
+    if (!fx.ok || (fx.p - S->last_p) * dir < -behind) continue;
+    if (!best.ok || fabs(fx.p - S->last_p) < fabs(best.p - S->last_p))
+      best = fx, bbest = like;
+  }
+  if (!best.ok) return 0;
+  special_rec *r =
+      sc_ob_record_border(b, S->branch, period, &bbest, &best, 0, 0, 0);
+  if (r) {
+    size_t n = strlen(r->note);
+    snprintf(r->note + n, sizeof r->note - n,
+             "; met where the corrector stopped (the segment's smooth "
+             "extension ends at it)");
+  }
+  double *orb = b->orb_a;
+  const sc_itin_code *codes = bbest.alt.n > 0 ? b->codes4 : b->codes;
+  if (bbest.on_state) {
+    /* the orbit from the point on d*, rotated back to the segment's start */
+    for (int i = 0; i < period; i++) orb[i] = NAN;
+    sc_ob_set_p(b->m, ip, best.p);
+    if (sc_ob_iterate_orbit_forced(b, best.dk, period, b->codes3, b->seed) == 0)
+      for (int i = 0; i < period; i++)
+        orb[(i + bbest.iterate) % period] = b->seed[i];
+  } else {
+    sc_ob_set_p(b->m, ip, best.p);
+    sc_ob_iterate_orbit_forced(b, best.d0, period, codes, orb);
+  }
+  sc_ob_hand_over(b, r, period, b->codes, b->ctx.itin, best.p, orb, dir);
+  return 1;
+}

@@ -1,0 +1,201 @@
+/* Private to src/analysis/branch_*.c: the orbit-branch object, its
+ * records and the steps shared by its files.
+ *
+ * A branch is run as jobs, each a segment continued along one itinerary
+ * code (branch_segment.c): sc_orbit_branch_run() (branch_orbit.c) runs
+ * the jobs; a segment watches the model's borders and locates the one
+ * crossed (branch_border.c), then hands over to the orbit on the other
+ * side, or falls back to a bisection, or switches at a flip to the
+ * doubled period (branch_switch.c); each hand-over or switch queues a new
+ * job.  The object, its records and the small orbit helpers are in
+ * branch_orbit.c.  See orbit_branch.h and docs/branches.md. */
+#ifndef SC_ANALYSIS_BRANCH_ORBIT_IMPL_H
+#define SC_ANALYSIS_BRANCH_ORBIT_IMPL_H
+
+#include "analysis/border_list.h"
+#include "slipcont/branch.h"
+#include "slipcont/continuation.h"
+#include "slipcont/shooting.h"
+
+/* Notes longer than this are cut. */
+#define NOTE_LEN 640
+
+/* How far (relative to 1 + |p|) a border located by Newton from the far
+ * side may lie from a bisection bracket and still be the border that
+ * bracket found: well below the distance between distinct special
+ * points of a branch (1e-4 and more on the chapter's examples). */
+#define BISECTION_REACH 1e-6
+
+/* Orbits of the same period are the same within SAME_ORBIT_TOL
+ * (branch_segment.c), or, for a map known only to its precision P
+ * (numerical flows), this many times P. */
+#define SAME_ORBIT_PREC 100.0
+
+typedef struct {
+  int branch, period, stable;
+  double p, d, multiplier;
+  double dmin; /* smallest orbit point: the same for every cyclic shift */
+  char itin[SC_ITIN_LEN];
+} point_rec;
+
+typedef struct {
+  sc_point_label label;
+  int branch, period;
+  double p, d, multiplier, degeneracy, residual, error;
+  sc_location_method method;
+  int iterations;
+  char border[SC_BORDER_NAME];
+  char note[NOTE_LEN];
+} special_rec;
+
+typedef struct {
+  int period, direction;
+  double p, d;
+  double offset; /* > 0: started this far beyond a located point, which
+                    may be moved further if the start fails */
+  char origin[96];
+} job;
+
+/* What the callbacks of the continuation layer read. */
+typedef struct {
+  sc_map *m;
+  size_t param;
+  int period;
+  const sc_itin_code *force; /* the segment's codes (a model with borders) */
+  char itin[SC_ITIN_LEN];    /* the piece being continued */
+  int lock;                  /* 1: stay on that piece (a piecewise-smooth
+                                model whose codes could not be forced);
+                                0: a smooth map, or forced codes */
+} g_ctx;
+
+struct sc_orbit_branch {
+  sc_map *m;
+  sc_orbit_branch_spec sp;
+  size_t npts, cap_pts, nsp, cap_sp;
+  point_rec *pts;
+  special_rec *sps;
+  int nomem;   /* a point or special point could not be stored */
+  size_t nduplicate; /* special points met again by another segment */
+  job *jobs;
+  int njobs, nbranches;
+  job *starts; /* added starts (direction unused) */
+  int nstarts;
+  double *orbit; /* scratch: orbit points, up to max_period + 1 */
+  double *seed;
+  double *orb_a; /* scratch: the orbit on the known side of a DIB */
+  double *orb_c; /* scratch: the orbit at the current point */
+  double *orb_f; /* the orbit at the first point of the segment */
+  sc_itin_code *codes;  /* the segment's codes (max_period + 2) */
+  sc_itin_code *codes2; /* scratch codes */
+  sc_itin_code *codes3; /* scratch codes */
+  sc_itin_code *codes4; /* a border's defining codes (its own code in) */
+  sc_border_list bl_prev, bl_cur, bl_tmp; /* borders (grow as needed) */
+  sc_accuracy acc; /* the map's, its Newton tolerances no tighter than the
+                      map's precision (sc_map_precision()) */
+  sc_shoot **shooters; /* multiple shooting by period, made on first use
+                          (max_period + 2 entries) */
+  g_ctx ctx;
+};
+
+/* What sc_ob_locate_border() found. */
+typedef struct {
+  int ok;
+  double p, d0;   /* the parameter and the orbit's first point */
+  double dk;      /* the orbit point where the border is met */
+  double m, F;    /* border and orbit residual at the solution */
+  double step;    /* last Newton step in p (the error estimate) */
+  double mult;    /* (f^m)' there */
+  int iterations;
+  char why[200];
+} border_fix;
+
+/* One segment being continued (branch_segment.c). */
+typedef struct {
+  const job *jb;
+  int branch, period;
+  sc_branch *br;
+  sc_cont_settings set;
+  double last_p, last_d, last_t, last_td, last_mult;
+  double p_first, dmin_first, prev_p;
+  int moved;
+  unsigned long nrej; /* rejected LP/PD locations seen so far */
+} segment;
+
+/* branch_orbit.c: records, jobs and orbits ------------------------- */
+
+/* Set parameter i of m to p unless it has that value already. */
+int sc_ob_set_p(sc_map *m, size_t i, double p);
+/* Store an accepted point (sets b->nomem when it cannot). */
+void sc_ob_add_point(sc_orbit_branch *b, int branch, int period, double p,
+                     double d, const sc_map_value *v, double dmin);
+/* Store a special point; NULL when it is a duplicate (counted) or memory
+ * is short. */
+special_rec *sc_ob_add_special(sc_orbit_branch *b, sc_point_label l,
+                               int branch, int period, double p, double d,
+                               double mult, double deg);
+/* Store an end point whose note is fmt with a and c (NULL: ""). */
+void sc_ob_add_end(sc_orbit_branch *b, int branch, int period, double p,
+                   double d, double mult, const char *fmt, const char *a,
+                   const char *c);
+/* Queue a job; 0 when max_branches are queued already. */
+int sc_ob_push_job(sc_orbit_branch *b, int period, double p, double d,
+                   int direction, double offset, const char *origin);
+/* Shoot a period-q orbit at p from seed[0..q-1]; the orbit into
+ * b->orbit. */
+int sc_ob_shoot_at(sc_orbit_branch *b, int q, double p, const double *seed,
+                   sc_shoot_result *res);
+/* The q orbit points of d into out, along codes (NULL: natural). */
+int sc_ob_iterate_orbit_forced(sc_orbit_branch *b, double d, int q,
+                               const sc_itin_code *codes, double *out);
+int sc_ob_iterate_orbit(sc_orbit_branch *b, double d, int q, double *out);
+/* Every point of orbit a (na) within tol of a point of orbit c (nc). */
+int sc_ob_close_orbits(const double *a, int na, const double *c, int nc,
+                       double tol);
+/* Codes of q iterates equal (a aligned with c shifted by k). */
+int sc_ob_same_codes(const sc_itin_code *a, const sc_itin_code *c, int q,
+                     int k);
+/* f^m at (d, p) with every border, along force (NULL: natural), the
+ * codes into codes. */
+int sc_ob_orbit_borders(sc_orbit_branch *b, double d, int period,
+                        const sc_itin_code *force, sc_itin_code *codes,
+                        sc_border_list *bl, sc_map_value *v, sc_msg *msg);
+
+/* branch_segment.c ------------------------------------------------- */
+
+/* Continue the job jb as branch number `branch`. */
+int sc_ob_run_segment(sc_orbit_branch *b, const job *jb, int branch,
+                      sc_msg *msg);
+
+/* branch_border.c: locating a border ------------------------------- */
+
+/* Newton on the defining system of border `like` between (pa, da, ma)
+ * and (pb, db, mb); the result, or why not, in fx. */
+void sc_ob_locate_border(sc_orbit_branch *b, int period,
+                         const sc_itin_code *codes, const sc_border *like,
+                         double pa, double da, double ma, double pb,
+                         double db, double mb, border_fix *fx);
+/* Record a located (or not located) border point. */
+special_rec *sc_ob_record_border(sc_orbit_branch *b, int branch, int period,
+                                 const sc_border *bd, const border_fix *fx,
+                                 double p_est, double d_est, double width);
+/* A border changed sign since the last accepted point: 1 located and
+ * handed over, 2 none located (fall back), 0 none changed sign. */
+int sc_ob_border_crossed(sc_orbit_branch *b, segment *S, const double *u);
+/* Where the corrector stopped: the nearest border ahead located and
+ * handed over (1), or 0. */
+int sc_ob_locate_ahead(sc_orbit_branch *b, segment *S, int dir);
+
+/* branch_switch.c: hand-overs, the bisection fallback, flips -------- */
+
+/* After a located point: the orbit on the other side, queued. */
+int sc_ob_hand_over(sc_orbit_branch *b, special_rec *r, int m,
+                    const sc_itin_code *cod, const char *itin, double p,
+                    double *orb, int dir);
+/* The fallback from the segment's last point: bisection on a change of
+ * itinerary code, then the border there located from the far side. */
+void sc_ob_fall_back(sc_orbit_branch *b, segment *S, const job *jb,
+                     sc_msg *msg);
+/* At a located flip: the period-doubled orbit queued (1), or 0. */
+int sc_ob_switch_flip(sc_orbit_branch *b, int m, double p, double d);
+
+#endif
