@@ -1,5 +1,5 @@
-/* Event-map iterates per CPU second on one core, the workloads of issue 9
- * (docs/performance.md, "Event map: the certified search"):
+/* Event-map iterates per CPU second on one core, on the workloads of
+ * docs/performance.md, "Where it stands":
  *
  *   bench_events [repeats] [iterates] [figure: 0 both, 1, 2]
  *

@@ -1,4 +1,4 @@
-/* Where an iterate's time goes (docs/performance.md, issue 9): the event
+/* Where an iterate's time goes (docs/performance.md, "The profile"): the event
  * map's root searches, recorded on a workload and replayed alone.
  *
  *   bench_searches [chart | fig56 | fig58] [N]

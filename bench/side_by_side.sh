@@ -2,7 +2,7 @@
 # The event map's speed, this checkout against an earlier commit, measured
 # side by side: both are built the same way (Release, from `git archive`
 # for the base) and their benchmarks run alternately, so that the load of
-# a shared machine falls on both (docs/performance.md, issue 9's tables).
+# a shared machine falls on both (docs/performance.md, "How to measure").
 #
 # usage: bench/side_by_side.sh BASE_REV [ROUNDS] [big]
 #   BASE_REV  a commit of this repository (e.g. dac61ff, HEAD~3)
@@ -21,8 +21,7 @@
 # then the 90th percentile of each build's rates (the 10th of its times):
 # a shared machine's load only slows a run down, so this quantile moves
 # less than the median (one binary against its copy, 40 rounds: within
-# 0.9%, the medians 7% apart; docs/performance.md, the twenty-first
-# round).
+# 0.9%, the medians 7% apart; docs/performance.md, "How to measure").
 set -eu
 if [ $# -lt 1 ]; then
   sed -n '2,18p' "$0" | sed 's/^# \{0,1\}//'

@@ -1,4 +1,4 @@
-# Period detection and two-parameter charts (issue 3).
+# Period detection and two-parameter charts.
 sc_add_test(test_period)
 sc_add_test(test_chart)
 # Through the program: threads, resume, signals, bad scenes, examples.

@@ -1,5 +1,5 @@
 # The corpus of bad input found by probing the program as a new user
-# would (issue 10): each is refused with exit status 2, its message, and
+# would: each is refused with exit status 2, its message, and
 # nothing created; plus inputs that must be accepted (CR line endings).
 . "$(dirname "$0")/cli_common.sh"
 

@@ -7,7 +7,7 @@
  * which plain evaluations took before) and to the one with derivatives
  * (nd = 5, whose values do not depend on the directions), and through
  * eval_ex with and without a requested itinerary code (which keeps the
- * dual path).  Docs: docs/events.md, docs/performance.md (issue 9).
+ * dual path).  Docs: docs/events.md, docs/performance.md.
  *
  * The points, reproducible from a fixed seed, per random parameter set
  * (alpha in [0.5, 20], beta 1 or in [1, 20], phi 1.25 or in [1.05, 3],

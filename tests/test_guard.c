@@ -578,8 +578,8 @@ int main(void) {
    * Newton in long double: within the bracket the search reports (its
    * rounding over the slope).  Measured: the worst error 0.088 of the
    * bracket, whether R sin(theta) is taken from the squares, as now, or
-   * as sqrt((R - |c0|)(R + |c0|)) (docs/performance.md, nineteenth
-   * round: the mean errors are 1.3-2.3 times smaller now). */
+   * as sqrt((R - |c0|)(R + |c0|)) (docs/performance.md, "What was
+   * tried": the mean errors are 1.3-2.3 times smaller now). */
   {
     double worst = 0;
     int roots = 0, tried = 0;

@@ -6,7 +6,7 @@
  * guard at multiples of a twelfth of the fastest period, with cos and sin
  * carried by rotations, and decides each interval by cubic Hermite bounds;
  * the intervals it cannot decide go to the adaptive march described here,
- * which was the whole search before issue 9.  Two guards whose terms
+ * which was once the whole search.  Two guards whose terms
  * differ only in sign (bk2's re-sticks in a slip of both blocks) are
  * marched together, each term computed once (sc_guard_first_root_pair,
  * at the end; docs/events.md, "Two guards at once").

@@ -235,7 +235,7 @@ double sc_map_precision(const sc_map *m) {
  * empty text): the map's inner loop clears a result per iterate, and the
  * 256-byte text is most of it.  Field by field, not by two memsets, which
  * GCC lays out as `rep stos`: their start-up cost was 6% of a chart's
- * time (docs/performance.md, sixteenth round). */
+ * time (docs/performance.md, "What was tried"). */
 static void clear_value(sc_map_value *v) {
   /* every field is named below: a field added to sc_map_value changes its
    * size and stops the build here until it is cleared too */

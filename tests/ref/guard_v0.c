@@ -1,5 +1,5 @@
 /* FROZEN REFERENCE, test-only: the certified first-root search exactly as
- * src/hybrid/guard.c had it before the grid march (issue 9), renamed
+ * src/hybrid/guard.c had it before the grid march, renamed
  * sc_guard_first_root_v0 and self-contained (its own evaluation), so that
  * tests/test_map_equiv.c can run the map with the earlier search beside
  * the current one.  Do not edit: it is the yardstick.

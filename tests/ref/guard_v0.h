@@ -1,4 +1,4 @@
-/* The first-root search before issue 9, kept callable for the map
+/* The first-root search before the grid march, kept callable for the map
  * equivalence tests (tests/ref/guard_v0.c). */
 #ifndef SC_TESTS_REF_GUARD_V0_H
 #define SC_TESTS_REF_GUARD_V0_H
