@@ -547,74 +547,239 @@ static int num_phase_at_max(const bk2_inst *b, const bk2_dpar *P, int mode,
   return sc_bk2_take_event_at_max(P, mode, kind, g2, acc2, x);
 }
 
+/* ---- one slip phase ------------------------------------------------------
+ * num_phase() in named steps: the candidate guards (phase_guards()), an
+ * event at the phase's very start (start_event()), the march with the
+ * first root in each step (step_root()), the event time on the true
+ * solution (locate_event()), the tie rules (resolve_ties()) and the state
+ * after it (end_phase()). */
+
+/* Whether the re-stick guard g = U_i - Vs of slipping block `kind`, within
+ * rounding of zero at state y, arrives at zero from the slipping side (a
+ * re-stick) rather than leaves it.  A block slips slower than the surface,
+ * U_i < Vs, from the moment it comes loose until U_i climbs back to Vs
+ * (MODEL.md), so a re-stick is U_i returning to Vs after having left it:
+ * g' > 0, or g' within rounding and g'' > 0.  A block that has just come
+ * loose leaves: U_i' = K_i - S_i is K_i - T_i < 0 at its start with
+ * Coulomb friction and 0 with velocity weakening (K_i(Vs) = T_i), and then
+ * U_i'' = -S_i' < 0, so for a while both g and g' lie below their rounding
+ * and only g'' tells the way (the other block triggered 1e-6 after it next
+ * to d*, g ~ -1e-14: not a re-stick).  A maximum of g that touches zero
+ * (g' ~ 0, g'' < 0) counts as no re-stick: it is a grazing's border, where
+ * the map takes either side.  U_i' = K_i - S_i is rounded like S_i, so
+ * like the guards (round_guard()). */
+static int restick_arrives(const bk2_inst *b, int mode, int kind,
+                           const double *y, const double *dy) {
+  double g2, g1 = guard_prime(b, mode, kind, y, dy, &g2);
+  double E = round_guard(b, y);
+  return g1 > E || (g1 >= -E && g2 > 0);
+}
+
+/* The guards that may end a phase of `mode` (kinds: 1, 2 re-stick of
+ * block i; 3 threshold of the stuck block), or with a forced code the
+ * forced one alone (*both: it ends the slip of both blocks).  Returns
+ * their number, or a negative status. */
+static int phase_guards(const bk2_events *ev, int mode, int kinds[3],
+                        int *both, sc_msg *msg) {
+  int ng = 0;
+  *both = 0;
+  if (slipping(mode, 1)) kinds[ng++] = 1;
+  if (slipping(mode, 2)) kinds[ng++] = 2;
+  if (mode != SC_BK2_SLIP12) kinds[ng++] = 3;
+  if (!ev->force) return ng;
+  /* Follow the code: only the forced guard ends the phase. */
+  int want = ev->force[0];
+  int gk = BK2_GUARD_OF(want), ok = 0;
+  for (int i = 0; i < ng; i++) ok |= kinds[i] == gk;
+  if (!ok || (BK2_IS_BOTH(want) && mode != SC_BK2_SLIP12))
+    return sc_fail(msg, SC_EINVAL,
+                   "bk2: the forced itinerary code does not fit slip mode "
+                   "%d (event %d)",
+                   mode, want);
+  if (!(want & BK2_EV_ATMAX) && ev->force[1] > 0)
+    return sc_fail(msg, SC_EINVAL,
+                   "bk2: a forced root with a count of maxima: not a code "
+                   "of this version");
+  kinds[0] = gk;
+  *both = BK2_IS_BOTH(want);
+  return 1;
+}
+
+/* The guard that ends a phase at its very start, or -1.  Every guard
+ * approaches zero from below; one past zero fires at once, as in the exact
+ * flows, and so does one within rounding of zero that is on its way up: a
+ * threshold (S_j' > 0) or a re-stick that arrives (restick_arrives()); a
+ * fresh block's re-stick guard starts at zero by construction and never
+ * does. */
+static int start_event(const bk2_inst *b, int mode, int fresh,
+                       const int *kinds, int ng, const double *y,
+                       const double *dy, double *slope) {
+  double E = round_guard(b, y);
+  for (int i = 0; i < ng; i++) {
+    int k = kinds[i];
+    if (k < 3 && (fresh & k)) continue;
+    double sl, g = guard(b, mode, k, y, dy, &sl);
+    int up = k < 3 ? restick_arrives(b, mode, k, y, dy) : sl > 0;
+    if (g > E || (g >= -E && up)) {
+      *slope = sl;
+      return i;
+    }
+  }
+  return -1;
+}
+
+/* The first root in the step [t0, t] of guard `kind` rising through zero,
+ * as an offset from t0, or -1.  At the phase's start the start root of a
+ * guard that leaves zero (a fresh block's, or one within rounding that
+ * start_event() did not take) is skipped: such a guard cannot re-stick
+ * before it has left zero (restick_arrives()). */
+static double step_root(const bk2_inst *b, int w, gsl_odeiv2_system *sys,
+                        int mode, int fresh, int kind, double t0,
+                        const double *y0, const double *dy0, double t,
+                        const double *y1, const double *dy1, double hmax) {
+  double s0, s1, step = t - t0;
+  double g0 = guard(b, mode, kind, y0, dy0, &s0);
+  double g1 = guard(b, mode, kind, y1, dy1, &s1);
+  int skip = t0 == 0 && ((kind < 3 && (fresh & kind)) ||
+                         fabs(g0) <= round_guard(b, y0));
+  double r = hermite_root(g0, s0, g1, s1, step, skip, 1);
+  /* A guard that rises and falls back inside the step, negative at both
+   * ends: its maximum, refined on the true solution, decides whether it
+   * touched zero (a grazing the interpolant may hide when the hump is
+   * lower than its error).  A leaving guard's start is no maximum: its
+   * first piece is skipped as its start root is. */
+  if (r < 0 && g0 < 0 && g1 < 0 && s0 > 0 && s1 < 0) {
+    double a0, a1, ym[DIM_MAX], dym[DIM_MAX];
+    guard_prime(b, mode, kind, y0, dy0, &a0);
+    guard_prime(b, mode, kind, y1, dy1, &a1);
+    double rm = hermite_root(s0, a0, s1, a1, step, skip, -1);
+    if (rm >= 0) {
+      double tm = t0 + rm, sm;
+      refine(b, w, sys, mode, kind, 1, t0, y0, t, hmax, &tm, ym, dym);
+      double gm = guard(b, mode, kind, ym, dym, &sm);
+      if (gm >= -round_guard(b, ym)) {
+        /* the root: on [t0, tm], where g rises from g0 < 0 */
+        double rr = hermite_root(g0, s0, gm, 0, tm - t0, 0, 1);
+        r = rr >= 0 ? rr : tm - t0;
+      }
+    }
+  }
+  return r;
+}
+
+/* The event time of guard `kind` by Newton's method on the true solution
+ * from the step's start (t0, y0), starting at te within [t0, t1]: the
+ * time, and the state, its derivative, the guard's value and slope there
+ * (yt, dyt, *slope). */
+static double locate_event(const bk2_inst *b, int w, gsl_odeiv2_system *sys,
+                           int mode, int kind, double t0, const double *y0,
+                           double t1, double te, double hmax, double *yt,
+                           double *dyt, double *slope) {
+  for (int it = 0; it < EVENT_NEWTON_MAX; it++) {
+    memcpy(yt, y0, DIM_MAX * sizeof *yt);
+    if (te > t0 && advance_to(b->num, w, sys, t0, te, hmax, yt)) break;
+    rhs(te, yt, dyt, sys->params);
+    double g = guard(b, mode, kind, yt, dyt, slope);
+    if (*slope == 0) return te;
+    double dt = -g / *slope;
+    double tol = b->acc.event_atol + b->acc.event_rtol * te;
+    te = fmin(fmax(te + dt, t0), t1);
+    if (fabs(dt) <= tol) break;
+  }
+  memcpy(yt, y0, DIM_MAX * sizeof *yt);
+  if (te > t0) advance_to(b->num, w, sys, t0, te, hmax, yt);
+  rhs(te, yt, dyt, sys->params);
+  guard(b, mode, kind, yt, dyt, slope);
+  return te;
+}
+
+/* The tie rules at an event of guard kinds[*which] at time te, state yt
+ * (MODEL.md): another re-stick within the event's bracket (the event
+ * tolerance over its slope, plus rounding) that arrives at zero
+ * (restick_arrives(); a block that has only just come loose does not)
+ * goes first when the event is a threshold, a re-stick that coincides
+ * with the other block's threshold giving a GSP of zero length; two such
+ * re-sticks end the slip of both blocks.  Updates *which and *slope;
+ * returns whether both blocks re-stick. */
+static int resolve_ties(const bk2_inst *b, int mode, const int *kinds,
+                        int ng, int *which, double te, const double *yt,
+                        const double *dyt, double *slope) {
+  double tol = b->acc.event_atol + b->acc.event_rtol * te;
+  for (int i = 0; i < ng; i++) {
+    if (i == *which || kinds[i] >= 3) continue;
+    double si, gi = guard(b, mode, kinds[i], yt, dyt, &si);
+    if (!(fabs(gi) <= tol * fabs(si) + round_guard(b, yt)) ||
+        !restick_arrives(b, mode, kinds[i], yt, dyt))
+      continue;
+    if (kinds[*which] < 3) return 1;
+    *which = i, *slope = si;
+  }
+  return 0;
+}
+
+/* The end of a phase at the event of guard `kind` at te (both: of both
+ * blocks): its code bytes, its borders when asked for, the state after
+ * it; returns the next mode. */
+static int end_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
+                     int fresh, const double *ystart, int kind, int both,
+                     double te, const double *yt, const double *dyt,
+                     double slope, bk2_state *x, bk2_events *ev,
+                     sc_msg *msg) {
+  int nd = P->nd;
+  ev->rec[0] = (unsigned char)(!both ? kind
+                               : kind == BK2_EV_RESTICK1 ? BK2_EV_BOTH
+                                                         : BK2_EV_BOTH2);
+  ev->rec[1] = 0;
+  if (ev->borders) {
+    /* the event time's sensitivity, dt = -dg / g' */
+    sc_dual gd = guard_at(P, mode, kind, yt), Td = sc_dconst(te, nd);
+    for (int j = 0; j < nd; j++) Td.d[j] = slope != 0 ? -gd.d[j] / slope : NAN;
+    int sb = num_borders(b, P, mode, fresh, ystart, te, ev->rec[0], &Td, NULL,
+                         ev, msg);
+    if (sb) return sb;
+  }
+  int next = finish_event(P, mode, kind, yt, dyt, slope, x);
+  if (both) {
+    x->u1 = x->u2 = P->vs;
+    return SC_BK2_STICK;
+  }
+  return next;
+}
+
 static int num_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
                      int fresh, bk2_state *x, double *duration,
                      bk2_events *ev, sc_msg *msg) {
   bk2_num *n = b->num;
   int nd = P->nd, w = nd > 0;
   rhs_ctx ctx = {b, mode, nd};
-  size_t dim = NSTATE * (1 + (size_t)nd);
   gsl_odeiv2_system sys = {rhs, NULL, w ? DIM_MAX : NSTATE, &ctx};
   double y[DIM_MAX] = {0}, y0[DIM_MAX], dy0[DIM_MAX], dy1[DIM_MAX];
+  double yt[DIM_MAX], dyt[DIM_MAX], ystart[DIM_MAX], slope = 0;
   pack(x, nd, y);
-  (void)dim;
-  double ystart[DIM_MAX];
   memcpy(ystart, y, sizeof y);
-  int kinds[3], ng = 0;
-  if (slipping(mode, 1)) kinds[ng++] = 1;
-  if (slipping(mode, 2)) kinds[ng++] = 2;
-  if (mode != SC_BK2_SLIP12) kinds[ng++] = 3;
-  int both_forced = 0;
-  if (ev->force) {
-    /* Follow the code: only the forced guard ends the phase. */
-    int want = ev->force[0];
-    int gk = BK2_GUARD_OF(want), ok = 0;
-    for (int i = 0; i < ng; i++) ok |= kinds[i] == gk;
-    if (!ok || (BK2_IS_BOTH(want) && mode != SC_BK2_SLIP12))
-      return sc_fail(msg, SC_EINVAL,
-                     "bk2: the forced itinerary code does not fit slip mode "
-                     "%d (event %d)",
-                     mode, want);
-    if (ev->force[0] & BK2_EV_ATMAX)
-      return num_phase_at_max(b, P, mode, fresh, ystart, gk, ev->force[1],
-                              x, duration, ev, msg);
-    if (ev->force[1] > 0)
-      return sc_fail(msg, SC_EINVAL,
-                     "bk2: a forced root with a count of maxima: not a code "
-                     "of this version");
-    kinds[0] = gk;
-    ng = 1;
-    both_forced = BK2_IS_BOTH(want);
-  }
+  int kinds[3], both_forced;
+  int ng = phase_guards(ev, mode, kinds, &both_forced, msg);
+  if (ng < 0) return ng;
+  if (ev->force && (ev->force[0] & BK2_EV_ATMAX))
+    return num_phase_at_max(b, P, mode, fresh, ystart, kinds[0],
+                            ev->force[1], x, duration, ev, msg);
   double hmax = STEP_FRACTION * fastest_period(b, mode);
   double tend = PHASE_PERIODS * 2 * SC_PI; /* slow period is 2 pi */
   if (mode != SC_BK2_SLIP12 && b->vs > 0)
     tend = fmax(tend, 4 * (b->beta + 1) / b->vs); /* thresholds are reached */
   gsl_odeiv2_evolve_reset(n->evol[w]);
   gsl_odeiv2_step_reset(n->step[w]);
-  double t = 0, h = hmax * 0.1;
   rhs(0, y, dy0, &ctx);
-  /* Every guard approaches zero from below; one that starts within
-   * rounding of zero (or past it) fires at once, as in the exact flows. */
-  int which0 = -1;
-  double slope0 = 0;
-  for (int i = 0; i < ng && which0 < 0; i++) {
-    if (kinds[i] < 3 && (fresh & kinds[i])) continue;
-    double sl, g = guard(b, mode, kinds[i], y, dy0, &sl);
-    double E = round_guard(b, y);
-    if (g > E || (g >= -E && sl > 0)) which0 = i, slope0 = sl;
-  }
-  if (which0 >= 0) {
+  int which = start_event(b, mode, fresh, kinds, ng, y, dy0, &slope);
+  if (which >= 0) {
     /* zero-length phase: the state is unchanged, no time shift needed
      * beyond the guard's own sensitivity */
     *duration = 0;
-    double yt[DIM_MAX], dyt[DIM_MAX];
-    memcpy(yt, y, sizeof y);
-    memcpy(dyt, dy0, sizeof dy0);
-    ev->rec[0] = (unsigned char)kinds[which0];
+    ev->rec[0] = (unsigned char)kinds[which];
     ev->rec[1] = 0;
-    return finish_event(P, mode, kinds[which0], yt, dyt, slope0, x);
+    return finish_event(P, mode, kinds[which], y, dy0, slope, x);
   }
+  double t = 0, h = hmax * 0.1;
   while (t < tend) {
     double t0 = t;
     memcpy(y0, y, sizeof y);
@@ -622,92 +787,20 @@ static int num_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
     if (st) return st;
     ev->steps++;
     rhs(t, y, dy1, &ctx);
-    double step = t - t0, troot = -1;
-    int which = -1;
+    double troot = -1;
     for (int i = 0; i < ng; i++) {
-      double s0, s1;
-      double g0 = guard(b, mode, kinds[i], y0, dy0, &s0);
-      double g1 = guard(b, mode, kinds[i], y, dy1, &s1);
-      /* a guard within rounding of zero at the start, not moving up, is
-       * the start root of a slip: skip it (see sc_guard_first_root) */
-      int skip = t0 == 0 && ((kinds[i] < 3 && (fresh & kinds[i])) ||
-                             fabs(g0) <= round_guard(b, y0));
-      double r = hermite_root(g0, s0, g1, s1, step, skip, 1);
-      /* A guard that rises and falls back inside the step, negative at
-       * both ends: its maximum, refined on the true solution, decides
-       * whether it touched zero (a grazing the interpolant may hide when
-       * the hump is lower than its error). */
-      if (r < 0 && g0 < 0 && g1 < 0 && s0 > 0 && s1 < 0) {
-        double a0, a1, ym[DIM_MAX], dym[DIM_MAX];
-        guard_prime(b, mode, kinds[i], y0, dy0, &a0);
-        guard_prime(b, mode, kinds[i], y, dy1, &a1);
-        double rm = hermite_root(s0, a0, s1, a1, step, 0, -1);
-        if (rm >= 0) {
-          double tm = t0 + rm, sm;
-          refine(b, w, &sys, mode, kinds[i], 1, t0, y0, t, hmax, &tm, ym,
-                 dym);
-          double gm = guard(b, mode, kinds[i], ym, dym, &sm);
-          if (gm >= -round_guard(b, ym)) {
-            /* the root: on [t0, tm], where g rises from g0 < 0 */
-            double rr = hermite_root(g0, s0, gm, 0, tm - t0, 0, 1);
-            r = rr >= 0 ? rr : tm - t0;
-          }
-        }
-      }
+      double r = step_root(b, w, &sys, mode, fresh, kinds[i], t0, y0, dy0, t,
+                           y, dy1, hmax);
       if (r >= 0 && (troot < 0 || r < troot)) troot = r, which = i;
     }
     if (which >= 0) {
-      /* Newton on the true solution, restarting from the step's start. */
-      double te = t0 + troot, g = 0, slope = 0;
-      double yt[DIM_MAX], dyt[DIM_MAX];
-      for (int it = 0; it < EVENT_NEWTON_MAX; it++) {
-        memcpy(yt, y0, sizeof y0);
-        if (te > t0 && advance_to(n, w, &sys, t0, te, hmax, yt)) break;
-        rhs(te, yt, dyt, &ctx);
-        g = guard(b, mode, kinds[which], yt, dyt, &slope);
-        if (slope == 0) break;
-        double dt = -g / slope;
-        double tn = fmin(fmax(te + dt, t0), t);
-        double tol = b->acc.event_atol + b->acc.event_rtol * te;
-        te = tn;
-        if (fabs(dt) <= tol) {
-          memcpy(yt, y0, sizeof y0);
-          if (te > t0) advance_to(n, w, &sys, t0, te, hmax, yt);
-          rhs(te, yt, dyt, &ctx);
-          g = guard(b, mode, kinds[which], yt, dyt, &slope);
-          break;
-        }
-      }
+      double te = locate_event(b, w, &sys, mode, kinds[which], t0, y0, t,
+                               t0 + troot, hmax, yt, dyt, &slope);
       *duration = te;
-      /* Two re-sticks within the event tolerance end the slip of both
-       * blocks, as with the exact flows (docs/model.md, tie rules). */
-      int both = both_forced;
-      for (int i = 0; i < ng && !both; i++) {
-        if (i == which || kinds[i] >= 3) continue;
-        double si, gi = guard(b, mode, kinds[i], yt, dyt, &si);
-        double tol = b->acc.event_atol + b->acc.event_rtol * te;
-        both = fabs(gi) <= tol * fabs(si) + round_guard(b, yt);
-      }
-      ev->rec[0] = (unsigned char)(!both ? kinds[which]
-                                   : kinds[which] == BK2_EV_RESTICK1
-                                       ? BK2_EV_BOTH
-                                       : BK2_EV_BOTH2);
-      ev->rec[1] = 0;
-      if (ev->borders) {
-        /* the event time's sensitivity, dt = -dg / g' */
-        sc_dual gd = guard_at(P, mode, kinds[which], yt), Td = sc_dconst(te, nd);
-        for (int j = 0; j < nd; j++)
-          Td.d[j] = slope != 0 ? -gd.d[j] / slope : NAN;
-        int sb = num_borders(b, P, mode, fresh, ystart, te, ev->rec[0], &Td,
-                             NULL, ev, msg);
-        if (sb) return sb;
-      }
-      int next = finish_event(P, mode, kinds[which], yt, dyt, slope, x);
-      if (both) {
-        x->u1 = x->u2 = P->vs;
-        return SC_BK2_STICK;
-      }
-      return next;
+      int both = both_forced || resolve_ties(b, mode, kinds, ng, &which, te,
+                                             yt, dyt, &slope);
+      return end_phase(b, P, mode, fresh, ystart, kinds[which], both, te, yt,
+                       dyt, slope, x, ev, msg);
     }
     memcpy(dy0, dy1, sizeof dy1);
   }
