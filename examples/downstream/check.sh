@@ -25,11 +25,23 @@ done
 export PKG_CONFIG_PATH="$libdir/pkgconfig${PKG_CONFIG_PATH:+:$PKG_CONFIG_PATH}"
 out=$work/pkgconfig
 mkdir -p "$out"
-# Shared: the usual flags; the run finds the libraries through rpath.
+# Shared: the usual flags; the run finds the libraries through rpath,
+# the folder taken from pkg-config as the README shows.
+pclibdir=$(pkg-config --variable=libdir slipcont)
 $cc "$here/orbit.c" -o "$out/orbit-shared" $(pkg-config --cflags --libs slipcont) \
-  -Wl,-rpath,"$libdir" -lm
+  -Wl,-rpath,"$pclibdir" -lm
 $cc "$here/scene.c" -o "$out/scene-shared" $(pkg-config --cflags --libs slipcont-io) \
-  -Wl,-rpath,"$libdir" -lm
+  -Wl,-rpath,"$pclibdir" -lm
+# Without rpath (the README's other way): the program runs with
+# LD_LIBRARY_PATH naming pkg-config's libdir; without it, it does not
+# start unless the prefix is on the loader's own path.
+$cc "$here/orbit.c" -o "$out/orbit-norpath" $(pkg-config --cflags --libs slipcont) -lm
+LD_LIBRARY_PATH="$pclibdir" "$out/orbit-norpath" >/dev/null
+if ! ldconfig -p 2>/dev/null | grep -q "$pclibdir/libslipcont" &&
+  env -u LD_LIBRARY_PATH "$out/orbit-norpath" >/dev/null 2>&1; then
+  echo "downstream: orbit-norpath ran without its library's folder" >&2
+  exit 1
+fi
 # Static: slipcont's archives, then every private dependency
 # (pkg-config --static), the system's own libraries shared.
 static_libs() {

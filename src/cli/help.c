@@ -94,6 +94,17 @@ void sc_cli_print_model(FILE *f, const sc_model_type *t, int md) {
   } else {
     fprintf(f, "%s: %s (state %s)\n", t->name, t->doc, t->state_name);
   }
+  /* One width for the column of valid values, so that the defaults and
+   * docs line up below the longest ("coulomb|velocity-weakening"). */
+  int w = 24;
+  for (size_t i = 0; i < t->nparam; i++) {
+    param_range(&t->params[i], range, sizeof range);
+    if ((int)strlen(range) > w) w = (int)strlen(range);
+  }
+  for (size_t i = 0; i < t->noption; i++) {
+    sc_option_values_text(&t->options[i], vals, sizeof vals);
+    if ((int)strlen(vals) > w) w = (int)strlen(vals);
+  }
   for (size_t i = 0; i < t->nparam; i++) {
     param_range(&t->params[i], range, sizeof range);
     char num[40];
@@ -103,7 +114,7 @@ void sc_cli_print_model(FILE *f, const sc_model_type *t, int md) {
       md_cell(f, t->params[i].doc);
       fputs(" |\n", f);
     } else {
-      fprintf(f, "  %-10s %-24s default %-8s %s\n", t->params[i].name,
+      fprintf(f, "  %-10s %-*s default %-8s %s\n", t->params[i].name, w,
               range, num, t->params[i].doc);
     }
   }
@@ -116,8 +127,8 @@ void sc_cli_print_model(FILE *f, const sc_model_type *t, int md) {
       md_cell(f, t->options[i].doc);
       fputs(" |\n", f);
     } else {
-      fprintf(f, "  %-10s %-24s default %-8s %s\n", t->options[i].name, vals,
-              t->options[i].values[0], t->options[i].doc);
+      fprintf(f, "  %-10s %-*s default %-8s %s\n", t->options[i].name, w,
+              vals, t->options[i].values[0], t->options[i].doc);
     }
   }
   fputc('\n', f);

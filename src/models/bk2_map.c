@@ -37,7 +37,8 @@ static const sc_option_info bk2_options[] = {
      "the driver keeps moving during slips, or stops (assumption 1)"},
     {"friction",
      {"coulomb", "velocity-weakening", NULL},
-     "kinetic friction: constant mu T_i, or T_i / (1 + |U_i - V_s|)"},
+     "kinetic friction: constant mu T_i (coulomb), or T_i / (1 + gamma "
+     "|U_i - V_s|) (velocity-weakening)"},
     {"flows",
      {"exact", "numerical", NULL},
      "closed-form flows, or GSL odeiv2 integration"},
