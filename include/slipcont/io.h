@@ -118,6 +118,30 @@ typedef struct {
 /** Longest scene file accepted, in bytes. */
 #define SC_SCENE_MAXBYTES (1 << 20)
 
+/** Largest other input file a scene may name (a branch task's
+ * points.csv, a chart.csv, a curve.csv), in bytes: the tasks read its
+ * head or a few rows, and this bounds the time a search for a row takes. */
+#define SC_INPUT_MAXBYTES ((long long)1 << 30)
+
+/**
+ * @brief Open a file that a scene names, for reading: the scene itself,
+ * a points.csv row, an overlay, a curve of `also`.  Every such file is
+ * opened here: without blocking (a FIFO would wait for a writer
+ * forever), and refused unless it is a regular file of at most
+ * @p max_bytes bytes, so that no input can hang or flood a run.
+ * @param what what the file is, for messages ("the scene file").
+ * @param max_bytes the largest size accepted (SC_SCENE_MAXBYTES,
+ *        SC_INPUT_MAXBYTES).
+ * @param f the stream on success, owned by the caller (fclose()).
+ * @return SC_OK; SC_EIO when it cannot be opened (the system's reason);
+ *         SC_EINVAL for a folder, FIFO, device or socket, or a file
+ *         larger than @p max_bytes; SC_ENOMEM.  The message is
+ *         `PATH: cannot open WHAT (reason)`, `PATH: not a regular file
+ *         (it is a pipe (FIFO); ...)` or `PATH: WHAT is too large (...)`.
+ */
+SC_API int sc_input_open(const char *path, const char *what,
+                         long long max_bytes, FILE **f, sc_msg *msg);
+
 /**
  * @brief Read, parse and validate the scene file @p path, and build the
  * model instance it describes.

@@ -12,6 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -280,6 +281,8 @@ static int cmd_run(const cli_args *a) {
   sc_scene *s;
   int rc = load(a, &s);
   if (rc) return rc;
+  struct stat sb;
+  int existed = stat(sc_scene_output_dir(s), &sb) == 0;
   if ((rc = prepare_output(s, 1))) {
     sc_scene_free(s);
     return rc;
@@ -328,6 +331,9 @@ static int cmd_run(const cli_args *a) {
     }
   }
   if (r.written[0]) sc_cli_note(&r, "wrote %s/{%s}", r.dir, r.written);
+  /* A run that failed before writing anything leaves no folder it made
+   * (rmdir removes only an empty one). */
+  if (rc && !existed) rmdir(r.dir);
   sc_scene_free(s);
   return rc;
 }

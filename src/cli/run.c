@@ -310,9 +310,10 @@ int sc_cli_summary_begin(sc_cli_run *r, sc_file **out) {
 }
 
 /* See tasks.h. */
-int sc_cli_check_param_ends(const sc_scene *s, sc_msg *msg) {
+int sc_cli_check_param_keys(const sc_scene *s, const char *param,
+                            const char *const *ends, int n, sc_msg *msg) {
   const sc_map *m = sc_scene_map(s);
-  const char *name = sc_scene_text(s, "parameter");
+  const char *name = sc_scene_text(s, param);
   const sc_param_info *pi =
       &sc_map_type(m)->params[sc_map_param_index(m, name)];
   /* The range is the model table's (never a copy of it). */
@@ -320,13 +321,17 @@ int sc_cli_check_param_ends(const sc_scene *s, sc_msg *msg) {
                        pi->lo_open, pi->hi_open, NULL, NULL};
   char text[128];
   sc_key_range_text(&range, text, sizeof text);
-  const char *ends[] = {"from", "to"};
-  for (int k = 0; k < 2; k++)
+  for (int k = 0; k < n; k++)
     if (sc_param_check(pi, sc_scene_real(s, ends[k]), NULL))
       return sc_scene_fail_key(s, "task", ends[k], msg,
                                "%s = %s out of range of %s (valid: %s)",
                                ends[k], sc_scene_text(s, ends[k]), name, text);
   return SC_OK;
+}
+
+int sc_cli_check_param_ends(const sc_scene *s, sc_msg *msg) {
+  static const char *const ends[] = {"from", "to"};
+  return sc_cli_check_param_keys(s, "parameter", ends, 2, msg);
 }
 
 /* See tasks.h. */

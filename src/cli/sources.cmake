@@ -3,6 +3,7 @@ set(SC_CLI_SOURCES
   src/cli/main.c
   src/cli/help.c
   src/cli/run.c
+  src/cli/inputs.c
   src/cli/tasks.c)
 list(APPEND SC_CLI_SOURCES src/cli/task_orbit.c)
 list(APPEND SC_CLI_SOURCES src/cli/task_map.c)

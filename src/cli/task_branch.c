@@ -75,39 +75,6 @@ static const sc_key_info branch_keys[] = {
 /* What a start found by parse_starts() is given to. */
 typedef int (*start_fn)(void *ctx, double p, double d, int period);
 
-/* Row n (from 1) of a points.csv of a branch task continued in the same
- * parameter: its parameter value, orbit point and period. */
-static int points_row(const sc_scene *s, const char *file, long n, double *p,
-                      double *d, int *period, char *why, size_t len) {
-  FILE *f = fopen(file, "r");
-  if (!f) {
-    snprintf(why, len, "cannot open '%.200s'", file);
-    return 0;
-  }
-  char line[4096], lab[16], par[64];
-  int ok = fgets(line, sizeof line, f) &&
-           strncmp(line, "label,parameter,value,d,period", 30) == 0;
-  if (!ok) snprintf(why, len, "'%.200s' is not a branch task's points.csv", file);
-  for (long k = 1; ok && k <= n; k++)
-    if (!fgets(line, sizeof line, f)) {
-      ok = 0;
-      snprintf(why, len, "'%.200s' has fewer than %ld rows", file, n);
-    }
-  fclose(f);
-  if (!ok) return 0;
-  if (sscanf(line, "%15[^,],%63[^,],%lf,%lf,%d", lab, par, p, d, period) != 5 ||
-      !isfinite(*p) || !isfinite(*d)) {
-    snprintf(why, len, "row %ld of '%.200s' cannot be read", n, file);
-    return 0;
-  }
-  if (strcmp(par, sc_scene_text(s, "parameter")) != 0) {
-    snprintf(why, len, "row %ld of '%.200s' is a point in %.40s, not %.40s", n, file,
-             par, sc_scene_text(s, "parameter"));
-    return 0;
-  }
-  return 1;
-}
-
 /* Read `starts`: triples, points.csv rows and `auto` (*is_auto set);
  * each start within [from, to] with a period in [1, max-period] is given
  * to fn (NULL: only check). */
@@ -125,21 +92,23 @@ static int parse_starts(const sc_scene *s, start_fn fn, void *ctx,
     for (size_t e = strlen(item); e && item[e - 1] == ' '; e--)
       item[e - 1] = '\0';
     double p = NAN, d = NAN;
-    int per = 0, used = 0;
+    int per = 0;
     char why[1024] = "";
     const char *colon = strrchr(item, ':');
+    const char *pname = sc_scene_text(s, "parameter");
     if (strcmp(item, "auto") == 0) {
       q += len;
       continue; /* handled by the run (needs the map) */
     } else if (colon && colon != item) {
-      char file[512];
-      char *end;
-      long n = strtol(colon + 1, &end, 10);
-      snprintf(file, sizeof file, "%.*s", (int)(colon - item), item);
-      if (*end || n < 1)
-        snprintf(why, sizeof why, "'%.200s': N must be a row number >= 1", item);
-      else
-        points_row(s, file, n, &p, &d, &per, why, sizeof why);
+      sc_cli_points_row row;
+      if (sc_cli_points_row_read(item, &row, why, sizeof why) == SC_OK) {
+        p = row.value, d = row.d, per = row.period;
+        if (strcmp(row.param, pname) != 0)
+          snprintf(why, sizeof why,
+                   "'%.200s' is a point in %.40s (valid: a row of a branch "
+                   "continued in %.40s)",
+                   item, row.param, pname);
+      }
     } else {
       /* strtod/strtol: sscanf's %d is undefined past INT_MAX */
       char *e1, *e2, *e3;
@@ -148,29 +117,36 @@ static int parse_starts(const sc_scene *s, start_fn fn, void *ctx,
       errno = 0;
       long lp = strtol(e2, &e3, 10);
       while (*e3 == ' ') e3++;
-      (void)used;
       if (e1 == item || e2 == e1 || e3 == e2 || *e3)
-        snprintf(why, sizeof why, "cannot read 'P D M' in '%.200s'", item);
+        snprintf(why, sizeof why,
+                 "cannot read 'P D M' in '%.200s' (valid: 'P D M' with P "
+                 "the parameter value, D a guess of an orbit point, M the "
+                 "period; 'FILE:N', row N of a branch task's points.csv; or "
+                 "'auto'; separated by ';')",
+                 item);
       else if (errno == ERANGE || lp < 1 || lp > maxp)
-        snprintf(why, sizeof why, "'%.200s': period %s (valid: [1, "
-                                  "max-period = %ld])",
-                 item, e2, maxp);
+        snprintf(why, sizeof why,
+                 "'%.200s': period %s (valid: [1, max-period = %ld])", item,
+                 e2 + strspn(e2, " "), maxp);
+      else if (!isfinite(p) || !isfinite(d))
+        snprintf(why, sizeof why,
+                 "'%.200s': P = %g, D = %g (valid: finite numbers)", item, p,
+                 d);
       else
         per = (int)lp;
     }
-    if (!why[0] && !(isfinite(p) && isfinite(d) && (from - p) * (to - p) <= 0))
-      snprintf(why, sizeof why, "'%.200s': P = %g, D = %g (valid: P inside "
-                                "[from, to], D finite)",
-               item, p, d);
+    if (!why[0] && !((from - p) * (to - p) <= 0))
+      snprintf(why, sizeof why,
+               "'%.200s': %s = %.17g (valid: inside [from, to] = [%.40s, "
+               "%.40s])",
+               item, pname, p, sc_scene_text(s, "from"),
+               sc_scene_text(s, "to"));
     if (!why[0] && (per < 1 || per > maxp))
       snprintf(why, sizeof why, "'%.200s': period %d (valid: [1, max-period = "
                                 "%ld])",
                item, per, maxp);
     if (why[0])
-      return sc_scene_fail_key(s, "task", "starts", msg,
-                               "starts: %s (valid: 'P D M', 'FILE:N' or "
-                               "'auto', separated by ';')",
-                               why);
+      return sc_scene_fail_key(s, "task", "starts", msg, "starts: %s", why);
     if (fn) {
       int st = fn(ctx, p, d, per);
       if (st) return st;
@@ -191,6 +167,68 @@ static int has_auto(const sc_scene *s) {
     q += len;
   }
   return 0;
+}
+
+/* The next word of *q (separated by blanks) into buf; 0 at the end. */
+static int next_word(const char **q, char *buf, size_t len) {
+  const char *w = *q + strspn(*q, " \t");
+  size_t n = strcspn(w, " \t");
+  if (n == 0) return 0;
+  snprintf(buf, len, "%.*s", (int)(n < len ? n : len - 1), w);
+  *q = w + n;
+  return 1;
+}
+
+/* auto-d: 'LO HI', two numbers with LO < HI. */
+static int auto_d(const sc_scene *s, double *lo, double *hi, sc_msg *msg) {
+  const char *q = sc_scene_text(s, "auto-d");
+  char w[3][64];
+  int n = 0;
+  while (n < 3 && next_word(&q, w[n], sizeof w[n])) n++;
+  if (n != 2 || sc_parse_double(w[0], lo) || sc_parse_double(w[1], hi) ||
+      !(*lo < *hi))
+    return sc_scene_fail_key(s, "task", "auto-d", msg,
+                             "auto-d = %s (valid: 'LO HI', two numbers with "
+                             "LO < HI)",
+                             sc_scene_text(s, "auto-d"));
+  return SC_OK;
+}
+
+/* auto-at: the next value of the list at *q (the list checked by
+ * check_auto_at()), or `from` once when auto-at is not given; 0 at the
+ * end. */
+static int auto_at_next(const sc_scene *s, const char **q, double *p) {
+  char w[64];
+  if (!sc_scene_text(s, "auto-at")) {
+    if (*q) return 0;
+    *q = "";
+    *p = sc_scene_real(s, "from");
+    return 1;
+  }
+  if (!*q) *q = sc_scene_text(s, "auto-at");
+  return next_word(q, w, sizeof w) && sc_parse_double(w, p) == SC_OK;
+}
+
+/* auto-at: numbers separated by blanks, each inside [from, to]. */
+static int check_auto_at(const sc_scene *s, sc_msg *msg) {
+  const char *q = sc_scene_text(s, "auto-at");
+  double a = sc_scene_real(s, "from"), b = sc_scene_real(s, "to"), p;
+  char w[64];
+  for (int k = 1; q && next_word(&q, w, sizeof w); k++) {
+    if (strlen(w) >= sizeof w - 1 || sc_parse_double(w, &p))
+      return sc_scene_fail_key(s, "task", "auto-at", msg,
+                               "auto-at: value %d, '%s', is not a number "
+                               "(valid: numbers separated by spaces, inside "
+                               "[from, to])",
+                               k, w);
+    if ((a - p) * (b - p) > 0)
+      return sc_scene_fail_key(s, "task", "auto-at", msg,
+                               "auto-at: value %d, %s, is outside [from, "
+                               "to] = [%s, %s] (valid: inside it)",
+                               k, w, sc_scene_text(s, "from"),
+                               sc_scene_text(s, "to"));
+  }
+  return SC_OK;
 }
 
 static int branch_check(const sc_scene *s, sc_msg *msg) {
@@ -219,6 +257,9 @@ static int branch_check(const sc_scene *s, sc_msg *msg) {
                                "at = %s outside [from, to]",
                                sc_scene_text(s, "at"));
   }
+  double lo, hi;
+  if ((st = auto_d(s, &lo, &hi, msg)) || (st = check_auto_at(s, msg)))
+    return st;
   if (has_auto(s) &&
       sc_scene_int(s, "auto-period") > sc_scene_int(s, "max-period"))
     return sc_scene_fail_key(s, "task", "auto-period", msg,
@@ -590,33 +631,21 @@ static int auto_starts(sc_cli_run *r, sc_orbit_branch *ob, size_t param,
                        size_t *n, size_t *lost) {
   const sc_scene *s = r->scene;
   sc_map *m = r->map;
-  double lo = -0.5, hi = 0.5;
-  if (sscanf(sc_scene_text(s, "auto-d"), "%lf %lf", &lo, &hi) != 2 ||
-      !(lo < hi))
-    return sc_scene_fail_key(s, "task", "auto-d", r->msg,
-                             "auto-d = %s (valid: 'LO HI', LO < HI)",
-                             sc_scene_text(s, "auto-d"));
-  const char *list = sc_scene_text(s, "auto-at");
-  char from[64];
-  if (!list) snprintf(from, sizeof from, "%.17g", sc_scene_real(s, "from"));
-  const char *q = list ? list : from;
+  double lo, hi, p;
+  int st = auto_d(s, &lo, &hi, r->msg); /* checked by branch_check() */
+  if (st) return st;
   int maxq = (int)sc_scene_int(s, "auto-period");
   double saved = sc_map_get_param(m, param);
-  for (;;) {
-    char *end;
-    double p = strtod(q, &end);
-    if (end == q) break;
-    q = end;
-    double a = sc_scene_real(s, "from"), b = sc_scene_real(s, "to");
-    if (!isfinite(p) || (a - p) * (b - p) > 0 ||
-        sc_map_set_param(m, param, p, NULL))
-      return sc_scene_fail_key(s, "task", "auto-at", r->msg,
-                               "auto-at: %.17g outside [from, to]", p);
+  for (const char *q = NULL; auto_at_next(s, &q, &p);) {
+    if ((st = sc_map_set_param(m, param, p, r->msg))) {
+      sc_map_set_param(m, param, saved, NULL);
+      return st;
+    }
     for (int per = 1; per <= maxq; per++) {
       sc_fixed_points_spec fs = {.period = per, .from = lo, .to = hi,
                                  .steps = 2000};
       sc_orbit_set *set = NULL;
-      int st = sc_fixed_points_find(m, &fs, &set, r->msg);
+      st = sc_fixed_points_find(m, &fs, &set, r->msg);
       if (st) {
         sc_map_set_param(m, param, saved, NULL);
         return st;

@@ -89,105 +89,20 @@ static int type_index(const char *t) {
  * these two parameters.  Returns 0 or a status with the reason. */
 static int overlay_check(const sc_scene *s, const char *path, const char *xn,
                          const char *yn, sc_msg *msg) {
-  FILE *f = fopen(path, "r");
-  if (!f)
+  char line[256], want[256];
+  sc_msg why;
+  if (sc_cli_read_head(path, "the overlay", line, sizeof line, &why))
     return sc_scene_fail_key(s, "task", "overlay", msg,
-                             "overlay = %s cannot be read (valid: a chart.csv "
-                             "of the chart task)",
-                             path);
-  char line[256] = "", want[256];
-  char *ok = fgets(line, sizeof line, f);
-  fclose(f);
+                             "overlay = %s cannot be read: %s (valid: a "
+                             "chart.csv of the chart task)",
+                             path, why.text);
   snprintf(want, sizeof want, "%s,%s,period,", xn, yn);
-  if (!ok || strncmp(line, want, strlen(want)) != 0)
+  if (strncmp(line, want, strlen(want)) != 0)
     return sc_scene_fail_key(s, "task", "overlay", msg,
                              "overlay = %s is not a chart of (%s, %s): its "
                              "header does not start with '%s' (valid: a "
                              "chart.csv with x = %s, y = %s)",
                              path, xn, yn, want, xn, yn);
-  return SC_OK;
-}
-
-/* A row of a branch task's points.csv, its columns found by the header's
- * names (label, parameter, value, d, period). */
-typedef struct {
-  char label[16], param[64];
-  double value, d;
-  int period;
-} start_row;
-
-/* Split a CSV line in place into at most max fields. */
-static int split(char *line, char **f, int max) {
-  int n = 0;
-  line[strcspn(line, "\r\n")] = '\0';
-  for (char *p = line; n < max;) {
-    f[n++] = p;
-    char *c = strchr(p, ',');
-    if (!c) break;
-    *c = '\0';
-    p = c + 1;
-  }
-  return n;
-}
-
-static int read_start(const char *spec, start_row *row, char *why, size_t len) {
-  char path[4096];
-  snprintf(path, sizeof path, "%s", spec);
-  char *colon = strrchr(path, ':');
-  long n = 0;
-  if (!colon || sc_parse_long(colon + 1, 1, 100000000, &n)) {
-    snprintf(why, len, "not FILE:N with N >= 1");
-    return SC_EINVAL;
-  }
-  *colon = '\0';
-  FILE *f = fopen(path, "r");
-  if (!f) {
-    snprintf(why, len, "%.300s cannot be read", path);
-    return SC_EINVAL;
-  }
-  char head[1024], line[4096], *h[16], *v[16];
-  int col[5] = {-1, -1, -1, -1, -1};
-  const char *names[5] = {"label", "parameter", "value", "d", "period"};
-  int nh = fgets(head, sizeof head, f) ? split(head, h, 16) : 0;
-  for (int i = 0; i < nh; i++)
-    for (int k = 0; k < 5; k++)
-      if (strcmp(h[i], names[k]) == 0) col[k] = i;
-  int found = 0;
-  for (long r = 1; fgets(line, sizeof line, f); r++)
-    if (r == n) {
-      found = 1;
-      break;
-    }
-  fclose(f);
-  for (int k = 0; k < 5; k++)
-    if (col[k] < 0) {
-      snprintf(why, len,
-               "%.300s has no column '%s' (a branch task's points.csv "
-               "has label,parameter,value,d,period)",
-               path, names[k]);
-      return SC_EINVAL;
-    }
-  if (!found) {
-    snprintf(why, len, "%.300s has no row %ld", path, n);
-    return SC_EINVAL;
-  }
-  int nv = split(line, v, 16);
-  long per = 0;
-  for (int k = 0; k < 5; k++)
-    if (col[k] >= nv) {
-      snprintf(why, len, "row %ld of %.300s is short", n, path);
-      return SC_EINVAL;
-    }
-  if (sc_parse_double(v[col[2]], &row->value) ||
-      sc_parse_double(v[col[3]], &row->d) ||
-      sc_parse_long(v[col[4]], 1, 4096, &per)) {
-    snprintf(why, len, "row %ld of %.300s: value, d or period unreadable", n,
-             path);
-    return SC_EINVAL;
-  }
-  row->period = (int)per;
-  snprintf(row->label, sizeof row->label, "%s", v[col[0]]);
-  snprintf(row->param, sizeof row->param, "%s", v[col[1]]);
   return SC_OK;
 }
 
@@ -209,17 +124,22 @@ static int also_check(const sc_scene *s, const char *xn, const char *yn,
     }
     for (size_t i = 0; i < ng; i++) {
       snprintf(path, sizeof path, "%s/curve.csv", g.gl_pathv[i]);
-      FILE *f = fopen(path, "r");
-      char line[256] = "", want[256];
-      char *ok = f ? fgets(line, sizeof line, f) : NULL;
-      if (f) fclose(f);
+      char line[256], want[256];
+      sc_msg why;
       snprintf(want, sizeof want, "%s,%s,", xn, yn);
-      if (!ok || strncmp(line, want, strlen(want)) != 0) {
+      int bad = sc_cli_read_head(path, "a curve of also", line, sizeof line,
+                                 &why);
+      if (bad || strncmp(line, want, strlen(want)) != 0) {
         globfree(&g);
+        if (bad)
+          return sc_scene_fail_key(s, "task", "also", msg,
+                                   "also: %s (valid: output folders of curve "
+                                   "tasks in x = %s, y = %s; run them first)",
+                                   why.text, xn, yn);
         return sc_scene_fail_key(s, "task", "also", msg,
-                                 "also: %s is not a readable curve.csv in (%s, "
-                                 "%s) (valid: output folders of curve tasks in "
-                                 "x = %s, y = %s; run them first)",
+                                 "also: %s is not a curve.csv in (%s, %s) "
+                                 "(valid: output folders of curve tasks in x "
+                                 "= %s, y = %s; run them first)",
                                  path, xn, yn, xn, yn);
       }
     }
@@ -247,14 +167,11 @@ static int curve_check(const sc_scene *s, sc_msg *msg) {
     return sc_scene_fail_key(s, "task", spec ? "start" : "d0", msg,
                              "give either d0 or start (valid: exactly one "
                              "of them)");
-  start_row row;
+  sc_cli_points_row row;
   if (spec) {
     char why[512];
-    if (read_start(spec, &row, why, sizeof why))
-      return sc_scene_fail_key(s, "task", "start", msg,
-                               "start = %s: %s (valid: FILE:N, a row of a "
-                               "branch task's points.csv)",
-                               spec, why);
+    if (sc_cli_points_row_read(spec, &row, why, sizeof why))
+      return sc_scene_fail_key(s, "task", "start", msg, "start: %s", why);
     const char *want = type_labels[type_index(sc_scene_text(s, "type"))];
     if (strcmp(row.param, xn) || strcmp(row.label, want))
       return sc_scene_fail_key(s, "task", "start", msg,
@@ -265,6 +182,11 @@ static int curve_check(const sc_scene *s, sc_msg *msg) {
   }
   const char *lo[2] = {"x-from", "y-from"}, *hi[2] = {"x-to", "y-to"};
   const char *nm[2] = {xn, yn};
+  const char *const xends[] = {"x-from", "x-to"};
+  const char *const yends[] = {"y-from", "y-to"};
+  int st = sc_cli_check_param_keys(s, "x", xends, 2, msg);
+  if (!st) st = sc_cli_check_param_keys(s, "y", yends, 2, msg);
+  if (st) return st;
   for (int k = 0; k < 2; k++) {
     if (!(sc_scene_real(s, lo[k]) < sc_scene_real(s, hi[k])))
       return sc_scene_fail_key(s, "task", hi[k], msg,
@@ -276,11 +198,12 @@ static int curve_check(const sc_scene *s, sc_msg *msg) {
     if (v < sc_scene_real(s, lo[k]) || v > sc_scene_real(s, hi[k]))
       return sc_scene_fail_key(
           s, "task", lo[k], msg,
-          "the start's %s = %.17g (the [model] value) lies outside [%s, %s] "
-          "(valid: inside the box)",
-          nm[k], v, sc_scene_text(s, lo[k]), sc_scene_text(s, hi[k]));
+          "the start's %s = %.17g (%s) lies outside [%s, %s] (valid: "
+          "inside the box)",
+          nm[k], v, k == 0 && spec ? "its row of start" : "the [model] value",
+          sc_scene_text(s, lo[k]), sc_scene_text(s, hi[k]));
   }
-  int st = also_check(s, xn, yn, msg);
+  st = also_check(s, xn, yn, msg);
   if (st) return st;
   const char *ov = sc_scene_text(s, "overlay");
   if (ov) return overlay_check(s, ov, xn, yn, msg);
@@ -385,9 +308,9 @@ static int curve_prepare(sc_cli_run *r, void *job) {
   const char *spec = sc_scene_text(s, "start");
   if (!spec) return SC_OK;
   /* checked by curve_check(): the row exists and fits */
-  start_row row;
+  sc_cli_points_row row;
   char why[512];
-  if (read_start(spec, &row, why, sizeof why))
+  if (sc_cli_points_row_read(spec, &row, why, sizeof why))
     return sc_fail(r->msg, SC_EIO, "curve: start = %s: %s", spec, why);
   j->d0 = row.d;
   set->period = row.period;

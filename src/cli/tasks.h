@@ -143,6 +143,10 @@ int sc_cli_task_run(const sc_cli_task *t, sc_cli_run *r);
  * model parameter named by `[task] parameter` (the model's table, with
  * sc_param_check()); the message names the key's line. */
 int sc_cli_check_param_ends(const sc_scene *s, sc_msg *msg);
+/** The same for the @p n `[task]` keys @p ends (a curve's box: "x-from",
+ * "x-to") and the parameter named by the key @p param ("x"). */
+int sc_cli_check_param_keys(const sc_scene *s, const char *param,
+                            const char *const *ends, int n, sc_msg *msg);
 
 /**
  * The graph of f^n over [from, to] on @p steps points into the CSV file
@@ -223,6 +227,31 @@ int sc_cli_stop(sc_cli_run *r);
 void sc_cli_catch_signals(void);
 /** The task has returned: no more forced end (main calls it). */
 void sc_cli_signals_done(void);
+
+/* ------------------------------------------------------------------ */
+/* The files a scene names besides itself (inputs.c), each opened with
+ * sc_input_open() (a regular file of bounded size, never blocking), in a
+ * task's check so that bad ones are refused before anything is made. */
+
+/** A row of a branch task's points.csv. */
+typedef struct {
+  char label[16];  /**< LP, PD, GR, ..., EP */
+  char param[64];  /**< the parameter continued */
+  double value, d; /**< its value and the orbit point (finite) */
+  int period;      /**< in [1, 4096] */
+} sc_cli_points_row;
+
+/** The row named by @p spec, "FILE:N" (N = 1 is the first row after the
+ * header), its columns found by the header's names.  Returns SC_OK, or
+ * an error status with the reason, naming the file, in @p why. */
+int sc_cli_points_row_read(const char *spec, sc_cli_points_row *row,
+                           char *why, size_t len);
+
+/** The first line of the file @p path (what: "the overlay", for
+ * messages), without its line end, into @p line.  Returns SC_OK, or an
+ * error status with `PATH: reason` in @p msg. */
+int sc_cli_read_head(const char *path, const char *what, char *line,
+                     size_t len, sc_msg *msg);
 
 /** Replace ',' by ';' and control characters by ' ' so that @p text can
  * be one CSV field; returns @p text. */

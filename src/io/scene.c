@@ -298,6 +298,17 @@ typedef struct {
   const char *prev_section, *prev_key; /* last key seen, for continuations */
 } reader_state;
 
+/* The first control character of @p v (a byte below ' ' other than a
+ * tab, or DEL), or -1: a value is printable text on one line, and what
+ * is not would garble the messages and files that repeat it. */
+static long control_at(const char *v) {
+  for (long i = 0; v[i]; i++) {
+    unsigned char c = (unsigned char)v[i];
+    if ((c < 0x20 && c != '\t') || c == 0x7f) return i;
+  }
+  return -1;
+}
+
 static void record(reader_state *st, int status, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 3, 4)))
@@ -399,6 +410,14 @@ static int on_key(void *user, const char *section, const char *name,
            section);
     return 1;
   }
+  long bad = control_at(value);
+  if (bad >= 0) {
+    record(st, SC_EINVAL,
+           "[%s] %s: control character 0x%02x at position %ld of the value "
+           "(valid: printable text)",
+           section, name, (unsigned char)value[bad], bad + 1);
+    return 1;
+  }
   entry *old = find_entry(s, section, name);
   if (old) {
     record(st, SC_EINVAL, "[%s] duplicate key '%s' (first at line %d)",
@@ -442,6 +461,19 @@ static void trim(char *t) {
 
 static int apply_set(sc_scene *s, const char *set, sc_msg *msg) {
   char origin[SC_MSG_LEN], buf[SC_MSG_LEN];
+  long bad = control_at(set);
+  if (bad >= 0) {
+    snprintf(buf, sizeof buf, "%s", set);
+    for (char *p = buf; *p; p++)
+      if (control_at(p) == 0) *p = '?';
+    const char *eq = strchr(set, '=');
+    long at = eq && eq - set < bad ? bad - (eq + 1 - set) : bad;
+    return sc_fail(msg, SC_EINVAL,
+                   "--set %s: control character 0x%02x at position %ld of "
+                   "the %s (shown as '?'; valid: printable text)",
+                   buf, (unsigned char)set[bad], at + 1,
+                   eq && eq - set < bad ? "value" : "override");
+  }
   snprintf(origin, sizeof origin, "--set %s", set);
   if (strlen(set) >= sizeof buf)
     return sc_fail(msg, SC_EINVAL, "--set: override too long");
@@ -700,28 +732,58 @@ int sc_scene_parse(const char *name, const char *text,
   return SC_OK;
 }
 
-int sc_scene_load(const char *path, const sc_scene_options *opts,
-                  sc_scene **out, sc_msg *msg) {
-  *out = NULL;
+/* What a file that is not a regular one is, for a message. */
+static const char *file_kind(mode_t mode) {
+  if (S_ISDIR(mode)) return "a folder";
+  if (S_ISFIFO(mode)) return "a pipe (FIFO)";
+  if (S_ISCHR(mode) || S_ISBLK(mode)) return "a device";
+  if (S_ISSOCK(mode)) return "a socket";
+  return "neither a file nor a folder";
+}
+
+int sc_input_open(const char *path, const char *what, long long max_bytes,
+                  FILE **f, sc_msg *msg) {
+  *f = NULL;
   /* Opened without blocking (a FIFO would wait for a writer forever),
    * then refused unless it is a regular file. */
   int fd = open(path, O_RDONLY | O_NONBLOCK);
   if (fd < 0)
-    return sc_fail(msg, SC_EIO, "%s: cannot open the scene file (%s)", path,
+    return sc_fail(msg, SC_EIO, "%s: cannot open %s (%s)", path, what,
                    strerror(errno));
   struct stat sb;
-  if (fstat(fd, &sb) != 0 || !S_ISREG(sb.st_mode)) {
+  if (fstat(fd, &sb) != 0) {
+    int err = errno;
+    close(fd);
+    return sc_fail(msg, SC_EIO, "%s: cannot read %s (%s)", path, what,
+                   strerror(err));
+  }
+  if (!S_ISREG(sb.st_mode)) {
     close(fd);
     return sc_fail(msg, SC_EINVAL,
-                   "%s: not a regular file (a scene is read from a file, "
-                   "not a folder, pipe or device)",
-                   path);
+                   "%s: not a regular file: it is %s (%s must be a "
+                   "regular file)",
+                   path, file_kind(sb.st_mode), what);
   }
-  FILE *f = fdopen(fd, "rb");
-  if (!f) {
+  if ((long long)sb.st_size > max_bytes) {
+    close(fd);
+    return sc_fail(msg, SC_EINVAL,
+                   "%s: %s is too large (%lld bytes; limit %lld bytes)", path,
+                   what, (long long)sb.st_size, max_bytes);
+  }
+  *f = fdopen(fd, "rb");
+  if (!*f) {
     close(fd);
     return sc_fail(msg, SC_ENOMEM, "%s: out of memory", path);
   }
+  return SC_OK;
+}
+
+int sc_scene_load(const char *path, const sc_scene_options *opts,
+                  sc_scene **out, sc_msg *msg) {
+  *out = NULL;
+  FILE *f;
+  int ost = sc_input_open(path, "the scene file", SC_SCENE_MAXBYTES, &f, msg);
+  if (ost) return ost;
   char *text = malloc(SC_SCENE_MAXBYTES + 2);
   if (!text) {
     fclose(f);
