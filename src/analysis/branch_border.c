@@ -211,7 +211,7 @@ void sc_ob_locate_border(sc_orbit_branch *b, int period,
   /* The orbit located must be the segment's, not one of lower period
    * through the same border (bk2 with beta = 1: the synchronous orbit
    * d = d* = 0 is a fixed point of every f^m). */
-  int q = sc_orbit_minimal_period(o, period, 1e-9 * (1 + fabs(o[0])));
+  int q = sc_ob_minimal_period(b, o, period);
   if (q < period) {
     fx->ok = 0;
     snprintf(fx->why, sizeof fx->why,

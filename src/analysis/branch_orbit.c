@@ -228,18 +228,16 @@ void sc_ob_add_point(sc_orbit_branch *b, int branch, int period, double p,
   snprintf(r->itin, sizeof r->itin, "%s", v->itinerary);
 }
 
-/* Two special points of one label and period this close in the
- * parameter (relative to 1 + |p|, or the map's precision) are one point
- * met by two branch segments: a flip reached again from the doubled
- * branch, a closed curve traversed from two starts. */
-#define SAME_POINT_REL 1e-7
-
 special_rec *sc_ob_add_special(sc_orbit_branch *b, sc_point_label l,
                                int branch, int period, double p, double d,
                                double mult, double deg) {
+  /* Two special points of one label and period whose parameters agree by
+   * the one equality rule (common.h: both are located by Newton to the
+   * preset's tolerances) are one point met by two branch segments: a flip
+   * reached again from the doubled branch, a closed curve traversed from
+   * two starts. */
   if (l != SC_PT_EP) {
-    double tol = SAME_POINT_REL * (1 + fabs(p)) + SAME_ORBIT_PREC *
-                                                      sc_map_precision(b->m);
+    double tol = sc_orbit_tol(&b->acc, p);
     for (size_t i = 0; i < b->nsp; i++)
       if (b->sps[i].label == l && b->sps[i].period == period &&
           fabs(b->sps[i].p - p) <= tol && b->sps[i].method != SC_LOC_FAILED) {
@@ -318,6 +316,17 @@ int sc_ob_iterate_orbit(sc_orbit_branch *b, double d, int q, double *out) {
   return sc_ob_iterate_orbit_forced(b, d, q, NULL, out);
 }
 
+
+int sc_ob_minimal_period(const sc_orbit_branch *b, const double *orb, int m) {
+  return sc_orbit_minimal_period(orb, m, sc_orbit_tol(&b->acc, orb[0]));
+}
+
+int sc_ob_same_orbit(const sc_orbit_branch *b, const double *a,
+                     const double *c, int m) {
+  double x = 0;
+  for (int i = 0; i < m; i++) x = fmax(x, fmax(fabs(a[i]), fabs(c[i])));
+  return sc_orbit_same(a, c, m, sc_orbit_tol(&b->acc, x));
+}
 
 /* Every point of orbit a (na) within tol of a point of orbit c (nc). */
 int sc_ob_close_orbits(const double *a, int na, const double *c, int nc,

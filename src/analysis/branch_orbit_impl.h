@@ -26,11 +26,6 @@
  * points of a branch (1e-4 and more on the chapter's examples). */
 #define BISECTION_REACH 1e-6
 
-/* Orbits of the same period are the same within SAME_ORBIT_TOL
- * (branch_segment.c), or, for a map known only to its precision P
- * (numerical flows), this many times P. */
-#define SAME_ORBIT_PREC 100.0
-
 typedef struct {
   int branch, period, stable;
   double p, d, multiplier;
@@ -148,6 +143,13 @@ int sc_ob_shoot_at(sc_orbit_branch *b, int q, double p, const double *seed,
 int sc_ob_iterate_orbit_forced(sc_orbit_branch *b, double d, int q,
                                const sc_itin_code *codes, double *out);
 int sc_ob_iterate_orbit(sc_orbit_branch *b, double d, int q, double *out);
+/* The minimal period of the orbit orb[0..m-1] by the one rule of
+ * common.h: sc_orbit_minimal_period() at sc_orbit_tol(&b->acc, orb[0]). */
+int sc_ob_minimal_period(const sc_orbit_branch *b, const double *orb, int m);
+/* Whether a[0..m-1] and c[0..m-1] are one orbit by the one rule of
+ * common.h: sc_orbit_same() at sc_orbit_tol() of their largest point. */
+int sc_ob_same_orbit(const sc_orbit_branch *b, const double *a,
+                     const double *c, int m);
 /* Every point of orbit a (na) within tol of a point of orbit c (nc). */
 int sc_ob_close_orbits(const double *a, int na, const double *c, int nc,
                        double tol);

@@ -51,23 +51,13 @@ static int g_fn(double x, const double *p, int order, sc_map1d_jet *jet,
   return 0;
 }
 
-/* Orbits of the same period on two branches are the same orbit when
- * their point sets agree to this: far above the shooting accuracy, far
- * below the distance between distinct orbits. */
-#define SAME_ORBIT_TOL 1e-8
-
-
-static double same_orbit_tol(const sc_orbit_branch *b) {
-  return fmax(SAME_ORBIT_TOL, SAME_ORBIT_PREC * sc_map_precision(b->m));
-}
-
 /* Whether the orbit at (p, b->orb_c) lies on a branch computed before
  * this one: returns that branch, or -1.  Points near this segment's
  * own start (within 2 hmax) are not compared, so that a start continued
  * both ways does not join its twin at once.  Candidates are the points
  * within hmax in p whose smallest orbit point is near; the orbit is then
- * followed from the candidate to p by shooting and compared as a point
- * set. */
+ * followed from the candidate to p by shooting and compared by the one
+ * orbit-equality rule (sc_ob_same_orbit). */
 static int joins(sc_orbit_branch *b, int branch, int period, double p,
                  double dmin, double p0, double d0, double hmax, int moved) {
   if (!moved && fabs(p - p0) + fabs(dmin - d0) <= 2 * hmax) return -1;
@@ -83,8 +73,7 @@ static int joins(sc_orbit_branch *b, int branch, int period, double p,
       continue;
     sc_shoot_result res;
     if (sc_ob_shoot_at(b, period, p, b->seed, &res) != SC_OK) continue;
-    if (sc_ob_close_orbits(b->orbit, period, b->orb_c, period,
-                           same_orbit_tol(b)))
+    if (sc_ob_same_orbit(b, b->orbit, b->orb_c, period))
       return r->branch;
   }
   return -1;
@@ -158,7 +147,7 @@ static int segment_start(sc_orbit_branch *b, segment *S, sc_cont_problem *pb,
      * old branch twice over. */
     if (sc_ob_shoot_at(b, period, p1, b->seed, &res) != SC_OK ||
         strcmp(res.itinerary, b->ctx.itin) != 0 ||
-        sc_orbit_minimal_period(b->orbit, period, 1e-9) != period)
+        sc_ob_minimal_period(b, b->orbit, period) != period)
       continue;
     u0[0] = b->orbit[0];
     u0[1] = p1;
@@ -198,7 +187,7 @@ static int segment_accept(sc_orbit_branch *b, segment *S, const double *u) {
    * left its branch for a lower-period one crossing it (the doubled
    * orbit at a flip): stop rather than follow the old branch again. */
   int q = have_orbit && period > 1
-              ? sc_orbit_minimal_period(b->orb_c, period, 1e-9 * (1 + fabs(u[0])))
+              ? sc_ob_minimal_period(b, b->orb_c, period)
               : period;
   if (q < period) {
     /* Follow the lower-period branch from here instead, both ways, with
@@ -246,8 +235,7 @@ static int segment_accept(sc_orbit_branch *b, segment *S, const double *u) {
     sc_shoot_result res;
     memcpy(b->orb_a, b->orb_c, (size_t)period * sizeof *b->orb_a);
     if (sc_ob_shoot_at(b, period, S->p_first, b->orb_a, &res) == SC_OK &&
-        sc_ob_close_orbits(b->orbit, period, b->orb_f, period,
-                           same_orbit_tol(b)))
+        sc_ob_same_orbit(b, b->orbit, b->orb_f, period))
       jn = S->branch;
   }
   S->prev_p = u[1];

@@ -70,7 +70,7 @@ int sc_ob_hand_over(sc_orbit_branch *b, special_rec *r, int m,
         }
         if (same) continue;
       }
-      if (sc_orbit_minimal_period(b->orbit, q, 1e-9) != q) continue;
+      if (sc_ob_minimal_period(b, b->orbit, q) != q) continue;
       if (!sc_ob_close_orbits(b->orbit, q, orb, m, tol)) continue;
       char origin[96];
       snprintf(origin, sizeof origin, "%s at %.10g",
@@ -277,7 +277,7 @@ int sc_ob_switch_flip(sc_orbit_branch *b, int m, double p, double d) {
         if (sc_ob_iterate_orbit(b, d + eps, 2 * m, b->seed)) continue;
         sc_shoot_result res;
         if (sc_ob_shoot_at(b, 2 * m, ps, b->seed, &res) != SC_OK) continue;
-        if (sc_orbit_minimal_period(b->orbit, 2 * m, 1e-9) != 2 * m) continue;
+        if (sc_ob_minimal_period(b, b->orbit, 2 * m) != 2 * m) continue;
         if (fabs(b->orbit[0] - d) > 100 * sqrt(dp) * (1 + fabs(d))) continue;
         char origin[96];
         snprintf(origin, sizeof origin, "PD at %.10g", p);
