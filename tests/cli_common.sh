@@ -99,6 +99,26 @@ png() {
   if [ -z "$plotset" ]; then check "$1: $2 rendered" test -s "$TMP/$1/$2"; fi
 }
 
+# computing PID SECONDS: waits until process PID has spent SECONDS of
+# processor time, read from /proc (Linux); 0 then, 1 if the process ended
+# first or /proc cannot tell.  A test that must signal a run in the middle
+# of its compute step waits for this instead of a fixed time: reading the
+# scene and preparing take milliseconds, so a run that has computed for
+# SECONDS is inside its compute step whatever the machine's load.
+computing() {
+  [ -r /proc/self/stat ] || return 1
+  tck=$(getconf CLK_TCK 2>/dev/null || echo 100)
+  while :; do
+    # fields after the command name: state, ..., utime (14), stime (15)
+    st=$(sed 's/^.*) //' "/proc/$1/stat" 2>/dev/null) || return 1
+    set -- "$1" "$2" $st
+    [ "$3" = Z ] && return 1
+    if awk -v u="${14}" -v s="${15}" -v t="$tck" -v want="$2" \
+      'BEGIN { exit !((u + s) / t >= want) }'; then return 0; fi
+    sleep 0.05
+  done
+}
+
 finish() {
   echo "$NPASS passed, $NFAIL failed"
   [ "$NFAIL" -eq 0 ]
