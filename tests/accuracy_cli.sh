@@ -41,6 +41,20 @@ ratio=$(awk -F, 'NR == 2 || NR == 92 {
   "$TMP/accuracy-dstar/map.csv")
 check "f' sqrt|d - d*| at 1e-6 and 1e-7 below d*: ratio $ratio within 5% of 1" \
   awk "BEGIN { exit !($ratio > 0.95 && $ratio < 1.05) }"
+# and above d* (rows 202 and 112: 1e-6 and 1e-7 above)
+ratio=$(awk -F, 'NR == 202 || NR == 112 {
+    ds = 0.19736842105263158; x = $1 - ds; if (x < 0) x = -x
+    v[NR] = $3 * sqrt(x) } END { printf "%.6g", v[202] / v[112] }' \
+  "$TMP/accuracy-dstar/map.csv")
+check "f' sqrt|d - d*| at 1e-6 and 1e-7 above d*: ratio $ratio within 5% of 1" \
+  awk "BEGIN { exit !($ratio > 0.95 && $ratio < 1.05) }"
+# f continuous at d*: the values 1e-8 either side of it differ by
+# O(sqrt 1e-8) = 1e-4 at most, not by a jump
+jump=$(awk -F, 'NR == 101 || NR == 103 { f[NR] = $2 } END {
+    j = f[103] - f[101]; if (j < 0) j = -j; printf "%.3g", j }' \
+  "$TMP/accuracy-dstar/map.csv")
+check "f continuous at d*: |f(d* + 1e-8) - f(d* - 1e-8)| = $jump <= 1e-3" \
+  awk "BEGIN { exit !($jump <= 1e-3) }"
 
 run_sc run "$SRC/examples/accuracy-dstar.ini" --out "$TMP/bad" \
   --set accuracy.precision=single

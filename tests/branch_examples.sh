@@ -22,6 +22,9 @@ example fixed-point-fig58
 expect_rows fixed-point-fig58 "$TMP/fixed-point-fig58/orbits.csv" 2
 has fixed-point-fig58 orbits.csv '^6,-0\.0740754[0-9]*,yes,0\.0991157087'
 has fixed-point-fig58 orbits.csv '^6,2\.99815[0-9]*,no,0\.1019741644'
+check "fixed-point-fig58: both orbits on the itinerary 1;1-12-2;1;2-12-2;1;2-12-2" \
+  awk -F, 'NR > 1 { n++; if ($5 != "1;1-12-2;1;2-12-2;1;2-12-2") bad = 1 }
+    END { exit bad || n != 2 }' "$TMP/fixed-point-fig58/orbits.csv"
 png fixed-point-fig58 fixed-point.png
 
 example fixed-point-family
@@ -47,6 +50,10 @@ has branch-fig58 points.csv '^LP,alpha,3\.21955808[0-9]*,[0-9.]*,6,'
 has branch-fig58 points.csv '^LP,alpha,3\.38782004[0-9]*,[0-9.]*,6,'
 has branch-fig58 points.csv '^GR,alpha,3\.86139041[0-9]*,'
 has branch-fig58 points.csv 'closes on itself'
+# the orbit of alpha = 2.8 joins the period-1 branch (at its flip, 2.8252),
+# which ends in a fold
+has branch-fig58 points.csv '^PD,alpha,2\.82522610020[0-9]*,[0-9.]*,1,'
+has branch-fig58 points.csv '^LP,alpha,2\.99253067442[0-9]*,[0-9.]*,1,'
 png branch-fig58 branch.png
 
 example branch-fig512
@@ -193,6 +200,13 @@ check "border-br: both velocities 0 at the end of the two-block slip (got $br)" 
 # period up to 16 anywhere in V = 0.025 .. 0.015.
 example vw-symmetric
 has vw-symmetric summary.txt 'down v from 0\.025 to 0\.015 \(100 values\): period 0$'
+# the attractor fills a band of d of about [-0.045, 0.045], symmetric
+# under d -> -d: its ends within 0.04..0.05 and within 10 % of each other
+check "vw-symmetric: d fills a band of about [-0.045, 0.045], symmetric" \
+  awk -F, 'NR > 1 { if (!n++ || $2 < lo) lo = $2; if (n == 1 || $2 > hi) hi = $2 }
+    END { printf "  d in [%.4f, %.4f]\n", lo, hi; s = lo + hi; if (s < 0) s = -s
+      exit !(hi >= 0.04 && hi <= 0.05 && -lo >= 0.04 && -lo <= 0.05 && s <= 0.1 * hi) }' \
+  "$TMP/vw-symmetric/sweep.csv"
 png vw-symmetric sweep.png
 
 finish
