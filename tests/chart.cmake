@@ -7,6 +7,7 @@ add_test(NAME chart_cli
           $<TARGET_FILE:slipcont_cli> ${PROJECT_SOURCE_DIR})
 if(SLIPCONT_MPI)
   add_test(NAME chart_mpi
-    COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/chart_mpi.sh ${MPIEXEC_EXECUTABLE}
-            $<TARGET_FILE:slipcont_cli> ${CMAKE_CURRENT_BINARY_DIR}/chart_mpi)
+    COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/chart_mpi.sh
+            $<TARGET_FILE:slipcont_cli> ${PROJECT_SOURCE_DIR}
+            ${MPIEXEC_EXECUTABLE})
 endif()

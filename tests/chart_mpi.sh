@@ -1,18 +1,10 @@
-#!/bin/sh
 # The chart task under MPI: 2 ranks write the same chart.csv as 1, byte
 # for byte, for both seeds, and a 2-rank run stopped after a few rows
 # resumes to the same chart.
-# usage: chart_mpi.sh MPIRUN SLIPCONT WORK_DIR
-set -u
-MPIRUN=$1
-BIN=$2
-W=$3
-rm -rf "$W"
-mkdir -p "$W"
-cd "$W" || exit 1
-fails=0
-pass() { echo "PASS $*"; }
-fail() { echo "FAIL $*"; fails=$((fails + 1)); }
+# usage: sh tests/chart_mpi.sh PATH/TO/slipcont SOURCE_DIR MPIRUN
+. "$(dirname "$0")/cli_common.sh"
+MPIRUN=$3
+cd "$TMP" || exit 1
 # Open MPI refuses root without --allow-run-as-root; CI runners often are.
 MPI="$MPIRUN --oversubscribe -np 2"
 [ "$(id -u)" -eq 0 ] && MPI="$MPIRUN --oversubscribe --allow-run-as-root -np 2"
@@ -58,5 +50,4 @@ cmp -s resume/chart.csv serial-fixed/chart.csv &&
   pass "resumed 2-rank chart identical to the serial one" ||
   fail "resumed 2-rank chart differs"
 
-echo "$fails failed"
-[ $fails -eq 0 ]
+finish

@@ -28,9 +28,6 @@ add_test(NAME search_replay_chart COMMAND search_replay chart 20)
 add_test(NAME search_replay_fig56 COMMAND search_replay fig56 3000)
 set_tests_properties(search_replay_chart search_replay_fig56 PROPERTIES
   ENVIRONMENT SLIPCONT_BENCH_REPEAT=1)
-# bench/side_by_side.sh's refusals (the benchmark itself is not a test).
-add_test(NAME bench_args
-  COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/bench_args.sh ${PROJECT_SOURCE_DIR})
 # Velocity weakening next to d* and the crossing-sliding borders against
 # a long-double Taylor integration of the test's own.
 sc_add_test(test_vw_edges)
