@@ -13,8 +13,6 @@
 
 #include "hybrid/dual.h"
 #include "models/bk2_impl.h"
-#include "models/bk2_jet.h"
-#include "models/bk2_quad.h"
 #include "hybrid/hybrid_impl.h"
 #include "slipcont/hybrid.h"
 
@@ -869,15 +867,9 @@ static int exact_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
   flow_at(P, &f, t, x, a2, &r[first]);
   *duration = t;
   if (r[first].tangent) ev->tangent = 1;
-  int next = atmax ? sc_bk2_take_event_at_max(P, mode, kind[first],
-                                               r[first].slope, a2, x)
-                   : sc_bk2_take_event(P, mode, kind[first], r[first].slope,
-                                       a2, x);
-  if (both) {
-    x->u1 = x->u2 = P->vs;
-    return SC_BK2_STICK;
-  }
-  return next;
+  return atmax ? sc_bk2_take_event_at_max(P, mode, kind[first],
+                                          r[first].slope, a2, x)
+               : sc_bk2_take_event(P, mode, ekind, r[first].slope, a2, x);
 }
 
 /* ---- the value-only path -------------------------------------------------
@@ -1035,20 +1027,11 @@ static int value_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
                           x->y1, x->y2, r, &both, &steps, msg);
   if (first < 0) return first;
   vflow_at(P, &f, r[first].t, &r[first], x);
-  if (both) {
-    x->u1 = x->u2 = P->vs.v;
-    return SC_BK2_STICK;
-  }
-  switch (kind[first]) {
-  case 1:
-    x->u1 = P->vs.v;
-    return mode == SC_BK2_SLIP1 ? SC_BK2_STICK : SC_BK2_SLIP2;
-  case 2:
-    x->u2 = P->vs.v;
-    return mode == SC_BK2_SLIP2 ? SC_BK2_STICK : SC_BK2_SLIP1;
-  default:
-    return SC_BK2_SLIP12;
-  }
+  int next = bk2_next_mode(mode, both ? BK2_EV_BOTH : kind[first]),
+      stuck = bk2_stuck_blocks(mode, next);
+  if (stuck & 1) x->u1 = P->vs.v;
+  if (stuck & 2) x->u2 = P->vs.v;
+  return next;
 }
 
 /* sc_bk2_iterate() on values (exact flows, no force, no code, no
@@ -1057,7 +1040,7 @@ static int value_iterate(const bk2_inst *b, double d, unsigned flags,
                          sc_map_value *out, sc_msg *msg) {
   const bk2_dpar *P = &b->p0;
   vstate x;
-  int mode = bk2_onset_mode(b, d);
+  int mode = BK2_ONSET_MODE(d, b->dstar);
   if (mode == SC_BK2_SLIP1) {
     x.y1 = P->alpha.v * d + 1;
     x.y2 = x.y1 + d;
@@ -1070,7 +1053,7 @@ static int value_iterate(const bk2_inst *b, double d, unsigned flags,
   size_t ilen = 0;
   out->itinerary[0] = '\0';
   for (int n = 0; n < b->acc.max_events; n++) {
-    bk2_itin_add(out->itinerary, &ilen, mode, flags);
+    if (flags & SC_EVAL_ITINERARY) bk2_itin_add(out->itinerary, &ilen, mode);
     double gap = n == 0 && mode != SC_BK2_SLIP12
                      ? (1 + 2 * b->alpha) *
                            (mode == SC_BK2_SLIP1 ? d - b->dstar : b->dstar - d)

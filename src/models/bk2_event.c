@@ -33,24 +33,19 @@ int sc_bk2_take_event(const bk2_dpar *P, int mode, int kind, double slope,
   if (nd) {
     /* the guard on duals at fixed time: its sensitivity moves the event */
     sc_dual gv;
-    if (kind == 1) gv = sc_dsub(x->u1, P->vs, nd);
-    else if (kind == 2) gv = sc_dsub(x->u2, P->vs, nd);
+    int gk = BK2_GUARD_OF(kind);
+    if (gk == BK2_EV_RESTICK1) gv = sc_dsub(x->u1, P->vs, nd);
+    else if (gk == BK2_EV_RESTICK2) gv = sc_dsub(x->u2, P->vs, nd);
     else if (mode == SC_BK2_SLIP1)
       gv = sc_dsub(bk2_spring(P, x->y2, x->y1), P->t2, nd);
     else
       gv = sc_daddc(bk2_spring(P, x->y1, x->y2), -1);
     sc_bk2_event_shift(P, gv, slope, acc, x);
   }
-  switch (kind) {
-  case 1:
-    x->u1 = P->vs;
-    return mode == SC_BK2_SLIP1 ? SC_BK2_STICK : SC_BK2_SLIP2;
-  case 2:
-    x->u2 = P->vs;
-    return mode == SC_BK2_SLIP2 ? SC_BK2_STICK : SC_BK2_SLIP1;
-  default:
-    return SC_BK2_SLIP12;
-  }
+  int next = bk2_next_mode(mode, kind), stuck = bk2_stuck_blocks(mode, next);
+  if (stuck & 1) x->u1 = P->vs;
+  if (stuck & 2) x->u2 = P->vs;
+  return next;
 }
 
 int sc_bk2_take_event_at_max(const bk2_dpar *P, int mode, int kind,
@@ -82,7 +77,7 @@ void sc_bk2_patch(bk2_events *ev, int c0, int c1, int drop_next) {
 void sc_bk2_onset_state(const bk2_dpar *P, sc_dual d, int mode,
                         bk2_state *x) {
   int nd = P->nd;
-  if (mode == SC_BK2_SLIP1) {
+  if (bk2_onset_block(mode) == 1) {
     x->y1 = sc_daddc(sc_dmul(P->alpha, d, nd), 1);
     x->y2 = sc_dadd(x->y1, d, nd);
   } else {
@@ -94,7 +89,7 @@ void sc_bk2_onset_state(const bk2_dpar *P, sc_dual d, int mode,
 
 int sc_bk2_onset(const bk2_inst *b, const bk2_dpar *P, sc_dual d,
                  bk2_state *x) {
-  int mode = bk2_onset_mode(b, d.v);
+  int mode = BK2_ONSET_MODE(d.v, b->dstar);
   sc_bk2_onset_state(P, d, mode, x);
   return mode;
 }

@@ -12,7 +12,11 @@
  *                    event search, and their value-only fast path;
  *   bk2_numerical.c  the integrated flows (`flows = numerical`, GSL
  *                    odeiv2; velocity-weakening friction);
- *   bk2_jet.c, bk2_quad.c  second derivatives, quad precision.
+ *   bk2_jet.c        second derivatives: a replay in jets of the phases
+ *                    the event loop found (called by bk2_map.c only);
+ *   bk2_quad.c       quad precision, its own arithmetic;
+ *   bk2_rules.h      the rules in no number type, which all of them read:
+ *                    modes, the event table, the onset, names.
  * The event loop reaches a flow only through bk2_flows; the two flows
  * never call each other. */
 #ifndef SC_MODELS_BK2_IMPL_H
@@ -22,6 +26,7 @@
 
 #include "hybrid/dual.h"
 #include "hybrid/hybrid_impl.h"
+#include "models/bk2_rules.h"
 #include "slipcont/hybrid.h"
 #include "slipcont/models.h"
 
@@ -99,52 +104,6 @@ static inline sc_dual bk2_spring(const bk2_dpar *P, sc_dual ya, sc_dual yb) {
   return sc_dadd(ya, sc_dmul(P->alpha, sc_dsub(ya, yb, nd), nd), nd);
 }
 
-/* The mode of the slip that ends a GSP of displacement d: block 1 is at
- * its threshold first iff d < d* (docs/model.md, "The event map"); at d*
- * both are, and both start (the tie rule). */
-static inline int bk2_onset_mode(const bk2_inst *b, double d) {
-  return d < b->dstar ? SC_BK2_SLIP1 : d > b->dstar ? SC_BK2_SLIP2
-                                                    : SC_BK2_SLIP12;
-}
-
-/* Which blocks start slipping when entering `next` from `mode` (bit 0:
- * block 1, bit 1: block 2). */
-static inline int bk2_fresh_blocks(int mode, int next) {
-  if (mode == SC_BK2_STICK)
-    return next == SC_BK2_SLIP1 ? 1 : next == SC_BK2_SLIP2 ? 2 : 3;
-  if (next == SC_BK2_SLIP12) return mode == SC_BK2_SLIP1 ? 2 : 1;
-  return 0;
-}
-
-/* A slip mode's name in itineraries and border names. */
-static inline const char *bk2_mode_name(int mode) {
-  return mode == SC_BK2_SLIP1 ? "1" : mode == SC_BK2_SLIP2 ? "2" : "12";
-}
-
-/* A guard's name in border names (kinds: see bk2_events). */
-static inline const char *bk2_guard_text(int kind) {
-  return kind == 1 ? "U1-Vs" : kind == 2 ? "U2-Vs" : "S-T of stuck block";
-}
-
-/* Append mode's name to the itinerary itin of length *len ("1-12-2"),
- * when flags ask for it; "..." once it is full. */
-static inline void bk2_itin_add(char *itin, size_t *len, int mode,
-                                unsigned flags) {
-  if (!(flags & SC_EVAL_ITINERARY)) return;
-  const char *tok = bk2_mode_name(mode);
-  size_t need = strlen(tok) + (*len ? 1 : 0);
-  if (*len + need + 4 >= SC_ITIN_LEN) {
-    if (*len + 4 < SC_ITIN_LEN && strcmp(itin + *len - 3, "...") != 0) {
-      strcpy(itin + *len, "...");
-      *len += 3;
-    }
-    return;
-  }
-  if (*len) itin[(*len)++] = '-';
-  strcpy(itin + *len, tok);
-  *len += strlen(tok);
-}
-
 /* What one slip phase is asked to do and what it reveals.  In: `force`
  * (NULL: take the first event) is the phase's two code bytes, the ending
  * event kind (1, 2: re-stick of block i; 3: threshold of the stuck block;
@@ -177,18 +136,6 @@ typedef struct {
   int npatch;
 } bk2_events;
 
-/* Event kinds of a code (see bk2_events).  BK2_EV_ATMAX on a re-stick:
- * the phase ends at the guard's (skip + 1)-th local maximum instead of a
- * root (a grazing's own defining system). */
-enum { BK2_EV_RESTICK1 = 1, BK2_EV_RESTICK2, BK2_EV_THRESHOLD, BK2_EV_BOTH,
-       BK2_EV_BOTH2, BK2_EV_ATMAX = 0x80 };
-/* BK2_EV_BOTH, BK2_EV_BOTH2: both blocks re-stick at the root of block
- * 1's, block 2's guard. */
-#define BK2_IS_BOTH(k) ((k) == BK2_EV_BOTH || (k) == BK2_EV_BOTH2)
-#define BK2_GUARD_OF(k)                                                        \
-  ((k) == BK2_EV_BOTH ? BK2_EV_RESTICK1 : (k) == BK2_EV_BOTH2 ? BK2_EV_RESTICK2 \
-                                                               : (k))
-
 /* The event at a local maximum of re-stick guard `kind` (g' = 0, g'' =
  * g2 there): shift the sensitivities by dt = -dg'/g'', stick the block,
  * and return the next mode (a grazing's own defining system). */
@@ -217,16 +164,16 @@ void sc_bk2_first_restick(bk2_inst *b);
 /* The onset state of a slip of `mode` from the GSP of displacement d. */
 void sc_bk2_onset_state(const bk2_dpar *P, sc_dual d, int mode,
                         bk2_state *x);
-/* The onset mode of d (bk2_onset_mode) and its state. */
+/* The onset mode of d (BK2_ONSET_MODE) and its state. */
 int sc_bk2_onset(const bk2_inst *b, const bk2_dpar *P, sc_dual d,
                  bk2_state *x);
 void sc_bk2_event_shift(const bk2_dpar *P, sc_dual gval, double slope,
                         const double acc[2], bk2_state *x);
-/* Take the event of guard `kind` (1, 2: re-stick of block i; 3: threshold
- * of the stuck block) that ends a phase of `mode`, with x the state there
- * at fixed time, slope the guard's g' and acc the accelerations: shift
- * the sensitivities by the event time's, reset the velocity of a block
- * that sticks, and return the next mode. */
+/* Take the event `kind` (bk2_rules.h: a re-stick, a threshold, or both
+ * re-sticks at once) that ends a phase of `mode`, with x the state there
+ * at fixed time, slope the g' of its guard and acc the accelerations:
+ * shift the sensitivities by the event time's, reset the velocity of the
+ * blocks that stick, and return the next mode (the event table). */
 int sc_bk2_take_event(const bk2_dpar *P, int mode, int kind, double slope,
                       const double acc[2], bk2_state *x);
 int sc_bk2_iterate(const bk2_inst *b, const bk2_dpar *P, sc_dual d,
@@ -240,6 +187,25 @@ int sc_bk2_iterate_ex(const bk2_inst *b, const bk2_dpar *P, sc_dual d,
                       sc_itin_code *code, sc_border_list *borders,
                       bk2_state *x, sc_map_value *out, bk2_phase_fn fn,
                       void *ctx, sc_msg *msg);
+
+/* One iterate with SC_EVAL_DERIV2 (bk2_map.c): the ordinary evaluation
+ * (value, first derivatives, itinerary, borders), then the replay of its
+ * phases in jet arithmetic (sc_bk2_jet_replay(), bk2_jet.h) that fills
+ * d2fdd2, d2fddp, d3fdd3 and d3fdd2p.  Exact flows only (SC_EINVAL
+ * otherwise).  The second derivatives are NaN where an event guard has
+ * zero slope, or two re-sticks coincide: f is not twice differentiable
+ * there.  grad (5 entries, may be NULL) receives the jet's own first
+ * derivatives in (d, alpha, beta, phi, v), a cross-check of the duals'
+ * (tests). */
+int sc_bk2_eval_jet(const bk2_inst *b, double d, unsigned flags,
+                    sc_map_value *out, double *grad, sc_msg *msg);
+/* As sc_bk2_eval_jet() along a forced code, with the code followed and
+ * the borders (sc_bk2_iterate_ex()); a code with an event at a guard's
+ * maximum is refused (SC_EINVAL). */
+int sc_bk2_eval_jet_ex(const bk2_inst *b, double d, unsigned flags,
+                       const sc_itin_code *force, sc_itin_code *code,
+                       sc_border_list *borders, sc_map_value *out,
+                       double *grad, sc_msg *msg);
 
 /* Where a trajectory goes: samples every dtau of slip time, times
  * counted from the start of the run (tau). */

@@ -1,8 +1,8 @@
 /* Exact second (and d-d-x third) derivatives of bk2's event map.
  *
- * The ordinary evaluation (bk2.c) finds the phases of the iterate: their
- * modes and durations, and from the next mode the event that ends each.
- * This file replays those phases in jet arithmetic (src/hybrid/jet.h)
+ * The ordinary evaluation (sc_bk2_eval_jet(), bk2_map.c) finds the phases
+ * of the iterate: their modes and durations, and from the next mode the
+ * event that ends each (bk2_rules.h).  This file replays those phases in jet arithmetic (src/hybrid/jet.h)
  * over the directions (d, alpha, beta, phi, v): the closed-form flows of
  * docs/model.md with jet coefficients, and each event time tau as a jet found
  * by Newton's method on the guard, g(tau) = 0, started at the known root.
@@ -156,32 +156,6 @@ static void guard_at(const jpar *P, int mode, int kind, const jstate *x,
   }
 }
 
-/* The event that ends a phase of `mode` followed by `next` (docs/model.md's
- * event table); 0 for two re-sticks at once (not twice differentiable). */
-static int event_kind(int mode, int next) {
-  if (mode == SC_BK2_SLIP1) return next == SC_BK2_STICK ? 1 : 3;
-  if (mode == SC_BK2_SLIP2) return next == SC_BK2_STICK ? 2 : 3;
-  if (next == SC_BK2_SLIP2) return 1;
-  if (next == SC_BK2_SLIP1) return 2;
-  return 0;
-}
-
-typedef struct {
-  int n;
-  int mode[SC_BK2_JET_MAXPHASES];
-  double dur[SC_BK2_JET_MAXPHASES];
-} phase_log;
-
-static int record(void *ctx, int mode, const bk2_state *x0, double dur) {
-  phase_log *L = ctx;
-  (void)x0;
-  if (L->n >= SC_BK2_JET_MAXPHASES) return SC_EINVAL;
-  L->mode[L->n] = mode;
-  L->dur[L->n] = dur;
-  L->n++;
-  return SC_OK;
-}
-
 static void fill_nan(sc_map_value *out, double *grad) {
   out->d2fdd2 = out->d3fdd3 = NAN;
   for (int k = 0; k < SC_MAXPARAM; k++)
@@ -191,47 +165,14 @@ static void fill_nan(sc_map_value *out, double *grad) {
       grad[k] = NAN;
 }
 
-int sc_bk2_eval_jet(const bk2_inst *b, double d, unsigned flags,
-                    sc_map_value *out, double *grad, sc_msg *msg) {
-  return sc_bk2_eval_jet_ex(b, d, flags, NULL, NULL, NULL, out, grad, msg);
-}
-
-int sc_bk2_eval_jet_ex(const bk2_inst *b, double d, unsigned flags,
-                       const sc_itin_code *force, sc_itin_code *code,
-                       sc_border_list *borders, sc_map_value *out,
-                       double *grad, sc_msg *msg) {
-  /* The replay solves each event as a root of its guard: a code that
-   * ends a phase at a guard's maximum (a grazing's own system) is not
-   * one it can follow. */
-  for (int i = 2; force && i < force->n; i += 2)
-    if (force->c[i - 1] & BK2_EV_ATMAX)
-      return sc_fail(msg, SC_EINVAL,
-                     "bk2: second derivatives along a code that ends a slip "
-                     "at a guard's maximum are not available");
-  if (b->numerical)
-    return sc_fail(msg, SC_EINVAL,
-                   "bk2: second derivatives (SC_EVAL_DERIV2) need the "
-                   "closed-form flows (valid: flows = exact)");
-  bk2_dpar Pd;
-  sc_bk2_dparams(b, 5, &Pd);
-  bk2_state xd;
-  phase_log L;
-  L.n = 0;
-  int st = sc_bk2_iterate_ex(b, &Pd, sc_dvar(d, 0, 5), flags | SC_EVAL_DERIV,
-                             force, code, borders, &xd, out, record, &L, msg);
-  if (st == SC_EINVAL && L.n >= SC_BK2_JET_MAXPHASES)
-    return sc_fail(msg, SC_EINVAL,
-                   "bk2: %d slip phases in one iterate: too many for second "
-                   "derivatives (valid: at most %d)",
-                   L.n, SC_BK2_JET_MAXPHASES);
-  if (st) return st;
-
+void sc_bk2_jet_replay(const bk2_inst *b, double d, const bk2_phase_log *L,
+                       sc_map_value *out, double *grad) {
   jpar P;
   jparams(b, &P);
   /* The onset, as sc_bk2_onset() (the mode is the recorded one). */
   sc_jet dj = sc_jvar(d, 0, ND);
   jstate x;
-  if (L.mode[0] == SC_BK2_SLIP1) {
+  if (bk2_onset_block(L->mode[0]) == 1) {
     x.y1 = sc_jaddc(sc_jmul(P.alpha, dj, ND), 1);
     x.y2 = sc_jadd(x.y1, dj, ND);
   } else {
@@ -239,16 +180,17 @@ int sc_bk2_eval_jet_ex(const bk2_inst *b, double d, unsigned flags,
     x.y1 = sc_jsub(x.y2, dj, ND);
   }
   x.u1 = x.u2 = P.vs;
-  for (int n = 0; n < L.n; n++) {
-    int mode = L.mode[n];
-    int next = n + 1 < L.n ? L.mode[n + 1] : SC_BK2_STICK;
-    int kind = event_kind(mode, next);
+  for (int n = 0; n < L->n; n++) {
+    int mode = L->mode[n];
+    int next = n + 1 < L->n ? L->mode[n + 1] : SC_BK2_STICK;
+    /* 0: both blocks re-stick at once (not twice differentiable) */
+    int kind = bk2_event_between(mode, next);
     if (!kind) {
       fill_nan(out, grad);
-      return SC_OK;
+      return;
     }
     jflow f = flow_make(&P, mode, &x);
-    sc_jet tau = sc_jconst(L.dur[n]), g, gt, acc[2];
+    sc_jet tau = sc_jconst(L->dur[n]), g, gt, acc[2];
     for (int it = 0; it < SC_BK2_JET_NEWTON; it++) {
       flow_at(&P, &f, &tau, &x, acc);
       guard_at(&P, mode, kind, &x, acc, &g, &gt);
@@ -256,14 +198,15 @@ int sc_bk2_eval_jet_ex(const bk2_inst *b, double d, unsigned flags,
         /* A guard with zero slope: the event time is not differentiable
          * (docs/model.md: at grazing, or at d* with V_s = 0). */
         fill_nan(out, grad);
-        return SC_OK;
+        return;
       }
       tau = sc_jsub(tau, sc_jdiv(g, gt, ND), ND);
-      tau.v = L.dur[n]; /* the root of the ordinary evaluation */
+      tau.v = L->dur[n]; /* the root of the ordinary evaluation */
     }
     flow_at(&P, &f, &tau, &x, acc);
-    if (kind == 1) x.u1 = P.vs;
-    if (kind == 2) x.u2 = P.vs;
+    int stuck = bk2_stuck_blocks(mode, next);
+    if (stuck & 1) x.u1 = P.vs;
+    if (stuck & 2) x.u2 = P.vs;
   }
   sc_jet fj = sc_jsub(x.y2, x.y1, ND);
   if (out->neutral) {
@@ -282,5 +225,4 @@ int sc_bk2_eval_jet_ex(const bk2_inst *b, double d, unsigned flags,
   if (grad)
     for (int k = 0; k < ND; k++)
       grad[k] = fj.g[k];
-  return SC_OK;
 }

@@ -248,7 +248,7 @@ int sc_bk2_iterate_ex(const bk2_inst *b, const bk2_dpar *P, sc_dual d,
   for (int n = 0; n < b->acc.max_events; n++) {
     bk2_state x0 = *x;
     double dur;
-    bk2_itin_add(out->itinerary, &ilen, mode, flags);
+    if (flags & SC_EVAL_ITINERARY) bk2_itin_add(out->itinerary, &ilen, mode);
     if (fc) {
       if (fpos + 1 >= force->n)
         return sc_fail(msg, SC_EINVAL,
@@ -302,6 +302,60 @@ int sc_bk2_iterate_ex(const bk2_inst *b, const bk2_dpar *P, sc_dual d,
 
 
 _Static_assert(1 + 4 <= SC_NDIR, "bk2 needs d and four parameters");
+
+/* ---- second derivatives ------------------------------------------------- */
+
+/* Keep each phase's mode and duration (the event loop's phase callback)
+ * for the replay in jets. */
+static int record_phase(void *ctx, int mode, const bk2_state *x0,
+                        double dur) {
+  bk2_phase_log *L = ctx;
+  (void)x0;
+  if (L->n >= SC_BK2_JET_MAXPHASES) return SC_EINVAL;
+  L->mode[L->n] = mode;
+  L->dur[L->n] = dur;
+  L->n++;
+  return SC_OK;
+}
+
+int sc_bk2_eval_jet(const bk2_inst *b, double d, unsigned flags,
+                    sc_map_value *out, double *grad, sc_msg *msg) {
+  return sc_bk2_eval_jet_ex(b, d, flags, NULL, NULL, NULL, out, grad, msg);
+}
+
+int sc_bk2_eval_jet_ex(const bk2_inst *b, double d, unsigned flags,
+                       const sc_itin_code *force, sc_itin_code *code,
+                       sc_border_list *borders, sc_map_value *out,
+                       double *grad, sc_msg *msg) {
+  /* The replay solves each event as a root of its guard: a code that
+   * ends a phase at a guard's maximum (a grazing's own system) is not
+   * one it can follow. */
+  for (int i = 2; force && i < force->n; i += 2)
+    if (force->c[i - 1] & BK2_EV_ATMAX)
+      return sc_fail(msg, SC_EINVAL,
+                     "bk2: second derivatives along a code that ends a slip "
+                     "at a guard's maximum are not available");
+  if (b->numerical)
+    return sc_fail(msg, SC_EINVAL,
+                   "bk2: second derivatives (SC_EVAL_DERIV2) need the "
+                   "closed-form flows (valid: flows = exact)");
+  bk2_dpar P;
+  sc_bk2_dparams(b, 5, &P);
+  bk2_state x;
+  bk2_phase_log L;
+  L.n = 0;
+  int st = sc_bk2_iterate_ex(b, &P, sc_dvar(d, 0, 5), flags | SC_EVAL_DERIV,
+                             force, code, borders, &x, out, record_phase, &L,
+                             msg);
+  if (st == SC_EINVAL && L.n >= SC_BK2_JET_MAXPHASES)
+    return sc_fail(msg, SC_EINVAL,
+                   "bk2: %d slip phases in one iterate: too many for second "
+                   "derivatives (valid: at most %d)",
+                   L.n, SC_BK2_JET_MAXPHASES);
+  if (st) return st;
+  sc_bk2_jet_replay(b, d, &L, out, grad);
+  return SC_OK;
+}
 
 /* f' is not finite: an event with zero slope.  Next to d* with the
  * driver frozen that is rounding (the other block starts at its threshold

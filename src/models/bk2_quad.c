@@ -19,6 +19,7 @@
 #include <string.h>
 
 #include "models/bk2_quad.h"
+#include "models/bk2_rules.h"
 
 typedef sc_quad Q;
 
@@ -466,9 +467,10 @@ static int qtake_event(const qpar *P, int mode, int kind, Q slope,
   int nd = P->nd;
   if (nd) {
     qd gv;
-    if (kind == 1)
+    int gk = BK2_GUARD_OF(kind);
+    if (gk == BK2_EV_RESTICK1)
       gv = qsub(x->u1, P->vs, nd);
-    else if (kind == 2)
+    else if (gk == BK2_EV_RESTICK2)
       gv = qsub(x->u2, P->vs, nd);
     else if (mode == SC_BK2_SLIP1)
       gv = qsub(qspring(P, x->y2, x->y1), P->beta, nd);
@@ -483,25 +485,16 @@ static int qtake_event(const qpar *P, int mode, int kind, Q slope,
         xs[i]->d[k] += xdot[i] * dt;
     }
   }
-  if (kind == 1) {
-    x->u1 = P->vs;
-    return mode == SC_BK2_SLIP1 ? SC_BK2_STICK : SC_BK2_SLIP2;
-  }
-  if (kind == 2) {
-    x->u2 = P->vs;
-    return mode == SC_BK2_SLIP2 ? SC_BK2_STICK : SC_BK2_SLIP1;
-  }
-  return SC_BK2_SLIP12;
+  int next = bk2_next_mode(mode, kind), stuck = bk2_stuck_blocks(mode, next);
+  if (stuck & 1) x->u1 = P->vs;
+  if (stuck & 2) x->u2 = P->vs;
+  return next;
 }
 
 typedef struct {
   double graze_margin;
   int graze_block, graze_mode, tangent;
 } qevents;
-
-static const char *mode_name(int mode) {
-  return mode == SC_BK2_SLIP1 ? "1" : mode == SC_BK2_SLIP2 ? "2" : "12";
-}
 
 /* One slip phase: its end, the next mode (or a negative status), and the
  * state there.  fresh bit i-1: block i started slipping at this phase's
@@ -518,7 +511,7 @@ static int qphase(const qpar *P, int mode, int fresh, qstate *x, qevents *ev,
     }
   if (mode != SC_BK2_SLIP12) {
     g[ng] = qguard_threshold(P, &f);
-    kind[ng++] = 3;
+    kind[ng++] = BK2_EV_THRESHOLD;
   }
   Q tmax = 0;
   for (int i = 0; i < ng; i++)
@@ -526,7 +519,7 @@ static int qphase(const qpar *P, int mode, int fresh, qstate *x, qevents *ev,
   qroot r[2];
   int first = -1;
   for (int i = 0; i < ng; i++) {
-    int skip = kind[i] < 3 && (fresh & kind[i]);
+    int skip = kind[i] != BK2_EV_THRESHOLD && (fresh & kind[i]);
     /* a later guard matters only up to the earliest root so far (plus
      * the tie tolerance) */
     Q lim = first < 0 ? tmax : r[first].t + qtol_at(r[first].t);
@@ -537,23 +530,23 @@ static int qphase(const qpar *P, int mode, int fresh, qstate *x, qevents *ev,
     return sc_fail(msg, SC_EUNDEF,
                    "bk2 (quad): no event within %.6g time units of slip "
                    "mode %s: the slip does not end",
-                   (double)tmax, mode_name(mode));
+                   (double)tmax, bk2_mode_name(mode));
   /* ties within the time tolerance: re-sticks first (docs/events.md); two
    * re-sticks at once end both slips */
   int both = 0;
   for (int i = 0; i < ng; i++) {
     if (i == first || !r[i].found) continue;
     if (fabsq(r[i].t - r[first].t) <= qtol_at(r[first].t)) {
-      if (kind[first] == 3)
+      if (kind[first] == BK2_EV_THRESHOLD)
         first = i;
-      else if (kind[i] < 3)
+      else if (kind[i] != BK2_EV_THRESHOLD)
         both = 1;
     }
   }
   Q t = r[first].t, acc[2];
   qflow_at(P, &f, t, x, acc);
   if (r[first].tangent) ev->tangent = 1;
-  if (kind[first] < 3) {
+  if (kind[first] != BK2_EV_THRESHOLD) {
     Q g0, g2;
     qg_eval(&g[first], t, &g0, NULL, &g2);
     double h = g2 < 0 ? (double)(r[first].slope * r[first].slope / (2 * -g2))
@@ -564,30 +557,11 @@ static int qphase(const qpar *P, int mode, int fresh, qstate *x, qevents *ev,
       ev->graze_mode = mode;
     }
   }
-  int next = qtake_event(P, mode, kind[first], r[first].slope, acc, x);
-  return both ? SC_BK2_STICK : next;
-}
-
-static void qitin_add(char *itin, size_t *len, int mode) {
-  const char *tok = mode_name(mode);
-  size_t need = strlen(tok) + (*len ? 1 : 0);
-  if (*len + need + 4 >= SC_ITIN_LEN) {
-    if (*len + 4 < SC_ITIN_LEN && strcmp(itin + *len - 3, "...") != 0) {
-      strcpy(itin + *len, "...");
-      *len += 3;
-    }
-    return;
-  }
-  if (*len) itin[(*len)++] = '-';
-  strcpy(itin + *len, tok);
-  *len += strlen(tok);
-}
-
-static int fresh_blocks(int mode, int next) {
-  if (mode == SC_BK2_STICK)
-    return next == SC_BK2_SLIP1 ? 1 : next == SC_BK2_SLIP2 ? 2 : 3;
-  if (next == SC_BK2_SLIP12) return mode == SC_BK2_SLIP1 ? 2 : 1;
-  return 0;
+  return qtake_event(P, mode,
+                     !both ? kind[first]
+                     : kind[first] == BK2_EV_RESTICK1 ? BK2_EV_BOTH
+                                                      : BK2_EV_BOTH2,
+                     r[first].slope, acc, x);
 }
 
 int sc_bk2q_eval(const sc_bk2q_params *p, Q d, int nd, sc_bk2q_value *out,
@@ -609,23 +583,22 @@ int sc_bk2q_eval(const sc_bk2q_params *p, Q d, int nd, sc_bk2q_value *out,
   qd dd = qvar(d, 0, nd);
   qstate x;
   int mode;
-  /* the onset (docs/derivations.md, section 3): block 1 first iff d < d* */
-  if (d < P.dstar) {
+  /* the onset (docs/derivations.md, section 3) */
+  mode = BK2_ONSET_MODE(d, P.dstar);
+  if (bk2_onset_block(mode) == 1) {
     x.y1 = qaddc(qmul(P.alpha, dd, nd), 1);
     x.y2 = qadd(x.y1, dd, nd);
-    mode = SC_BK2_SLIP1;
   } else {
     x.y2 = qsub(P.beta, qmul(P.alpha, dd, nd), nd);
     x.y1 = qsub(x.y2, dd, nd);
-    mode = d > P.dstar ? SC_BK2_SLIP2 : SC_BK2_SLIP12;
   }
   x.u1 = x.u2 = P.vs;
   out->dstar_dist = (double)fabsq(d - P.dstar);
-  int first_mode = mode, fresh = fresh_blocks(SC_BK2_STICK, mode);
+  int first_mode = mode, fresh = bk2_fresh_blocks(SC_BK2_STICK, mode);
   qevents ev = {HUGE_VAL, 0, 0, 0};
   size_t ilen = 0;
   for (int n = 0; n < P.max_events; n++) {
-    qitin_add(out->itinerary, &ilen, mode);
+    bk2_itin_add(out->itinerary, &ilen, mode);
     int next = qphase(&P, mode, fresh, &x, &ev, msg);
     if (next < 0) return next;
     out->nphases++;
@@ -650,7 +623,7 @@ int sc_bk2q_eval(const sc_bk2q_params *p, Q d, int nd, sc_bk2q_value *out,
       out->tangent = ev.tangent;
       return SC_OK;
     }
-    fresh = fresh_blocks(mode, next);
+    fresh = bk2_fresh_blocks(mode, next);
     mode = next;
   }
   return sc_fail(msg, SC_EUNDEF,
