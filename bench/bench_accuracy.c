@@ -32,6 +32,7 @@
 
 #include "slipcont/chart.h"
 #include "slipcont/map.h"
+#include "bench_plot.h"
 #include "bench_util.h"
 
 #define NPERSET 400 /* points per parameter set: 200 attractor, 200 grid */
@@ -168,28 +169,32 @@ static void pareto(int n, const double *x, const double *y, int *front) {
 }
 
 /* The gnuplot script of one error-against-time plot: all settings as
- * labelled points, the front as a line through its points by time. */
+ * labelled points (labels placed so that none overlaps another,
+ * bench_plot.h), the front as a line through its points by time. */
 static void write_plot(const char *dir, const char *stem, const char *csv,
                        int xcol, int ycol, const char *xlabel,
-                       const char *ylabel, const char *title, double floor) {
+                       const char *ylabel, const char *title, double floor,
+                       int n, const double *x, const double *y,
+                       const char *const *text) {
   char path[512];
   snprintf(path, sizeof path, "%s/%s.gp", dir, stem);
   FILE *f = fopen(path, "w");
   if (!f) return;
   fprintf(f,
           "set terminal pngcairo size 900,600\nset output '%s/%s.png'\n"
-          "set datafile separator ','\nset logscale xy\nset grid\n"
+          "set datafile separator ','\nset grid\n"
           "set format xy \"10^{%%L}\"\n"
-          "set key top right\nset title \"%s\"\nset xlabel \"%s\"\n"
-          "set ylabel \"%s\"\nfloor = %g\n"
+          "set key at screen 0.5, screen 0.01 center bottom horizontal\n"
+          "set title \"%s\"\nset xlabel \"%s\"\n"
+          "set ylabel \"%s\"\nfloor = %g\n",
+          dir, stem, title, xlabel, ylabel, floor);
+  bench_plot_labels(f, 900, 600, 0.12, 0.96, 0.2, 0.9, n, x, y, text);
+  fprintf(f,
           "plot '%s/%s' every ::1 using %d:(column(%d) > floor ? "
           "column(%d) : floor) with points pt 7 ps 1.2 title 'setting', \\\n"
-          "     '' every ::1 using %d:(column(%d) > floor ? column(%d) : "
-          "floor):1 with labels offset 0.8,0.6 left font ',8' notitle, \\\n"
           "     '%s/%s-front.csv' using 1:(column(2) > floor ? column(2) : "
           "floor) with linespoints lw 2 pt 6 ps 2 title 'Pareto front'\n",
-          dir, stem, title, xlabel, ylabel, floor, dir, csv, xcol, ycol, ycol,
-          xcol, ycol, ycol, dir, stem);
+          dir, csv, xcol, ycol, ycol, dir, stem);
   fclose(f);
 }
 
@@ -338,12 +343,16 @@ int main(int argc, char **argv) {
   fclose(csv);
   write_front(dir, "map-f", nm, xs, yf);
   write_front(dir, "map-df", nm, xs, yd);
+  const char *mlab[MAXSET];
+  for (int i = 0; i < nm; i++) mlab[i] = ms[i].label;
   write_plot(dir, "map-f", "map.csv", 2, 3, "seconds per evaluation of f",
              "max |f - f_{quad}|",
-             "bk2 map: error against time (quad at the floor 1e-18)", 1e-18);
+             "bk2 map: error against time (quad at the floor 1e-18)", 1e-18,
+             nm, xs, yf, mlab);
   write_plot(dir, "map-df", "map.csv", 2, 5, "seconds per evaluation of f",
              "max |f' - f'_{quad}| / (1 + |f'_{quad}|)",
-             "bk2 map derivative: error against time", 1e-18);
+             "bk2 map derivative: error against time", 1e-18, nm, xs, yd,
+             mlab);
 
   /* ---- 2. charts ---- */
   long np = steps * steps;
@@ -409,10 +418,12 @@ int main(int argc, char **argv) {
   }
   fclose(csv);
   write_front(dir, "chart", nc, cx, cy);
+  const char *clab[MAXSET];
+  for (int i = 0; i < nc; i++) clab[i] = cs[i].label;
   write_plot(dir, "chart", "chart.csv", 2, 3, "seconds per chart (one thread)",
              "fraction of cells classified differently from the reference",
              "fig 5.7(a) chart: error against time (0 plotted at half a cell)",
-             0.5 / (double)np);
+             0.5 / (double)np, nc, cx, cy, clab);
 
   /* ---- quad check of the reference ---- */
   sc_map *q = chart_map("precise", reference.period_rtol, 1);

@@ -31,6 +31,7 @@
 
 #include "slipcont/branch.h"
 #include "slipcont/map.h"
+#include "bench_plot.h"
 #include "bench_util.h"
 
 #define MAXPTS 256
@@ -266,6 +267,10 @@ static int smooth_all(const char *dir, FILE *md, int repeats) {
     return 1;
   }
   fprintf(csv, "map,tool,setting,seconds,max_err,missing,process_seconds\n");
+  /* each case's points and labels, for the plot */
+  double px[2][9], py[2][9];
+  char ptext[2][9][96];
+  const char *plab[2][9];
   for (size_t ic = 0; ic < sizeof smooth_cases / sizeof smooth_cases[0]; ic++) {
     const smooth_case *c = &smooth_cases[ic];
     fprintf(md,
@@ -285,6 +290,19 @@ static int smooth_all(const char *dir, FILE *md, int repeats) {
                 hs[ih], t, nev, err, missing);
         fprintf(csv, "%s,slipcont,%s hmax %g,%.6g,%.6g,%d,\n", c->name,
                 presets[ip], hs[ih], t, err, missing);
+        if (ic < 2) {
+          int k = 3 * ip + ih;
+          px[ic][k] = t;
+          py[ic][k] = err > 1e-17 ? err : 1e-17;
+          if (missing)
+            snprintf(ptext[ic][k], sizeof ptext[ic][k],
+                     "%s hmax %g (%d not found)", presets[ip], hs[ih],
+                     missing);
+          else
+            snprintf(ptext[ic][k], sizeof ptext[ic][k], "%s hmax %g",
+                     presets[ip], hs[ih]);
+          plab[ic][k] = ptext[ic][k];
+        }
       }
   }
   fclose(csv);
@@ -297,21 +315,40 @@ static int smooth_all(const char *dir, FILE *md, int repeats) {
           "set output '%s/smooth.png'\n"
           "set datafile separator ','\nset logscale xy\nset grid\n"
           "set format y \"10^{%%L}\"\nset format x \"10^{%%L}\"\n"
-          "set key below\nset xlabel \"seconds per run (median)\"\n"
+          "set key at screen 0.5, screen 0.01 center bottom horizontal\n"
+          "set xlabel \"seconds per run (median)\"\n"
           "set ylabel \"max |p - p_{exact}| over the points found\"\n"
           "f = '%s/smooth.csv'\n"
           "y(e) = e > 1e-17 ? e : 1e-17\n"
-          "lab(n) = n > 0 ? sprintf('%%s (%%d not found)', strcol(3), n) "
-          ": strcol(3)\n"
-          "set yrange [1e-17:1]\n"
           "is(m, t) = strcol(1) eq m && strcol(2) eq t\n"
-          "set multiplot layout 1,2\n",
+          "set multiplot\n",
           dir, dir);
   const char *titles[] = {"logistic map: flips at 3, 1+sqrt 6, r_3; fold "
                           "of period 3",
                           "cubic map (mu2 = 1/2): two flips, two folds"};
   for (size_t ic = 0; ic < 2; ic++) {
     const char *n = smooth_cases[ic].name;
+    /* slipcont's settings labelled (placed: none overlaps another); the
+     * x range leaves two decades on the right for AUTO-07p's rows */
+    double xr[2] = {px[ic][0], px[ic][0] * 100};
+    for (int k = 1; k < 9; k++)
+      xr[0] = fmin(xr[0], px[ic][k]), xr[1] = fmax(xr[1], 100 * px[ic][k]);
+    fprintf(gp, "unset label\nunset arrow\nset format x \"10^{%%L}\"\n");
+    double left = ic ? 0.57 : 0.07;
+    sc_plot_frame fr = {.width = 1200, .height = 560, .left = left,
+                        .right = left + 0.41, .bottom = 0.22, .top = 0.9,
+                        .xlog = 1, .ylog = 1, .font = 7, .marker = 5};
+    bench_plot_decades(2, xr, &fr.xmin, &fr.xmax);
+    fr.ymin = 1e-17, fr.ymax = 1;
+    sc_plot_spot sp[9];
+    for (int k = 0; k < 9; k++) {
+      memset(&sp[k], 0, sizeof sp[k]);
+      sp[k].x = px[ic][k], sp[k].y = py[ic][k];
+      snprintf(sp[k].text, sizeof sp[k].text, "%s", plab[ic][k]);
+    }
+    sc_plot_frame_write(gp, &fr);
+    sc_plot_place(&fr, sp, 9);
+    sc_plot_labels_write(gp, &fr, sp, 9, "#666666");
     fprintf(gp,
             "set title \"%s\"\n"
             "plot f every ::1 using (is('%s','slipcont') ? $4 : NaN):(y($5)) "
@@ -321,12 +358,8 @@ static int smooth_all(const char *dir, FILE *md, int repeats) {
             "\\\n"
             "     f every ::1 using (is('%s','auto') ? $7 : NaN):(y($5)) "
             "with points pt 4 ps 1.2 lc 2 title 'AUTO-07p (wall, with "
-            "process start and files)', \\\n"
-            "     f every ::1 using (strcol(1) eq '%s' ? $4 : NaN):(y($5)):"
-            "(lab($6)) "
-            "with labels offset 0.6,0.5 left font ',7' tc rgb 'gray40' "
-            "notitle\n",
-            titles[ic], n, n, n, n);
+            "process start and files)'\n",
+            titles[ic], n, n, n);
   }
   fprintf(gp, "unset multiplot\n");
   fclose(gp);
@@ -400,6 +433,11 @@ int main(int argc, char **argv) {
     fprintf(md, "---|");
   fprintf(md, "\n");
   fprintf(csv, "setting,seconds,max_err_lp_pd,max_err_other,missing\n");
+  /* the plot's points: folds and flips labelled, borders as markers */
+  double gx[36], gy[36]; /* folds and flips, then borders */
+  char gtext[18][64];
+  const char *glab[18];
+  int ng = 0;
   const char *presets[] = {"fast", "default", "precise"};
   const double hs[] = {0.02, 0.01, 0.005};
   for (int ip = 0; ip < 3; ip++)
@@ -437,6 +475,11 @@ int main(int argc, char **argv) {
           fprintf(md, " %.2g |", errs[i]);
       fprintf(md, "\n");
       fprintf(csv, "%s,%.6g,%.6g,%.6g,%d\n", label, t, e_lp, e_other, missing);
+      gx[ng] = t, gy[ng] = e_lp > 1e-17 ? e_lp : 1e-17;
+      gy[9 + ng] = e_other > 1e-17 ? e_other : 1e-17; /* 9 settings */
+      snprintf(gtext[ng], sizeof gtext[ng], "%s", label);
+      glab[ng] = gtext[ng];
+      ng++;
     }
   fclose(csv);
   if (smooth_all(dir, md, smooth_repeats)) return 1;
@@ -446,18 +489,28 @@ int main(int argc, char **argv) {
   if (!gp) return 1;
   fprintf(gp,
           "set terminal pngcairo size 900,600\nset output '%s/branch.png'\n"
-          "set datafile separator ','\nset logscale xy\nset grid\n"
-          "set format y \"10^{%%L}\"\nset key below\n"
+          "set datafile separator ','\nset grid\n"
+          "set format y \"10^{%%L}\"\n"
+          "set key at screen 0.5, screen 0.01 center bottom horizontal\n"
           "set title \"fig 5.8 special points: error against time "
           "(reference: quad)\"\nset xlabel \"seconds per run\"\n"
-          "set ylabel \"max |p - p_{quad}| over matched points\"\n"
+          "set ylabel \"max |p - p_{quad}| over matched points\"\n",
+          dir);
+  /* the settings' labels by their fold and flip points; the border
+   * points' markers (empty texts) are kept clear of them */
+  const char *alab[36];
+  for (int i = 0; i < ng; i++) {
+    gx[ng + i] = gx[i];
+    alab[i] = glab[i];
+    alab[ng + i] = "";
+  }
+  bench_plot_labels(gp, 900, 600, 0.12, 0.96, 0.2, 0.9, 2 * ng, gx, gy, alab);
+  fprintf(gp,
           "plot '%s/branch.csv' every ::1 using 2:($3 > 1e-17 ? $3 : 1e-17) "
           "with points pt 7 ps 1.2 title 'folds and flips (LP, PD)', \\\n"
-          "     '' every ::1 using 2:($3 > 1e-17 ? $3 : 1e-17):1 with labels "
-          "offset 0.8,0.6 left font ',8' notitle, \\\n"
           "     '' every ::1 using 2:($4 > 1e-17 ? $4 : 1e-17) with points "
           "pt 5 ps 1.2 title 'borders (GR, CS, SW, DI)'\n",
-          dir, dir);
+          dir);
   fclose(gp);
   char cmd[1100];
   snprintf(cmd, sizeof cmd, "gnuplot '%s/branch.gp' 2>/dev/null", dir);

@@ -2,6 +2,7 @@
 # src/analysis/sweep.c).
 sc_add_test(test_scene)
 sc_add_test(test_scene_sweep)
+sc_add_test(test_plot)
 
 # The program itself, through small shell scripts: refusals of bad input,
 # overrides, outputs, the examples, and the guide's key tables.
@@ -14,3 +15,8 @@ endforeach()
 set_tests_properties(cli_examples PROPERTIES TIMEOUT 300)
 # A model that hangs must fail the suite, not stall it.
 set_tests_properties(test_scene_sweep PROPERTIES TIMEOUT 300)
+# The examples' figures: labels clear of each other, keys, tick formats.
+add_test(NAME figures
+  COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/figures.sh
+          $<TARGET_FILE:slipcont_cli> ${PROJECT_SOURCE_DIR})
+set_tests_properties(figures PROPERTIES TIMEOUT 300)

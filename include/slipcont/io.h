@@ -323,6 +323,117 @@ SC_API char *sc_plot_title_except(const sc_map *m, const char *skip1,
  */
 SC_API const char *sc_plot_label(const sc_map *m, const char *name);
 
+/**
+ * @brief The colour of a period class in charts (0xRRGGBB): the same
+ * table for the chart task and for a chart drawn under a curve, so that
+ * the reader can relate one to the other.  @p period >= 1 cycles through
+ * 16 colours; 0 (higher or chaos) is black, -1 (undefined) light grey,
+ * -2 (not settled) white.
+ */
+SC_API unsigned sc_plot_period_rgb(int period);
+
+/**
+ * @brief The marker (gnuplot point type) and colour ("#rrggbb") of a
+ * special-point label ("LP", "PD", "GR", ...), the same in every figure;
+ * @p what (may be NULL) receives the kind's name ("fold", ...).
+ * Unknown labels get a neutral grey cross.
+ */
+SC_API void sc_plot_point_style(const char *label, int *pt, const char **rgb,
+                                const char **what);
+
+/**
+ * @brief The colour ("#rrggbb") of the k-th of several curves drawn in
+ * one figure: 12 colours chosen so that consecutive ones differ in hue
+ * and lightness; beyond 12 they repeat (the caller changes the dash).
+ */
+SC_API const char *sc_plot_curve_rgb(int k);
+
+/**
+ * @brief Write `set format AXIS '%.Ng'` when the range [lo, hi] is so
+ * narrow for its magnitude that gnuplot's default six digits would print
+ * equal tick labels; nothing otherwise.  @p axis is "x" or "y".
+ */
+SC_API void sc_plot_axis_format(FILE *f, const char *axis, double lo,
+                                double hi);
+
+/**
+ * @brief The frame of a figure whose text labels slipcont places itself:
+ * the picture's size, the plot area's fixed margins, the axes' ranges and
+ * scales, and the labels' font.  With it every label's box is known in
+ * pixels before gnuplot draws anything, so that no two labels overlap.
+ */
+typedef struct {
+  int width, height;   /**< picture, pixels (sc_plot_head: 1200 x 800) */
+  double left, right;  /**< plot area, fractions of the width */
+  double bottom, top;  /**< plot area, fractions of the height */
+  double xmin, xmax;   /**< x range, data units (xmin < xmax) */
+  double ymin, ymax;   /**< y range, data units (ymin < ymax) */
+  int xlog, ylog;      /**< 1: logarithmic axis (its range > 0) */
+  double font;         /**< labels' font size, points (Sans) */
+  double marker;       /**< half the size of a point's marker, pixels */
+} sc_plot_frame;
+
+/** One text label for a point of a figure. */
+typedef struct {
+  double x, y;     /**< in: the point, data units */
+  char text[160];  /**< in: plain text, "" for a marker that only keeps
+                        labels off; out: with merged labels' texts */
+  int placed;      /**< out: 1 placed; 0 merged into label `into` (-1 for
+                        a marker only); -1 no free place was found (not
+                        drawn) */
+  int into;        /**< out: the label that carries this one's text */
+  int leader;      /**< out: 1 when set off from its point (draw a line) */
+  double px, py;   /**< out: the point, pixels from the bottom left */
+  double ax, ay;   /**< out: the text's anchor: its left end, vertical
+                        middle, pixels from the bottom left */
+  double box[4];   /**< out: the text's box x0, y0, x1, y1, pixels */
+} sc_plot_spot;
+
+/**
+ * @brief The box (x0, y0, x1, y1, pixels, y up) of @p text drawn left
+ * justified at the anchor (@p ax, @p ay) in Sans at @p font points on a
+ * pngcairo picture: a per-character width estimate measured on that
+ * font and rounded up (digits 0.84 em, capitals 1.0 em, `M`/`W`/`m`/`w`
+ * 1.2 em, other lower case 0.8 em, `i`/`l`/`j`/`t`/`f`/`r` 0.45 em,
+ * spaces and punctuation 0.45 em; height 1.4 em), padded by one pixel.
+ */
+SC_API void sc_plot_text_box(double font, const char *text, double ax,
+                             double ay, double box[4]);
+
+/** @brief 1 if the boxes @p a and @p b (x0, y0, x1, y1) overlap. */
+SC_API int sc_plot_boxes_overlap(const double a[4], const double b[4]);
+
+/**
+ * @brief Place the labels of @p n points so that no two texts overlap,
+ * no text covers a point's marker and every text lies inside the plot
+ * area.  Points closer than a marker are given one label, their texts
+ * joined ("exact fast, default, precise": a repeated first word is
+ * written once; equal texts once).  Each label goes to the first free
+ * place among eight directions around its point, at growing distances
+ * (a leader line marks the farther ones); a label with no free place is
+ * left out (placed = -1) rather than drawn over another.  Greedy in the
+ * order given: put the labels that matter most first.
+ * @return the number of labels left out.
+ */
+SC_API size_t sc_plot_place(const sc_plot_frame *fr, sc_plot_spot *spots,
+                            size_t n);
+
+/**
+ * @brief Write the frame to a script: fixed margins, the ranges and log
+ * scales (with sc_plot_axis_format() for narrow linear ranges).
+ */
+SC_API void sc_plot_frame_write(FILE *f, const sc_plot_frame *fr);
+
+/**
+ * @brief Write the placed labels of sc_plot_place() as gnuplot `set
+ * label` lines at screen coordinates (each followed by a `# box` comment
+ * with its pixel box, which the tests read) and leader lines as arrows;
+ * text in @p rgb ("#rrggbb"), not enhanced.
+ */
+SC_API void sc_plot_labels_write(FILE *f, const sc_plot_frame *fr,
+                                 const sc_plot_spot *spots, size_t n,
+                                 const char *rgb);
+
 /** @brief 1 if an executable `gnuplot` is on PATH, else 0. */
 SC_API int sc_plot_available(void);
 

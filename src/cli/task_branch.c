@@ -340,10 +340,43 @@ static int write_points(sc_cli_run *r, const sc_orbit_branch *ob,
   return sc_cli_commit(r, "points.csv", csv);
 }
 
+/* What the branch plot draws, gathered while its files are written: the
+ * range of every d drawn, and a marker per orbit point of a special
+ * point (its first point numbered as in the table), for sc_plot_place(). */
+typedef struct {
+  double ylo, yhi;
+  sc_plot_spot *spot;
+  size_t n, cap;
+} plot_marks;
+
+static void marks_range(plot_marks *pm, double d) {
+  if (!isfinite(d)) return;
+  pm->ylo = fmin(pm->ylo, d);
+  pm->yhi = fmax(pm->yhi, d);
+}
+
+static int marks_add(plot_marks *pm, double p, double d, int num) {
+  marks_range(pm, d);
+  if (pm->n == pm->cap) {
+    size_t cap = pm->cap ? 2 * pm->cap : 64;
+    sc_plot_spot *t = realloc(pm->spot, cap * sizeof *t);
+    if (!t) return SC_ENOMEM;
+    pm->spot = t;
+    pm->cap = cap;
+  }
+  sc_plot_spot *sp = &pm->spot[pm->n++];
+  memset(sp, 0, sizeof *sp);
+  sp->x = p;
+  sp->y = d;
+  if (num > 0) snprintf(sp->text, sizeof sp->text, "%d", num);
+  return SC_OK;
+}
+
 /* Every orbit point of every special point but the ends, numbered as in
  * the plot's table: what the plot marks. */
 static int write_point_orbits(sc_cli_run *r, const sc_orbit_branch *ob,
-                              size_t param, double *buf, int maxq) {
+                              size_t param, double *buf, int maxq,
+                              plot_marks *pm) {
   sc_file *csv = NULL;
   int st = sc_cli_open(r, "branch-points.csv", &csv);
   if (st) return st;
@@ -363,29 +396,21 @@ static int write_point_orbits(sc_cli_run *r, const sc_orbit_branch *ob,
       fputc(',', f);
       sc_csv_double(f, buf[k]);
       fprintf(f, ",%d\n", k == 0);
+      if (marks_add(pm, sp.p, buf[k], k == 0 ? num : 0))
+        return sc_fail(r->msg, SC_ENOMEM, "branch: out of memory");
     }
   }
   return sc_cli_commit(r, "branch-points.csv", csv);
 }
 
-/* Marker and colour of each special-point label in the plot. */
-static const struct {
-  const char *label, *what;
-  int pt;
-  const char *rgb;
-} label_style[] = {
-    {"LP", "fold", 9, "#2ca02c"},
-    {"PD", "flip", 7, "#000000"},
-    {"GR", "grazing-sliding", 5, "#9467bd"},
-    {"CS", "crossing-sliding", 13, "#ff7f0e"},
-    {"SW", "switching (d = d*)", 11, "#17becf"},
-    {"BR", "both re-stick", 15, "#8c564b"},
-    {"TT", "threshold touched", 3, "#e377c2"},
-};
+/* The kinds a branch plot may mark, in the key's order; markers and
+ * colours are the figures' shared ones (sc_plot_point_style). */
+static const char *const branch_kinds[] = {"LP", "PD", "GR", "CS",
+                                           "SW", "BR", "TT", "UZ"};
 
 static int write_branch(sc_cli_run *r, const sc_orbit_branch *ob,
                         const char *pname, size_t param, double *buf,
-                        int maxq) {
+                        int maxq, plot_marks *pm) {
   sc_file *csv = NULL, *orb = NULL;
   int st = sc_cli_open(r, "branch.csv", &csv);
   if (!st) st = sc_cli_open(r, "branch-orbits.csv", &orb);
@@ -423,6 +448,7 @@ static int write_branch(sc_cli_run *r, const sc_orbit_branch *ob,
         sc_orbit_branch_point(ob, i, &pt);
         if (pt.branch != b) continue;
         if (orbit_points(r->map, param, pt.p, pt.d, q, buf)) continue;
+        marks_range(pm, buf[k]);
         sc_csv_double(g, pt.p);
         fputc(',', g);
         sc_csv_double(g, pt.stable ? buf[k] : NAN);
@@ -459,7 +485,7 @@ static int run_sweep(sc_cli_run *r, size_t param, double from, double to,
   return st;
 }
 
-static int write_sweep(sc_cli_run *r, const sc_sweep *sw) {
+static int write_sweep(sc_cli_run *r, const sc_sweep *sw, plot_marks *pm) {
   sc_file *csv = NULL;
   int st = sc_cli_open(r, "branch-sweep.csv", &csv);
   if (st) return st;
@@ -473,14 +499,24 @@ static int write_sweep(sc_cli_run *r, const sc_sweep *sw) {
       fputc(',', f);
       sc_csv_double(f, pt.d[k]);
       fputc('\n', f);
+      marks_range(pm, pt.d[k]);
     }
   }
   return sc_cli_commit(r, "branch-sweep.csv", csv);
 }
 
+/* The branch plot's frame: the table of special points takes the right
+ * fifth, the key two rows at the bottom under the x label. */
+#define BRANCH_LEFT 0.08
+#define BRANCH_RIGHT 0.80
+#define BRANCH_BOTTOM 0.20
+#define BRANCH_TOP 0.93
+#define BRANCH_FONT 9   /* the numbers' font, points */
+#define BRANCH_MARKER 6 /* half a marker at ps 1.4, pixels */
+
 static int write_branch_plot(sc_cli_run *r, const sc_orbit_branch *ob,
                              const char *pname, double from, double to,
-                             int with_sweep) {
+                             int with_sweep, plot_marks *pm) {
   sc_map *m = r->map;
   char title[512];
   sc_plot_title(m, pname, title, sizeof title);
@@ -490,35 +526,58 @@ static int write_branch_plot(sc_cli_run *r, const sc_orbit_branch *ob,
                              &gp);
   if (st) return st;
   FILE *f = sc_file_stream(gp);
-  fprintf(f, "set xrange [%.17g:%.17g]\n", fmin(from, to), fmax(from, to));
-  /* Numbered markers on every orbit point a special point concerns, a
-   * marker per kind explained in the key, and the numbers' table in the
-   * right margin: no label can overlap another. */
-  fputs("set key outside bottom center horizontal maxrows 2 font 'Sans,10'\n", f);
-  fputs("set rmargin at screen 0.80\n", f);
-  int num = 0, nrow = 0;
+  /* Numbered markers on every orbit point a special point concerns,
+   * placed where no number covers another or a marker (points under one
+   * marker share one label), a marker per kind present explained in the
+   * key, and the numbers' table in the right margin. */
+  double ylo = pm->ylo, yhi = pm->yhi;
+  if (!(ylo <= yhi)) ylo = -1, yhi = 1;            /* nothing drawn */
+  double pad = yhi > ylo ? 0.04 * (yhi - ylo)      /* room for labels */
+                         : fmax(fabs(ylo), 1) * 0.01;
+  sc_plot_frame fr = {.width = 1200, .height = 800,
+                      .left = BRANCH_LEFT, .right = BRANCH_RIGHT,
+                      .bottom = BRANCH_BOTTOM, .top = BRANCH_TOP,
+                      .xmin = fmin(from, to), .xmax = fmax(from, to),
+                      .ymin = ylo - pad, .ymax = yhi + pad,
+                      .font = BRANCH_FONT, .marker = BRANCH_MARKER};
+  sc_plot_frame_write(f, &fr);
+  size_t left_out = sc_plot_place(&fr, pm->spot, pm->n);
+  fputs("set key at screen 0.44, screen 0.015 center bottom horizontal "
+        "maxrows 2 font 'Sans,10'\n",
+        f);
+  int num = 0, nrow = 0, shown[sizeof branch_kinds / sizeof *branch_kinds];
+  memset(shown, 0, sizeof shown);
   for (size_t i = 0; i < sc_orbit_branch_nspecial(ob); i++) {
     sc_orbit_special_info sp;
     sc_orbit_branch_special(ob, i, &sp);
     if (sp.label == SC_PT_EP) continue;
+    for (size_t k = 0; k < sizeof shown / sizeof *shown; k++)
+      if (strcmp(branch_kinds[k], sc_point_label_text(sp.label)) == 0)
+        shown[k] = 1;
     num++;
     if (nrow >= 40) continue; /* the table says how many are left out */
     nrow++;
     fprintf(f, "set label %d '%d  %s  %.10g  (%d)%s' at screen 0.81, "
-               "screen %.4f font 'Sans,9' tc rgb '#000000'\n",
+               "screen %.4f font 'Sans,9' tc rgb '#000000' noenhanced\n",
             nrow, num, sc_point_label_text(sp.label), sp.p, sp.period,
             sp.method == SC_LOC_NEWTON ? "" : " *", 0.93 - 0.021 * nrow);
   }
   fprintf(f, "set label %d 'no.  label  %s  (period)' at screen 0.81, "
-             "screen 0.93 font 'Sans,9' tc rgb '#000000'\n",
+             "screen 0.93 font 'Sans,9' tc rgb '#000000' noenhanced\n",
           nrow + 1, pname);
+  int row = nrow + 1;
   if (num > nrow)
     fprintf(f, "set label %d '... %d more in points.csv' at screen 0.81, "
                "screen %.4f font 'Sans,9'\n",
-            nrow + 2, num - nrow, 0.93 - 0.021 * (nrow + 1));
+            nrow + 2, num - nrow, 0.93 - 0.021 * row++);
   fprintf(f, "set label %d '* not located by Newton (see points.csv)' at "
-             "screen 0.81, screen 0.05 font 'Sans,8'\n",
-          nrow + 3);
+             "screen 0.81, screen %.4f font 'Sans,8'\n",
+          nrow + 3, 0.93 - 0.021 * row++);
+  if (left_out)
+    fprintf(f, "set label %d '%zu numbers left out: no free place' at "
+               "screen 0.81, screen %.4f font 'Sans,8'\n",
+            nrow + 4, left_out, 0.93 - 0.021 * row++);
+  sc_plot_labels_write(f, &fr, pm->spot, pm->n, "#000000");
   fputs("plot ", f);
   if (with_sweep)
     fputs("'branch-sweep.csv' skip 1 using 1:2 with points pt 7 ps 0.2 lc rgb '#aaaaaa' "
@@ -530,15 +589,17 @@ static int write_branch_plot(sc_cli_run *r, const sc_orbit_branch *ob,
   fputs("     'branch-orbits.csv' skip 2 using 1:3 with lines lw 1.5 dt 2 "
         "lc rgb '#d62728' title 'unstable'",
         f);
-  for (size_t k = 0; k < sizeof label_style / sizeof label_style[0]; k++)
+  for (size_t k = 0; k < sizeof shown / sizeof *shown; k++) {
+    if (!shown[k]) continue;
+    int pt;
+    const char *rgb, *what;
+    sc_plot_point_style(branch_kinds[k], &pt, &rgb, &what);
     fprintf(f, ", \\\n     'branch-points.csv' skip 1 using 3:(strcol(2) eq "
                "'%s' ? $4 : NaN) with points pt %d ps 1.4 lc rgb '%s' "
                "title '%s %s'",
-            label_style[k].label, label_style[k].pt, label_style[k].rgb,
-            label_style[k].label, label_style[k].what);
-  fputs(", \\\n     'branch-points.csv' skip 1 using 3:($5 > 0 ? $4 : NaN):1 "
-        "with labels offset 0.9,0.7 font 'Sans,9' notitle\n",
-        f);
+            branch_kinds[k], pt, rgb, branch_kinds[k], what);
+  }
+  fputc('\n', f);
   return sc_cli_plot_end(r, "branch", gp);
 }
 
@@ -609,7 +670,6 @@ static int special_map_plot(sc_cli_run *r, const char *pname,
   FILE *f = sc_file_stream(gp);
   fprintf(f, "set xrange [%.17g:%.17g]\nset yrange [%.17g:%.17g]\n", lo, hi,
           lo, hi);
-  fputs("set key inside left top box opaque\n", f);
   fprintf(f, "plot 'branch-map.csv' skip 1 using 1:2 with lines lw 1.5 "
              "lc rgb '#1f4e9e' title 'f^{%d}', \\\n",
           sp->period);
@@ -683,12 +743,15 @@ typedef struct {
   int have_special;      /* a special point is drawn: */
   sc_orbit_special_info special;
   double lo, hi;         /* d-range of its plot */
+  plot_marks pm;         /* what branch.png draws */
 } branch_job;
 
 static int branch_prepare(sc_cli_run *r, void *job) {
   branch_job *j = job;
   const sc_scene *s = r->scene;
   j->pname = sc_scene_text(s, "parameter");
+  j->pm.ylo = INFINITY;
+  j->pm.yhi = -INFINITY;
   j->param = (size_t)sc_map_param_index(r->map, j->pname);
   j->saved = sc_map_get_param(r->map, j->param);
   j->sp = (sc_orbit_branch_spec){
@@ -754,9 +817,10 @@ static int branch_write(sc_cli_run *r, void *job) {
   branch_job *j = job;
   int maxq = j->sp.max_period, st;
   if ((st = write_points(r, j->ob, j->pname)) ||
-      (st = write_point_orbits(r, j->ob, j->param, j->buf, maxq)) ||
-      (st = write_branch(r, j->ob, j->pname, j->param, j->buf, maxq)) ||
-      (j->sw && (st = write_sweep(r, j->sw))))
+      (st = write_point_orbits(r, j->ob, j->param, j->buf, maxq, &j->pm)) ||
+      (st = write_branch(r, j->ob, j->pname, j->param, j->buf, maxq,
+                         &j->pm)) ||
+      (j->sw && (st = write_sweep(r, j->sw, &j->pm))))
     return st;
   j->have_special = pick_special(r, j->ob, j->param,
                                  sc_scene_text(r->scene, "plot-at"), j->buf,
@@ -829,9 +893,9 @@ static int branch_summary(sc_cli_run *r, void *job, FILE *f) {
 }
 
 static int branch_plots(sc_cli_run *r, void *job) {
-  const branch_job *j = job;
+  branch_job *j = job; /* the placement writes into the marks */
   int st = write_branch_plot(r, j->ob, j->pname, j->sp.from, j->sp.to,
-                             j->sw != NULL);
+                             j->sw != NULL, &j->pm);
   if (!st && j->have_special)
     st = special_map_plot(r, j->pname, &j->special, j->lo, j->hi);
   return st;
@@ -851,6 +915,7 @@ static void branch_release(sc_cli_run *r, void *job) {
   sc_orbit_branch_free(j->ob);
   sc_sweep_free(j->sw);
   free(j->buf);
+  free(j->pm.spot);
 }
 
 const sc_cli_task sc_cli_task_branch = {

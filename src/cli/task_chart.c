@@ -372,22 +372,13 @@ static int write_csv(sc_cli_run *r, const sc_chart_spec *c,
   return sc_cli_commit(r, "chart.csv", f);
 }
 
-/* One colour per period (repeating after 16), black for high, light grey
- * for undefined: distinct neighbours, like fig 5.7. */
-static const unsigned period_rgb[16] = {
-    0x1f77b4, 0xff7f0e, 0x2ca02c, 0xd62728, 0x9467bd, 0x8c564b,
-    0xe377c2, 0x17becf, 0xbcbd22, 0x7f7f7f, 0x393b79, 0xfdd0a2,
-    0x98df8a, 0xff9896, 0xc5b0d5, 0x00ffff};
-#define HIGH_RGB 0x000000u
-#define UNDEF_RGB 0xd9d9d9u
-#define UNSETTLED_RGB 0xffffffu /* white: unlike every period colour */
+/* The colours of the period classes: sc_plot_period_rgb(), shared with
+ * the chart drawn under a curve. */
+#define HIGH_RGB sc_plot_period_rgb(SC_PERIOD_HIGH)
+#define UNDEF_RGB sc_plot_period_rgb(SC_PERIOD_UNDEFINED)
+#define UNSETTLED_RGB sc_plot_period_rgb(SC_PERIOD_UNSETTLED)
 
-static unsigned class_rgb(int period) {
-  if (period == SC_PERIOD_UNDEFINED) return UNDEF_RGB;
-  if (period == SC_PERIOD_HIGH) return HIGH_RGB;
-  if (period == SC_PERIOD_UNSETTLED) return UNSETTLED_RGB;
-  return period_rgb[(period - 1) % 16];
-}
+static unsigned class_rgb(int period) { return sc_plot_period_rgb(period); }
 
 /* The title: every parameter except the two on the axes, the options,
  * the start and the iterates. */
@@ -432,7 +423,7 @@ static int write_plot(sc_cli_run *r, const sc_chart_spec *c,
         "undefined, 0 high\n", o);
   fputs("array C[16] = [", o);
   for (int k = 0; k < 16; k++)
-    fprintf(o, "%s0x%06x", k ? ", " : "", period_rgb[k]);
+    fprintf(o, "%s0x%06x", k ? ", " : "", sc_plot_period_rgb(k + 1));
   fputs("]\n", o);
   fprintf(o,
           "rgb(p) = p == -2 ? 0x%06x : p < 0 ? 0x%06x : p == 0 ? 0x%06x : "

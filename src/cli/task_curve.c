@@ -3,11 +3,14 @@
  * (sc_curve_trace, curve.h; docs/curves.md). */
 #define _XOPEN_SOURCE 700 /* realpath */
 
+#include <fcntl.h>
 #include <glob.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "cli/progress.h"
 #include "cli/tasks.h"
@@ -376,106 +379,323 @@ static int curve_summary(sc_cli_run *r, void *job, FILE *f) {
   return SC_OK;
 }
 
-/* The chart of `overlay` in light colours under the curve (undefined
- * points, period -1, left out); 1 if drawn. */
+/* A file another run wrote, opened for reading only if it is a regular
+ * file (a FIFO or device would hang or never end); NULL otherwise. */
+static FILE *open_regular(const char *path) {
+  int fd = open(path, O_RDONLY | O_NONBLOCK);
+  if (fd < 0) return NULL;
+  struct stat sb;
+  FILE *f = NULL;
+  if (fstat(fd, &sb) == 0 && S_ISREG(sb.st_mode)) f = fdopen(fd, "r");
+  if (!f) close(fd);
+  return f;
+}
+
+/* Rows read from another run's file for a figure: enough for any chart or
+ * curve a figure can show (a 3000 x 3000 chart), bounded for any file. */
+#define FIGURE_MAX_ROWS 10000000L
+
+/* The chart of `overlay` under the curves, in the chart's own colours
+ * (sc_plot_period_rgb) made pale so that the curves stand out: each
+ * class present gets a key entry, as in the chart's own figure. */
+#define OVERLAY_PALE 0.7 /* share of white mixed into a period's colour */
+
+static unsigned pale(unsigned rgb) {
+  unsigned out = 0;
+  for (int sh = 16; sh >= 0; sh -= 8) {
+    double c = (rgb >> sh) & 255u;
+    out |= (unsigned)lround(c + (255 - c) * OVERLAY_PALE) << sh;
+  }
+  return out;
+}
+
 static int plot_overlay(FILE *f, const char *ov) {
   char path[4096];
   if (!ov || !realpath(ov, path)) return 0;
-  fputs("set palette defined (0 '#f2f2f2', 1 '#cfe3f7', 4 '#d9f2d0', "
-        "8 '#fbe3c8', 16 '#f6cfd6')\n"
-        "set cbrange [0:16]\nset cblabel 'period of the chart'\n",
+  /* the classes present: periods 1..64, then high, undefined, unsettled */
+  enum { NPER = 64 };
+  int present[NPER + 3] = {0};
+  FILE *in = open_regular(path);
+  if (in) {
+    char line[512];
+    long rows = 0;
+    if (fgets(line, sizeof line, in))
+      while (rows++ < FIGURE_MAX_ROWS && fgets(line, sizeof line, in)) {
+        const char *c = strchr(line, ',');
+        c = c ? strchr(c + 1, ',') : NULL;
+        if (!c) continue;
+        long per = strtol(c + 1, NULL, 10);
+        if (per >= 1 && per <= NPER) present[per - 1] = 1;
+        else if (per == 0) present[NPER] = 1;
+        else if (per == -1) present[NPER + 1] = 1;
+        else if (per == -2) present[NPER + 2] = 1;
+      }
+    fclose(in);
+  }
+  fputs("# the chart's period colours (sc_plot_period_rgb), pale\n"
+        "array C[16] = [",
         f);
+  for (int k = 0; k < 16; k++)
+    fprintf(f, "%s0x%06x", k ? ", " : "", pale(sc_plot_period_rgb(k + 1)));
+  fprintf(f, "]\nrgb(p) = p == -2 ? 0x%06x : p == -1 ? 0x%06x : p == 0 ? "
+             "0x%06x : C[int(p - 1) %% 16 + 1]\n",
+          pale(sc_plot_period_rgb(-2)), pale(sc_plot_period_rgb(-1)),
+          pale(sc_plot_period_rgb(0)));
   fputs("plot ", f);
   sc_plot_quote(f, path);
-  fputs(" skip 1 using 1:2:($3 < 0 ? NaN : $3) with image notitle, \\\n"
-        "     ",
+  fputs(" skip 1 using 1:2:(int(rgb($3)) >> 16 & 255):(int(rgb($3)) >> 8 "
+        "& 255):(int(rgb($3)) & 255) with rgbimage notitle, \\\n",
         f);
+  for (int p = 1; p <= NPER + 3; p++) {
+    if (!present[p - 1]) continue;
+    int per = p <= NPER ? p : NPER + 1 - p; /* 0, -1, -2 */
+    char title[64];
+    if (per >= 1) snprintf(title, sizeof title, "chart: period %d", per);
+    else
+      snprintf(title, sizeof title, "chart: %s",
+               per == 0 ? "higher or chaos"
+               : per == -1 ? "undefined" : "not settled");
+    fprintf(f, "     keyentry with boxes fs solid border lc rgb '#bbbbbb' "
+               "fc rgb '#%06x' title '%s', \\\n",
+            pale(sc_plot_period_rgb(per)), title);
+  }
+  fputs("     ", f);
   return 1;
 }
 
-/* The other curves (also): thin lines, their points labelled. */
-static void plot_also(FILE *f, const char *also) {
-  static const char *const acol[6] = {"#b2182b", "#2166ac", "#1b7837",
-                                      "#762a83", "#e08214", "#4d4d4d"};
-  char dir[2048], apath[4096], q[4200];
+/* The kinds of points a curve figure marks, in the key's order. */
+static const char *const point_kinds[] = {"CP", "GPD", "TP", "LP", "PD",
+                                          "GR", "CS",  "SW", "BR", "TT",
+                                          "UZ", "EP"};
+#define NKINDS (sizeof point_kinds / sizeof *point_kinds)
+
+/* The kind of a points.csv label ("BR?" is a BR not located): its index
+ * in point_kinds, or -1. */
+static int kind_of(const char *label, size_t len) {
+  for (size_t k = 0; k < NKINDS; k++) {
+    size_t n = strlen(point_kinds[k]);
+    if (len >= n && strncmp(label, point_kinds[k], n) == 0 &&
+        (len == n || label[n] == '?'))
+      return (int)k;
+  }
+  return -1;
+}
+
+/* The kinds present in a points.csv (first column). */
+static void kinds_in(const char *path, int *present) {
+  FILE *in = open_regular(path);
+  if (!in) return;
+  char line[1024];
+  long rows = 0;
+  if (fgets(line, sizeof line, in))
+    while (rows++ < FIGURE_MAX_ROWS && fgets(line, sizeof line, in)) {
+      int k = kind_of(line, strcspn(line, ",\n"));
+      if (k >= 0) present[k] = 1;
+    }
+  fclose(in);
+}
+
+/* An also folder's curve: type and period from the first line of its
+ * summary's results ("  fold curve of the period-6 orbit in ..."); the
+ * folder's name and period 0 when it has none. */
+static void also_describe(const char *dir, char *type, size_t len,
+                          int *period) {
+  char path[4200], line[512], t[32];
+  snprintf(path, sizeof path, "%s/summary.txt", dir);
+  const char *base = strrchr(dir, '/');
+  snprintf(type, len, "%.100s", base ? base + 1 : dir);
+  *period = 0;
+  FILE *in = open_regular(path);
+  if (!in) return;
+  for (int n = 0; n < 1000 && fgets(line, sizeof line, in); n++)
+    if (sscanf(line, "  %31s curve of the period-%d orbit", t, period) == 2) {
+      snprintf(type, len, "%s", t);
+      break;
+    }
+  fclose(in);
+}
+
+/* Add "TYPE PERIOD" to the title's list, grouped by type: "flip 1, 2;
+ * fold 4". */
+static void names_add(char *names, size_t len, const char *type, int period) {
+  char key[160], tmp[4096];
+  snprintf(key, sizeof key, "%s ", type);
+  char *at = strstr(names, key);
+  while (at && at != names && !(at[-1] == ' ' && at[-2] == ';'))
+    at = strstr(at + 1, key);
+  if (!at) {
+    size_t u = strlen(names);
+    if (period > 0)
+      snprintf(names + u, len - u, "%s%s %d", u ? "; " : "", type, period);
+    else
+      snprintf(names + u, len - u, "%s%s", u ? "; " : "", type);
+    return;
+  }
+  char *end = strchr(at, ';');
+  size_t head = (size_t)((end ? end : at + strlen(at)) - names);
+  snprintf(tmp, sizeof tmp, "%.*s, %d%s", (int)head, names, period,
+           end ? end : "");
+  snprintf(names, len, "%s", tmp);
+}
+
+/* The other curves (also): each in its own colour (sc_plot_curve_rgb,
+ * dashed after the twelfth), named by type and period, its points marked
+ * by kind in the curve's colour; their kinds are added to @p present.
+ * Writes the names, "; "-separated, into @p names. */
+static int plot_also(FILE *f, const char *also, int *present, char *names,
+                     size_t nlen) {
+  char dir[2048], apath[4096], q[4200], what[160], type[128];
+  int period;
   int ia = 0;
+  names[0] = '\0';
   for (const char *p = also; p && next_word(&p, dir, sizeof dir);) {
     glob_t g;
     if (glob(dir, 0, NULL, &g) != 0) continue; /* checked before the run */
     for (size_t gi = 0; gi < g.gl_pathc; gi++) {
       if (!realpath(g.gl_pathv[gi], apath)) continue;
-      const char *base = strrchr(apath, '/');
-      base = base ? base + 1 : apath;
-      const char *col = acol[ia++ % 6];
+      also_describe(apath, type, sizeof type, &period);
+      if (period > 0)
+        snprintf(what, sizeof what, "%s, period %d", type, period);
+      else
+        snprintf(what, sizeof what, "%s", type);
+      names_add(names, nlen, type, period);
+      const char *col = sc_plot_curve_rgb(ia);
+      int dash = ia / 12 + 1;
+      ia++;
       snprintf(q, sizeof q, "%s/curve.csv", apath);
       sc_plot_quote(f, q);
       fprintf(f,
-              " skip 1 using 1:2 with lines lw 1.5 lc rgb '%s' title '%s', "
-              "\\\n     ",
-              col, base);
+              " skip 1 using 1:2 with lines lw 1.5 dt %d lc rgb '%s' title ",
+              dash, col);
+      sc_plot_quote(f, what);
+      fputs(", \\\n", f);
+      int here[NKINDS] = {0};
       snprintf(q, sizeof q, "%s/points.csv", apath);
-      sc_plot_quote(f, q);
-      fprintf(f,
-              " skip 1 using 2:(strcol(1) eq 'EP' ? NaN : column(3)):1 with "
-              "labels point pt 7 ps 0.8 lc rgb '%s' offset 0.6,0.6 font ',8' "
-              "tc rgb '%s' notitle, \\\n     ",
-              col, col);
+      kinds_in(q, here);
+      for (size_t k = 0; k < NKINDS; k++) {
+        if (!here[k]) continue;
+        present[k] = 1;
+        int pt;
+        sc_plot_point_style(point_kinds[k], &pt, NULL, NULL);
+        fputs("     ", f);
+        sc_plot_quote(f, q);
+        fprintf(f, " skip 1 using 2:(lab('%s')) with points pt %d ps 1.2 "
+                   "lc rgb '%s' notitle, \\\n",
+                point_kinds[k], pt, col);
+      }
+      fputs("     ", f);
     }
     globfree(&g);
   }
-}
-
-/* This curve's special points: each label present once in the key. */
-static void plot_labels(FILE *f, const out_ctx *c) {
-  static const char *const labels[11] = {"CP", "GPD", "TP", "LP", "PD", "GR",
-                                         "CS", "SW",  "BR", "TT", "EP"};
-  static const char *const colors[11] = {
-      "#d62728", "#9467bd", "#2ca02c", "#ff7f0e", "#8c564b", "#e377c2",
-      "#17becf", "#bcbd22", "#1f77b4", "#7f7f7f", "#777777"};
-  static const int pts[11] = {7, 5, 9, 11, 13, 4, 8, 10, 12, 3, 6};
-  int nk = 0, shown[11];
-  for (int k = 0; k < 11; k++) {
-    shown[k] = k == 10;
-    for (size_t i = 0; i < c->nsp && !shown[k]; i++)
-      shown[k] = strcmp(c->sp[i].label, labels[k]) == 0;
-    nk += shown[k];
-  }
-  for (int k = 0; k < 11; k++)
-    if (shown[k])
-      fprintf(f,
-              "     'points.csv' skip 1 using 2:(lab('%s')) with points pt "
-              "%d ps 2 lc rgb '%s' title '%s'%s\n",
-              labels[k], pts[k], colors[k], labels[k], --nk ? ", \\" : "");
+  return ia;
 }
 
 static int curve_plots(sc_cli_run *r, void *job) {
   const curve_job *j = job;
   const sc_scene *s = r->scene;
   sc_map *m = r->map;
+  const char *also = sc_scene_text(s, "also");
   char title[512], full[640];
-  sc_plot_title(m, NULL, title, sizeof title);
-  snprintf(full, sizeof full, "%s curve, period %d (%s)", type_names[j->ti],
-           j->set.period, title);
   sc_file *gp = NULL;
-  int st = sc_cli_plot_begin(r, "curve", full, sc_plot_label(m, j->xn),
-                             sc_plot_label(m, j->yn), &gp);
+  int st;
+  if (!also) {
+    sc_plot_title(m, NULL, title, sizeof title);
+    snprintf(full, sizeof full, "%s curve, period %d (%s)",
+             type_names[j->ti], j->set.period, title);
+    st = sc_cli_plot_begin(r, "curve", full, sc_plot_label(m, j->xn),
+                           sc_plot_label(m, j->yn), &gp);
+  } else {
+    /* Several curves: the title names them all (below) and the values of
+     * the parameters that are not on the axes. */
+    sc_plot_title_except(m, j->xn, j->yn, title, sizeof title);
+    st = sc_cli_plot_begin(r, "curve", title, sc_plot_label(m, j->xn),
+                           sc_plot_label(m, j->yn), &gp);
+  }
   if (st) return st;
   FILE *f = sc_file_stream(gp);
   fprintf(f, "set xrange [%.17g:%.17g]\nset yrange [%.17g:%.17g]\n",
           j->set.xlo, j->set.xhi, j->set.ylo, j->set.yhi);
+  sc_plot_axis_format(f, "x", j->set.xlo, j->set.xhi);
+  sc_plot_axis_format(f, "y", j->set.ylo, j->set.yhi);
   fputs("set datafile separator ','\n", f);
-  /* with other curves drawn the key goes under the plot */
-  fputs(sc_scene_text(s, "also") ? "set key below horizontal font ',9'\n"
-                                 : "set key inside right top box opaque\n",
+  const char *ov = sc_scene_text(s, "overlay");
+  /* With other curves or a chart the key goes to the right of the plot,
+   * one entry a line: clear of the x label however many there are. */
+  if (also || ov)
+    fputs("set rmargin at screen 0.74\nset key at screen 0.99, screen 0.93 "
+          "right top vertical Left reverse font ',9' spacing 1.1 "
+          "samplen 2\n",
+          f);
+  else
+    fputs("set key inside right top box opaque\n", f);
+  fputs("lab(l) = (strcol(1) eq l || strcol(1) eq l.'?') ? column(3) : "
+        "NaN\n",
         f);
-  fputs("lab(l) = strcol(1) eq l ? column(3) : NaN\n", f);
-  if (!plot_overlay(f, sc_scene_text(s, "overlay"))) fputs("plot ", f);
-  plot_also(f, sc_scene_text(s, "also"));
-  fprintf(f,
-          "'curve.csv' skip 1 using 1:2 with lines lw 2 lc rgb "
-          "'#1f4e9e' title '%s curve', \\\n",
-          type_names[j->ti]);
-  plot_labels(f, &j->c);
+  /* the rest of the script is the plot command; the title is set first */
+  char body_names[4096];
+  int present[NKINDS] = {0};
+  char *buf = NULL;
+  size_t blen = 0;
+  FILE *body = open_memstream(&buf, &blen);
+  if (!body) {
+    sc_file_abort(gp);
+    return sc_fail(r->msg, SC_ENOMEM, "curve: out of memory");
+  }
+  if (!plot_overlay(body, ov)) fputs("plot ", body);
+  int nalso = plot_also(body, also, present, body_names, sizeof body_names);
+  fprintf(body,
+          "'curve.csv' skip 1 using 1:2 with lines lw 2.5 lc rgb "
+          "'#1f4e9e' title '%s, period %d%s', \\\n",
+          type_names[j->ti], j->set.period, also ? " (this run)" : "");
+  /* this curve's points: the kinds' own colours without other curves,
+   * the curve's colour with them (then the colour tells the curve) */
+  int mine[NKINDS] = {0};
+  for (size_t i = 0; i < j->c.nsp; i++) {
+    int k = kind_of(j->c.sp[i].label, strlen(j->c.sp[i].label));
+    if (k >= 0) mine[k] = 1;
+  }
+  mine[NKINDS - 1] = 1; /* EP: the curve's ends */
+  for (size_t k = 0; k < NKINDS; k++) {
+    if (!mine[k]) continue;
+    present[k] = 1;
+    int pt;
+    const char *rgb, *what;
+    sc_plot_point_style(point_kinds[k], &pt, &rgb, &what);
+    char key[96] = "notitle";
+    if (!nalso) snprintf(key, sizeof key, "title '%s %s'", point_kinds[k], what);
+    fprintf(body,
+            "     'points.csv' skip 1 using 2:(lab('%s')) with points pt %d "
+            "ps %s lc rgb '%s' %s, \\\n",
+            point_kinds[k], pt, nalso ? "1.6" : "2", nalso ? "#1f4e9e" : rgb,
+            key);
+  }
+  /* with several curves the key tells the kinds by marker alone */
+  for (size_t k = 0; nalso && k < NKINDS; k++) {
+    if (!present[k]) continue;
+    int pt;
+    const char *what;
+    sc_plot_point_style(point_kinds[k], &pt, NULL, &what);
+    fprintf(body, "     keyentry with points pt %d ps 1.4 lc rgb '#333333' "
+                  "title '%s %s', \\\n",
+            pt, point_kinds[k], what);
+  }
+  fputs("     NaN notitle\n", body);
+  fclose(body);
+  if (nalso) {
+    fputs("set title ", f);
+    char head[256];
+    snprintf(head, sizeof head, "%d curves in (%s, %s): %s %d (this run, "
+             "thick) and, by type and period, ",
+             nalso + 1, j->xn, j->yn, type_names[j->ti], j->set.period);
+    sc_plot_quote(f, head);
+    fputs(" . ", f);
+    sc_plot_quote(f, body_names);
+    fputs(" . \"\\n\" . ", f);
+    sc_plot_quote(f, title);
+    fputs(" font ',10'\n", f);
+  }
+  fwrite(buf, 1, blen, f);
+  free(buf);
   return sc_cli_plot_end(r, "curve", gp);
 }
 

@@ -181,19 +181,20 @@ static int fp_plots(sc_cli_run *r, void *job) {
   if (st) return st;
   FILE *f = sc_file_stream(gp);
   fprintf(f, "set xrange [%.17g:%.17g]\n", j->sp.from, j->sp.to);
-  fputs("set key inside left top box opaque\n", f);
+  sc_plot_axis_format(f, "x", j->sp.from, j->sp.to);
   fputs("stab(c) = column(3) == 1 ? column(c) : NaN\n", f);
   fputs("unst(c) = column(3) == 0 ? column(c) : NaN\n", f);
   fprintf(f, "plot 'fixed-point-map.csv' skip 1 using 1:2 with lines lw 1.5 "
              "lc rgb '#1f4e9e' title 'f^{%d}', \\\n",
           per);
   fputs("     x with lines dt 2 lc rgb '#777777' title 'diagonal', \\\n", f);
-  fputs("     'fixed-point-orbits.csv' skip 1 using 1:(stab(2)) with points "
-        "pt 7 ps 1.6 lc rgb '#2ca02c' title 'stable orbit points', \\\n",
-        f);
-  fputs("     'fixed-point-orbits.csv' skip 1 using 1:(unst(2)) with points "
-        "pt 6 ps 1.6 lw 2 lc rgb '#d62728' title 'unstable orbit points'\n",
-        f);
+  /* the key lists the kinds of orbit present */
+  fprintf(f, "     'fixed-point-orbits.csv' skip 1 using 1:(stab(2)) with "
+             "points pt 7 ps 1.6 lc rgb '#2ca02c' %s, \\\n",
+          j->nstable ? "title 'stable orbit points'" : "notitle");
+  fprintf(f, "     'fixed-point-orbits.csv' skip 1 using 1:(unst(2)) with "
+             "points pt 6 ps 1.6 lw 2 lc rgb '#d62728' %s\n",
+          j->n > j->nstable ? "title 'unstable orbit points'" : "notitle");
   return sc_cli_plot_end(r, "fixed-point", gp);
 }
 

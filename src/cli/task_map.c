@@ -191,10 +191,14 @@ static int map_plots(sc_cli_run *r, void *job) {
                              &gp);
   if (st) return st;
   FILE *f = sc_file_stream(gp);
-  fputs("set key inside left top box opaque\n", f);
-  if (j->from != j->to)
-    fprintf(f, "set xrange [%.17g:%.17g]\n", fmin(j->from, j->to),
-            fmax(j->from, j->to));
+  double xlo = fmin(j->from, j->to), xhi = fmax(j->from, j->to);
+  if (j->from != j->to) {
+    fprintf(f, "set xrange [%.17g:%.17g]\n", xlo, xhi);
+    sc_plot_axis_format(f, "x", xlo, xhi);
+  }
+  /* the y axis shows f^n and the diagonal over the grid */
+  if (j->flo <= j->fhi)
+    sc_plot_axis_format(f, "y", fmin(j->flo, xlo), fmax(j->fhi, xhi));
   if (j->bk2) {
     fputs("# d*: both blocks reach their threshold together\n", f);
     fprintf(f, "dstar = %.17g\n", j->dstar);
@@ -206,6 +210,15 @@ static int map_plots(sc_cli_run *r, void *job) {
           f);
   }
   fputs("# points, not lines, so that jumps of the map stay open\n", f);
+  /* the key lists the kinds of motion present */
+  int single = 0, both = 0;
+  for (size_t i = 0; i < j->pieces->n; i++) {
+    const char *it = j->pieces->p[i].itinerary;
+    if (strcmp(it, "undefined") == 0) continue;
+    if (strstr(it, "12")) both = 1;
+    else single = 1;
+  }
+  if (j->pieces->extra) single = both = 1; /* not all pieces kept */
   if (j->bk2) {
     fputs("# column 4 is the itinerary: without '12' only one block slips at "
           "a time\n# (single-block slips: f' = 1, docs/model.md)\n"
@@ -214,13 +227,17 @@ static int map_plots(sc_cli_run *r, void *job) {
     fputs("plot 'map.csv' skip 1 using 1:(single(strcol(4)) ? $2 : NaN) "
           "with points pt 7 ps 0.35 lc rgb '#2ca02c' notitle, \\\n"
           "     '' skip 1 using 1:(single(strcol(4)) ? NaN : $2) with points "
-          "pt 7 ps 0.35 lc rgb '#1f4e9e' notitle, \\\n"
-          "     keyentry with points pt 7 ps 1.5 lc rgb '#2ca02c' "
-          "title 'one block slips at a time', \\\n"
-          "     keyentry with points pt 7 ps 1.5 lc rgb '#1f4e9e' "
-          "title 'both blocks slip', \\\n"
-          "     x with lines dt 2 lc rgb '#999999' title 'diagonal'\n",
+          "pt 7 ps 0.35 lc rgb '#1f4e9e' notitle, \\\n",
           f);
+    if (single)
+      fputs("     keyentry with points pt 7 ps 1.5 lc rgb '#2ca02c' "
+            "title 'one block slips at a time', \\\n",
+            f);
+    if (both)
+      fputs("     keyentry with points pt 7 ps 1.5 lc rgb '#1f4e9e' "
+            "title 'both blocks slip', \\\n",
+            f);
+    fputs("     x with lines dt 2 lc rgb '#999999' title 'diagonal'\n", f);
   } else {
     fprintf(f,
             "plot 'map.csv' using 1:2 skip 1 with points pt 7 ps 0.35 "

@@ -298,7 +298,6 @@ static int velocity_plot(sc_cli_run *r, const char *title) {
   int st = sc_cli_plot_begin(r, "velocity", title, "tau", "U_i - V_s", &gp);
   if (st) return st;
   FILE *f = sc_file_stream(gp);
-  fputs("set key inside right top box opaque\n", f);
   fputs("# V_s: velocity of a stuck block during a slip (V with the "
         "driver moving, 0 frozen);\n# in a global stick phase both blocks "
         "move with V.\n",
@@ -324,7 +323,6 @@ static int orbit_plots(sc_cli_run *r, void *job) {
                              &gp);
   if (st) return st;
   FILE *f = sc_file_stream(gp);
-  fputs("set key inside right top box opaque\n", f);
   fputs("plot 'orbit.csv' skip 1 using 1:2 with linespoints pt 7 ps 0.6 "
         "lw 0.5 lc rgb '#1f4e9e' title 'orbit'\n",
         f);

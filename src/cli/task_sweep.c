@@ -212,9 +212,9 @@ static int sweep_plots(sc_cli_run *r, void *job) {
   fprintf(f, "set xrange [%.17g:%.17g]\n", fmin(sp->from, sp->to),
           fmax(sp->from, sp->to));
   if (sp->x_scale == SC_GRID_LOG) fputs("set logscale x\n", f);
+  else sc_plot_axis_format(f, "x", fmin(sp->from, sp->to), fmax(sp->from, sp->to));
   snprintf(key[0], sizeof key[0], "increasing %s", xl);
   snprintf(key[1], sizeof key[1], "decreasing %s", xl);
-  fputs("set key inside right top box opaque\n", f);
   fputs("# column 4 is the direction of the pass: up or down; the up pass "
         "is drawn\n# first with larger points so that both stay visible "
         "where they agree\n",
