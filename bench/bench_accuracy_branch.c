@@ -315,7 +315,8 @@ static int smooth_all(const char *dir, FILE *md, int repeats) {
           "set output '%s/smooth.png'\n"
           "set datafile separator ','\nset logscale xy\nset grid\n"
           "set format y \"10^{%%L}\"\nset format x \"10^{%%L}\"\n"
-          "set key at screen 0.5, screen 0.01 center bottom horizontal\n"
+          "set key at screen 0.5, screen 0.01 center bottom horizontal "
+          "maxrows 1 font ',10'\n"
           "set xlabel \"seconds per run (median)\"\n"
           "set ylabel \"max |p - p_{exact}| over the points found\"\n"
           "f = '%s/smooth.csv'\n"
@@ -333,7 +334,9 @@ static int smooth_all(const char *dir, FILE *md, int repeats) {
     double xr[2] = {px[ic][0], px[ic][0] * 100};
     for (int k = 1; k < 9; k++)
       xr[0] = fmin(xr[0], px[ic][k]), xr[1] = fmax(xr[1], 100 * px[ic][k]);
-    fprintf(gp, "unset label\nunset arrow\nset format x \"10^{%%L}\"\n");
+    /* the key once, under both panels */
+    fprintf(gp, "unset label\nunset arrow\nset format x \"10^{%%L}\"\n%s",
+            ic ? "unset key\n" : "");
     double left = ic ? 0.57 : 0.07;
     sc_plot_frame fr = {.width = 1200, .height = 560, .left = left,
                         .right = left + 0.41, .bottom = 0.22, .top = 0.9,

@@ -82,7 +82,7 @@ printf 'mu1,mu2,period,x,iterations\n0,0,1,0,10\n' >"$TMP/chart.csv"
 run_sc run "$SRC/examples/curve-cubic.ini" --set task.overlay="$TMP/chart.csv" \
   --set output.plot=no --out "$TMP/ov" --quiet
 expect_rc "curve: overlay" 0
-check "curve: overlay drawn under the curve" grep -q "chart.csv' skip 1 using 1:2:(\$3 < 0 ? NaN : \$3) with image" "$TMP/ov/curve.gp"
+check "curve: overlay drawn under the curve in the chart's colours" grep -q "chart.csv' skip 1 using 1:2:(int(rgb(\$3)) >> 16 & 255):.* with rgbimage" "$TMP/ov/curve.gp"
 
 # start = a located LP of a branch task's points.csv instead of d0: the
 # fold of x -> x + mu1 + 1.2 x - x^3 at x = -sqrt(0.4), mu1 = 0.8 sqrt(0.4)
