@@ -76,6 +76,10 @@ extern "C" {
  * a few rounding errors of one iterate, so that an orbit that repeats to
  * the last bits is periodic even when its extent is zero. */
 #define SC_PERIOD_FLOOR_ULPS 8
+/** The largest rtol accepted: a tolerance of a tenth of the orbit's
+ * extent already merges distinct points of most orbits; beyond it the
+ * periods found mean nothing. */
+#define SC_PERIOD_MAX_RTOL 0.1
 
 /** A period detector: workspace for one orbit at a time. */
 typedef struct sc_period sc_period;
@@ -85,7 +89,7 @@ typedef struct sc_period sc_period;
  * @param max_period largest period detected, 1..SC_PERIOD_MAX.
  * @param confirm confirmation cycles, 1..SC_PERIOD_MAX_CONFIRM.
  * @param rtol tolerance relative to the orbit's extent, in
- *        [DBL_EPSILON, 0.1] (usually sc_accuracy.period_rtol).
+ *        [DBL_EPSILON, SC_PERIOD_MAX_RTOL] (usually sc_accuracy.period_rtol).
  * @param out the new detector (NULL on failure); free with
  *        sc_period_free().
  * @return SC_OK, SC_EINVAL (argument out of range; the message says

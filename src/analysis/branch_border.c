@@ -20,6 +20,20 @@
  * (the interpolated start is already inside). */
 #define BRACKET_SLACK 0.5
 
+/* Where the corrector stopped, a border is sought up to this many
+ * largest steps ahead: the corrector stops when its step, shrunk from at
+ * most hmax, falls below hmin, so the border that stopped it lies within
+ * a step or two of the last point; 8 leaves room for the error of the
+ * linear prediction of its zero. */
+#define AHEAD_REACH_HMAX 8
+
+/* A border crossed transversally and located behind the last accepted
+ * point by more than this (relative to 1 + |p|) was passed already: the
+ * margin is the location's rounding (Newton tolerances of 1e-13 in the
+ * default preset, times the system's conditioning), so a zero at the
+ * last point itself is kept. */
+#define BEHIND_REL 1e-12
+
 /* ------------------------------------------------------------------ */
 /* Locating a border: Newton on its defining system                     */
 
@@ -331,7 +345,7 @@ int sc_ob_locate_ahead(sc_orbit_branch *b, segment *S, int dir) {
   size_t ip = b->sp.param;
   border_fix best = {0}, fx;
   sc_border bbest;
-  double reach = 8 * S->set.hmax;
+  double reach = AHEAD_REACH_HMAX * S->set.hmax;
   for (size_t i = 0; i < b->bl_prev.n && i < b->bl_prev.cap; i++) {
     const sc_border *x = &b->bl_prev.b[i];
     sc_border like = *x;
@@ -342,21 +356,23 @@ int sc_ob_locate_ahead(sc_orbit_branch *b, segment *S, int dir) {
        * the reach ahead */
       if (!(x->value > 0)) continue;
       sc_ob_locate_border(b, period, b->codes, &like, S->last_p, S->last_d, 0,
-                    S->last_p + dir * reach, S->last_d, -1, &fx);
+                          S->last_p + dir * reach, S->last_d, -1, &fx);
     } else {
       double rate = x->dd * S->last_td + x->dp[ip] * S->last_t;
       double ds = x->value > 0 && rate < 0 ? -x->value / rate : HUGE_VAL;
       if (!(ds <= reach)) continue;
+      /* the far end mirrored at twice the predicted zero: the linear
+       * interpolation starts Newton at the prediction */
       double dpar = S->last_t * ds, dd = S->last_td * ds;
       sc_ob_locate_border(b, period, b->codes, &like, S->last_p, S->last_d,
-                    x->value, S->last_p + 2 * dpar, S->last_d + 2 * dd,
-                    -x->value, &fx);
+                          x->value, S->last_p + 2 * dpar, S->last_d + 2 * dd,
+                          -x->value, &fx);
     }
     /* A border in the state is met tangentially: the orbit point sits
      * within rounding of it over a stretch of the parameter (its
      * distance grows like the square of the parameter's), so the last
      * accepted point may lie a little past the solution. */
-    double behind = (x->on_state ? BISECTION_REACH : 1e-12) *
+    double behind = (x->on_state ? BISECTION_REACH : BEHIND_REL) *
                     (1 + fabs(S->last_p));
     if (!fx.ok || (fx.p - S->last_p) * dir < -behind) continue;
     if (!best.ok || fabs(fx.p - S->last_p) < fabs(best.p - S->last_p))

@@ -395,10 +395,10 @@ int sc_orbit_branch_run(sc_orbit_branch *b, sc_msg *msg) {
       char why[SC_MSG_LEN];
       snprintf(why, sizeof why, "%s", msg ? msg->text : "");
       sc_ob_add_end(b, -1, b->sp.period, b->sp.from, b->sp.d0, NAN,
-              "start not found: %.300s%s", why, NULL);
+                    "start not found: %.300s%s", why, NULL);
     } else {
       sc_ob_push_job(b, b->sp.period, b->sp.from, res.d,
-               b->sp.to > b->sp.from ? 1 : -1, 0, "start");
+                     b->sp.to > b->sp.from ? 1 : -1, 0, "start");
     }
   } else if (b->nstarts == 0) {
     sc_map_set_param(m, b->sp.param, saved, NULL);
@@ -416,14 +416,14 @@ int sc_orbit_branch_run(sc_orbit_branch *b, sc_msg *msg) {
       char why[SC_MSG_LEN];
       snprintf(why, sizeof why, "%s", msg ? msg->text : "");
       sc_ob_add_end(b, -1, a->period, a->p, a->d, NAN,
-              "added start not found: %.300s%s", why, NULL);
+                    "added start not found: %.300s%s", why, NULL);
       continue;
     }
     if (!sc_ob_push_job(b, a->period, a->p, res.d, 1, 0, "added start") ||
         !sc_ob_push_job(b, a->period, a->p, res.d, -1, 0, "added start"))
       sc_ob_add_end(b, -1, a->period, a->p, a->d, NAN,
-              "added start not continued: max-branches reached%s%s", NULL,
-              NULL);
+                    "added start not continued: max-branches reached%s%s", NULL,
+                    NULL);
   }
   st = SC_OK;
   for (int j = 0; j < b->njobs; j++) {

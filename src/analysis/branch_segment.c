@@ -25,6 +25,37 @@
  * own conditioning. */
 #define TEST_ATOL_FACTOR 1e3
 
+/* Without a step given, the largest step is the parameter interval over
+ * HMAX_AUTO_STEPS (40: a branch drawn from that many points at least, few
+ * enough for a quick first look), the first step a tenth of it
+ * (H0_AUTO_FRACTION: small enough for the corrector to converge from the
+ * start's tangent). */
+#define HMAX_AUTO_STEPS 40
+#define H0_AUTO_FRACTION 10
+
+/* A start just beyond a located point that fails is moved further from
+ * that point, START_MOVE_GROWTH times its offset at a time, at most
+ * START_MOVES times: from CROSS_REL (1e-7) up to 1e-3 relative, still
+ * within the distance between distinct special points. */
+#define START_MOVES 4
+#define START_MOVE_GROWTH 10
+
+/* A segment is not compared with its own start, nor a twin's, while
+ * within TWIN_REACH_HMAX largest steps of it (in |dp| + |d_min|): a start
+ * continued both ways would join its twin at once.  It has moved away
+ * once beyond MOVED_HMAX largest steps (twice that reach, so that a
+ * segment that turns back is not taken for closed at once). */
+#define TWIN_REACH_HMAX 2
+#define MOVED_HMAX 4
+
+/* Candidates for a join: points of another branch within hmax in p whose
+ * smallest orbit point is within JOIN_DMIN_ABS + JOIN_DMIN_SLOPE |dp| of
+ * this one's.  A coarse screen only (orbit points move with slopes dd/dp
+ * of order one to ten on the chapter's examples; 1e-3 covers the
+ * corrector's error at a step): the orbits are then compared exactly. */
+#define JOIN_DMIN_ABS 1e-3
+#define JOIN_DMIN_SLOPE 10
+
 /* g = f^m for the continuation layer: along the segment's codes (forced),
  * or on the piece of itinerary ctx->itin only when codes cannot be
  * forced (leaving it is a recoverable failure, so such a segment never
@@ -60,21 +91,22 @@ static int g_fn(double x, const double *p, int order, sc_map1d_jet *jet,
  * orbit-equality rule (sc_ob_same_orbit). */
 static int joins(sc_orbit_branch *b, int branch, int period, double p,
                  double dmin, double p0, double d0, double hmax, int moved) {
-  if (!moved && fabs(p - p0) + fabs(dmin - d0) <= 2 * hmax) return -1;
+  if (!moved && fabs(p - p0) + fabs(dmin - d0) <= TWIN_REACH_HMAX * hmax)
+    return -1;
   for (size_t i = 0; i < b->npts; i++) {
     const point_rec *r = &b->pts[i];
     if (r->period != period || r->branch == branch) continue;
     double dp = fabs(r->p - p);
-    if (dp > hmax || fabs(r->dmin - dmin) > 1e-3 + 10 * dp) continue;
-    if (fabs(r->p - p0) + fabs(r->dmin - d0) <= 2 * hmax)
+    if (dp > hmax || fabs(r->dmin - dmin) > JOIN_DMIN_ABS + JOIN_DMIN_SLOPE * dp)
+      continue;
+    if (fabs(r->p - p0) + fabs(r->dmin - d0) <= TWIN_REACH_HMAX * hmax)
       continue; /* the twin's start: compared once this one moved on */
     if (sc_ob_set_p(b->m, b->sp.param, r->p) ||
         sc_ob_iterate_orbit(b, r->d, period, b->seed))
       continue;
     sc_shoot_result res;
     if (sc_ob_shoot_at(b, period, p, b->seed, &res) != SC_OK) continue;
-    if (sc_ob_same_orbit(b, b->orbit, b->orb_c, period))
-      return r->branch;
+    if (sc_ob_same_orbit(b, b->orbit, b->orb_c, period)) return r->branch;
   }
   return -1;
 }
@@ -93,7 +125,7 @@ static int segment_start(sc_orbit_branch *b, segment *S, sc_cont_problem *pb,
                    sc_map_type(m)->params[b->sp.param].name, jb->p);
   int forced = sc_map_has_borders(m);
   int st = forced ? sc_ob_orbit_borders(b, jb->d, period, NULL, b->codes,
-                                  &b->bl_prev, &v, msg)
+                                        &b->bl_prev, &v, msg)
                   : sc_map_iterate(m, jb->d, period,
                                    SC_EVAL_DERIV | SC_EVAL_ITINERARY, &v, msg);
   if (st) return st;
@@ -110,8 +142,9 @@ static int segment_start(sc_orbit_branch *b, segment *S, sc_cont_problem *pb,
   double range = fabs(b->sp.to - b->sp.from);
   sc_cont_settings *set = &S->set;
   sc_cont_settings_default(set);
-  set->hmax = b->sp.hmax > 0 ? b->sp.hmax : range / 40;
-  set->h0 = b->sp.h0 > 0 ? fmin(b->sp.h0, set->hmax) : set->hmax / 10;
+  set->hmax = b->sp.hmax > 0 ? b->sp.hmax : range / HMAX_AUTO_STEPS;
+  set->h0 = b->sp.h0 > 0 ? fmin(b->sp.h0, set->hmax)
+                         : set->hmax / H0_AUTO_FRACTION;
   set->hmin = set->hmax * HMIN_REL;
   set->pmin = fmin(b->sp.from, b->sp.to);
   set->pmax = fmax(b->sp.from, b->sp.to);
@@ -132,11 +165,13 @@ static int segment_start(sc_orbit_branch *b, segment *S, sc_cont_problem *pb,
   st = sc_branch_set(S->br, u0, msg);
   /* A start just beyond a located point may sit where the orbit is
    * nearly singular (f' grows like |d - d*|^(-1/2) near a switching):
-   * move it further along, ten times at a time. */
+   * move it further along, START_MOVE_GROWTH times at a time. */
   double off = jb->offset;
-  for (int k = 0; st && off > 0 && k < 4; k++) {
-    double p1 = jb->p + jb->direction * 9 * off;
-    off *= 10;
+  for (int k = 0; st && off > 0 && k < START_MOVES; k++) {
+    /* jb->p is off beyond the located point: move to START_MOVE_GROWTH
+     * times off beyond it */
+    double p1 = jb->p + jb->direction * (START_MOVE_GROWTH - 1) * off;
+    off *= START_MOVE_GROWTH;
     if (p1 < set->pmin || p1 > set->pmax || sc_ob_set_p(m, b->sp.param, p1))
       break;
     if (sc_ob_iterate_orbit(b, jb->d, period, b->seed)) break;
@@ -157,7 +192,7 @@ static int segment_start(sc_orbit_branch *b, segment *S, sc_cont_problem *pb,
     char why[SC_MSG_LEN];
     snprintf(why, sizeof why, "%s", msg ? msg->text : "");
     sc_ob_add_end(b, S->branch, period, jb->p, jb->d, v.dfdd,
-            "start failed (%s): %.300s", sc_strerror(st), why);
+                  "start failed (%s): %.300s", sc_strerror(st), why);
     return SC_END;
   }
   /* the borders at the corrected start are the reference */
@@ -186,9 +221,8 @@ static int segment_accept(sc_orbit_branch *b, segment *S, const double *u) {
   /* A period-m segment whose orbit has fallen to a divisor of m has
    * left its branch for a lower-period one crossing it (the doubled
    * orbit at a flip): stop rather than follow the old branch again. */
-  int q = have_orbit && period > 1
-              ? sc_ob_minimal_period(b, b->orb_c, period)
-              : period;
+  int q = have_orbit && period > 1 ? sc_ob_minimal_period(b, b->orb_c, period)
+                                   : period;
   if (q < period) {
     /* Follow the lower-period branch from here instead, both ways, with
      * its own period (joins() stops it where it was computed before). */
@@ -200,10 +234,9 @@ static int segment_accept(sc_orbit_branch *b, segment *S, const double *u) {
     /* The end is the last point of minimal period `period` (the segment
      * met the period-q branch between it and this one). */
     int first = isnan(S->p_first);
-    special_rec *r = sc_ob_add_special(b, SC_PT_EP, S->branch, period,
-                                 first ? u[1] : S->last_p,
-                                 first ? u[0] : S->last_d, S->last_mult,
-                                 NAN);
+    special_rec *r = sc_ob_add_special(
+        b, SC_PT_EP, S->branch, period, first ? u[1] : S->last_p,
+        first ? u[0] : S->last_d, S->last_mult, NAN);
     if (r)
       snprintf(r->note, sizeof r->note,
                "the segment met the period-%d branch between here and "
@@ -223,7 +256,8 @@ static int segment_accept(sc_orbit_branch *b, segment *S, const double *u) {
     S->p_first = u[1], S->dmin_first = dmin;
     memcpy(b->orb_f, b->orb_c, (size_t)period * sizeof *b->orb_f);
   }
-  if (fabs(u[1] - S->p_first) + fabs(dmin - S->dmin_first) > 4 * S->set.hmax)
+  if (fabs(u[1] - S->p_first) + fabs(dmin - S->dmin_first) >
+      MOVED_HMAX * S->set.hmax)
     S->moved = 1;
   int jn = joins(b, S->branch, period, u[1], dmin, S->p_first, S->dmin_first,
                  S->set.hmax, S->moved);
@@ -314,7 +348,7 @@ static void segment_rejected(sc_orbit_branch *b, segment *S) {
   sc_point_label l = loc->test == 0 ? SC_PT_LP : SC_PT_PD;
   const double *u = sc_branch_point(S->br);
   special_rec *r = sc_ob_add_special(b, l, S->branch, S->period, u[1], u[0],
-                               S->last_mult, loc->psi);
+                                     S->last_mult, loc->psi);
   if (r) {
     r->method = SC_LOC_FAILED;
     r->error = fabs(loc->width);
@@ -371,9 +405,9 @@ int sc_ob_run_segment(sc_orbit_branch *b, const job *jb, int branch,
       if (bce) break;
       if (segment_accept(b, &S, ue)) break;
       int maxed = (long)sc_branch_npoints(S.br) >= b->sp.max_points;
-      sc_ob_add_end(b, branch, period, ue[1], ue[0], S.last_mult, "%s%s",
-              maxed ? "max-points reached" : "end of the parameter interval",
-              NULL);
+      sc_ob_add_end(
+          b, branch, period, ue[1], ue[0], S.last_mult, "%s%s",
+          maxed ? "max-points reached" : "end of the parameter interval", NULL);
       break;
     }
     if (st == SC_ENOCONV) {

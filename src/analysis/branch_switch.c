@@ -21,6 +21,59 @@
  * (orbit points move with slopes dd/dp of order one to a hundred). */
 #define CLOSE_FACTOR 1e3
 
+/* The offsets tried grow by CROSS_GROWTH up to CROSS_REL_MAX (1e-4):
+ * next to a switching with the driver frozen shooting needs the orbit a
+ * little away from d*, and 1e-4 relative is still below the distance
+ * between the special points of the chapter's branches. */
+#define CROSS_GROWTH 10
+#define CROSS_REL_MAX (1e3 * CROSS_REL)
+
+/* The bisection fallback looks for the end of the piece first
+ * BISECT_FIRST_HMIN smallest steps ahead (the corrector gave up within a
+ * step of hmin), doubling that offset at most BISECT_DOUBLINGS times and
+ * not beyond BISECT_REACH_REL of the parameter interval: a piece that
+ * goes on further is not where the corrector stopped. */
+#define BISECT_FIRST_HMIN 4
+#define BISECT_DOUBLINGS 40
+#define BISECT_REACH_REL 1e-2
+
+/* Halvings of the bisection's bracket at most: 2^-200 of any interval
+ * is far below the Newton tolerance, where it stops (or where the
+ * midpoint rounds to an end). */
+#define BISECT_HALVINGS 200
+
+/* Added to a border's rate of change in the parameter, so that one that
+ * does not move with it is infinitely far but still compares (the
+ * nearest border ahead is sought). */
+#define RATE_FLOOR 1e-300
+
+/* Shooting fails next to a switching with the driver frozen, so the
+ * bisection may stop short of the border by up to this many of its
+ * brackets (at the Newton tolerance, 1e-13 relative: still 1e-10, far
+ * below the distance between distinct special points). */
+#define BISECT_SHORT_FACTOR 1e3
+
+/* Parameter offsets from a flip at which the doubled orbit is sought,
+ * relative to max(1, |p|) and scaled by range / (1 + range), in the order
+ * tried: 1e-4 first; smaller ones leave the new orbit nearly degenerate
+ * (its multiplier is +1 at the flip, so shooting may fall back onto the
+ * old orbit), larger ones may pass the next bifurcation. */
+static const double flip_offsets[] = {1e-4, 1e-5, 1e-3, 1e-6};
+#define NFLIP_OFFSETS (sizeof flip_offsets / sizeof flip_offsets[0])
+
+/* Displacements of the start from the flip's orbit point, of both signs,
+ * in units of sqrt(dp) (1 + |d|) (the doubled orbit's amplitude grows
+ * like the square root of the distance to the flip), in the order tried:
+ * 0.3 first, about the amplitude of the normal form's coefficients of
+ * order one; then the amplitude itself, then a smaller one. */
+static const double flip_amplitudes[] = {0.3, 1, 0.1};
+#define NFLIP_AMPLITUDES (sizeof flip_amplitudes / sizeof flip_amplitudes[0])
+
+/* The doubled orbit found must lie within this many amplitudes
+ * sqrt(dp) (1 + |d|) of the flip's orbit point: farther is another
+ * orbit that shooting fell onto. */
+#define FLIP_REACH 100
+
 /* ------------------------------------------------------------------ */
 /* Handing over to the other side of a located point                    */
 
@@ -45,7 +98,7 @@ int sc_ob_hand_over(sc_orbit_branch *b, special_rec *r, int m,
   /* Offsets from CROSS_REL up: next to a switching with the driver
    * frozen f' grows like |d - d*|^(-1/2), and shooting needs the orbit a
    * little away from d*. */
-  for (double off = CROSS_REL; off <= 1e3 * CROSS_REL; off *= 10) {
+  for (double off = CROSS_REL; off <= CROSS_REL_MAX; off *= CROSS_GROWTH) {
   double pc = p + dir * off * (1 + fabs(p));
   if (pc < fmin(b->sp.from, b->sp.to) || pc > fmax(b->sp.from, b->sp.to))
     break;
@@ -65,7 +118,7 @@ int sc_ob_hand_over(sc_orbit_branch *b, special_rec *r, int m,
         if (same && cod && sc_map_has_borders(b->m)) {
           sc_map_value v;
           same = sc_ob_orbit_borders(b, b->orbit[0], q, NULL, b->codes2,
-                               &b->bl_tmp, &v, NULL) == SC_OK &&
+                                     &b->bl_tmp, &v, NULL) == SC_OK &&
                  sc_ob_same_codes(b->codes2, cod, q, k);
         }
         if (same) continue;
@@ -109,7 +162,7 @@ static int on_piece(sc_orbit_branch *b, int m, double p, double *orb_a,
   if (!b->ctx.force) return 1;
   sc_map_value v;
   return sc_ob_orbit_borders(b, b->orbit[0], m, NULL, b->codes2, &b->bl_tmp, &v,
-                       NULL) == SC_OK &&
+                             NULL) == SC_OK &&
          sc_ob_same_codes(b->codes2, b->codes, m, 0);
 }
 
@@ -125,8 +178,8 @@ static int locate_by_bisection(sc_orbit_branch *b, int m, double *pa,
          pmax = fmax(b->sp.from, b->sp.to);
   sc_shoot_result res;
   /* An offset beyond which the piece has ended: grow from hmin. */
-  double w = 4 * hmin, lo = p0, hi = NAN;
-  for (int k = 0; k < 40; k++, w *= 2) {
+  double w = BISECT_FIRST_HMIN * hmin, lo = p0, hi = NAN;
+  for (int k = 0; k < BISECT_DOUBLINGS; k++, w *= 2) {
     double p = p0 + dir * w;
     if (p < pmin || p > pmax) p = dir > 0 ? pmax : pmin;
     int st = sc_ob_shoot_at(b, m, p, orb_a, &res);
@@ -136,10 +189,10 @@ static int locate_by_bisection(sc_orbit_branch *b, int m, double *pa,
     }
     lo = p;
     memcpy(orb_a, b->orbit, (size_t)m * sizeof *orb_a);
-    if (p == pmin || p == pmax || w > 1e-2 * (pmax - pmin)) break;
+    if (p == pmin || p == pmax || w > BISECT_REACH_REL * (pmax - pmin)) break;
   }
   if (isnan(hi)) return SC_ENOCONV;
-  for (int it = 0; it < 200; it++) {
+  for (int it = 0; it < BISECT_HALVINGS; it++) {
     if (fabs(hi - lo) <= acc->newton_atol + acc->newton_rtol * fabs(lo))
       break;
     double mid = 0.5 * (lo + hi);
@@ -176,7 +229,7 @@ static void after_bisection(sc_orbit_branch *b, int branch, int m, double pa,
       continue;
     have = sc_ob_shoot_at(b, m, pc, b->seed, &res) == SC_OK &&
            sc_ob_close_orbits(b->orbit, m, orb, m,
-                        CLOSE_FACTOR * CROSS_REL * (1 + fabs(pb)));
+                              CLOSE_FACTOR * CROSS_REL * (1 + fabs(pb)));
   }
   border_fix best = {0};
   sc_border bbest;
@@ -190,19 +243,19 @@ static void after_bisection(sc_orbit_branch *b, int branch, int m, double pa,
       double tbest = HUGE_VAL;
       for (size_t i = 0; i < b->bl_cur.n && i < b->bl_cur.cap; i++) {
         const sc_border *x = &b->bl_cur.b[i];
-        double rate = fabs(x->dp[b->sp.param]) + 1e-300;
+        double rate = fabs(x->dp[b->sp.param]) + RATE_FLOOR;
         double t = x->value / rate;
         if (x->value >= 0 && t < tbest) tbest = t, bbest = *x;
       }
       if (isfinite(tbest)) {
         double mb = -bbest.value; /* mirror: a bracket for the interpolation */
         sc_ob_locate_border(b, m, b->codes2, &bbest, pc, dc, bbest.value, pa,
-                      orb[0], mb, &best);
+                            orb[0], mb, &best);
         /* Shooting fails next to a switching with the driver frozen (f'
          * grows like |d - d*|^(-1/2)), so the bisection can stop short of
          * the border by far more than its bracket: a certified solution
          * of the border's system this close is that border. */
-        if (best.ok && fabs(best.p - pa) > 1e3 * fabs(pb - pa) +
+        if (best.ok && fabs(best.p - pa) > BISECT_SHORT_FACTOR * fabs(pb - pa) +
                                                BISECTION_REACH *
                                                    (1 + fabs(pa))) {
           best.ok = 0;
@@ -233,7 +286,7 @@ static void after_bisection(sc_orbit_branch *b, int branch, int m, double pa,
         !sc_map_iterate(b->m, orb[0], m, SC_EVAL_DERIV, &va, NULL))
       mult = va.dfdd;
     r = sc_ob_add_special(b, l, branch, m, pa, orb[0], mult,
-                    bbest.name[0] ? bbest.value : NAN);
+                          bbest.name[0] ? bbest.value : NAN);
     if (r) {
       r->method = SC_LOC_BISECTION;
       r->error = fabs(pb - pa);
@@ -259,26 +312,23 @@ static void after_bisection(sc_orbit_branch *b, int branch, int m, double pa,
  * eigendirection (in one dimension: d itself). */
 int sc_ob_switch_flip(sc_orbit_branch *b, int m, double p, double d) {
   if (2 * m > b->sp.max_period) return 0;
-  /* Offsets from the middle: small ones leave the new orbit nearly
-   * degenerate (its multiplier is +1 at the flip), large ones may pass
-   * the next bifurcation. */
-  const double rel[4] = {1e-4, 1e-5, 1e-3, 1e-6};
-  const double amp[3] = {0.3, 1, 0.1};
-  for (int i = 0; i < 4; i++) {
-    double dp = rel[i] * fmax(1, fabs(p)) * fabs(b->sp.to - b->sp.from) /
+  for (size_t i = 0; i < NFLIP_OFFSETS; i++) {
+    double dp = flip_offsets[i] * fmax(1, fabs(p)) * fabs(b->sp.to - b->sp.from) /
                 (1 + fabs(b->sp.to - b->sp.from));
     for (int side = -1; side <= 1; side += 2) {
       double ps = p + side * dp;
       if (ps < fmin(b->sp.from, b->sp.to) || ps > fmax(b->sp.from, b->sp.to))
         continue;
-      for (int ia = 0; ia < 6; ia++) {
-        double eps = (ia % 2 ? -1 : 1) * sqrt(dp) * amp[ia / 2] * (1 + fabs(d));
+      for (size_t ia = 0; ia < 2 * NFLIP_AMPLITUDES; ia++) {
+        double eps = (ia % 2 ? -1 : 1) * sqrt(dp) * flip_amplitudes[ia / 2] *
+                     (1 + fabs(d));
         if (sc_ob_set_p(b->m, b->sp.param, ps)) continue;
         if (sc_ob_iterate_orbit(b, d + eps, 2 * m, b->seed)) continue;
         sc_shoot_result res;
         if (sc_ob_shoot_at(b, 2 * m, ps, b->seed, &res) != SC_OK) continue;
         if (sc_ob_minimal_period(b, b->orbit, 2 * m) != 2 * m) continue;
-        if (fabs(b->orbit[0] - d) > 100 * sqrt(dp) * (1 + fabs(d))) continue;
+        if (fabs(b->orbit[0] - d) > FLIP_REACH * sqrt(dp) * (1 + fabs(d)))
+          continue;
         char origin[96];
         snprintf(origin, sizeof origin, "PD at %.10g", p);
         return sc_ob_push_job(b, 2 * m, ps, b->orbit[0], side, dp, origin);
@@ -309,13 +359,13 @@ void sc_ob_fall_back(sc_orbit_branch *b, segment *S, const job *jb,
           SC_OK) {
     if (!failed_row)
       sc_ob_add_end(b, branch, period, S->last_p, S->last_d, S->last_mult,
-              "the corrector failed and no itinerary change was found "
-              "ahead: %.300s%s",
-              why, NULL);
+                    "the corrector failed and no itinerary change was found "
+                    "ahead: %.300s%s",
+                    why, NULL);
     else
       sc_ob_add_end(b, branch, period, S->last_p, S->last_d, S->last_mult,
-              "the segment ends at the border it could not locate%s%s", NULL,
-              NULL);
+                    "the segment ends at the border it could not locate%s%s",
+                    NULL, NULL);
     return;
   }
   char keep[NOTE_LEN] = "";

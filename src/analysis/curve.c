@@ -11,6 +11,26 @@
 
 #include "analysis/curve_impl.h"
 
+/* The default steps of a curve in (d, x, y): a first step of 1e-3, small
+ * against the chapter's parameters (order one) so that the corrector
+ * converges from the start's tangent, and a largest of 2e-2, which draws
+ * the chapter's curves (spans of order one) smoothly in some hundred
+ * points, well within the default max_points (2000). */
+#define CURVE_H0_DEFAULT 1e-3
+#define CURVE_HMAX_DEFAULT 2e-2
+#define CURVE_MAX_POINTS_DEFAULT 2000
+
+/* A normal-form coefficient vanishes within this many residual
+ * tolerances: the accuracy to which a located point meets its system,
+ * through the coefficient's conditioning. */
+#define COEF_ZERO_FTOLS 100
+
+/* After crossing a border, the new side's curve must start within this
+ * many first steps of the border point: a few of the small steps taken
+ * across (a multiplier that jumps across the border leaves the new
+ * itinerary's fold or flip elsewhere). */
+#define CROSS_START_H0 4
+
 void sc_curve_settings_default(sc_curve_settings *s) {
   memset(s, 0, sizeof *s);
   s->type = SC_CURVE_FOLD;
@@ -19,9 +39,9 @@ void sc_curve_settings_default(sc_curve_settings *s) {
   s->iy = 1;
   s->xlo = s->ylo = -HUGE_VAL;
   s->xhi = s->yhi = HUGE_VAL;
-  s->h0 = 1e-3;
-  s->hmax = 2e-2;
-  s->max_points = 2000;
+  s->h0 = CURVE_H0_DEFAULT;
+  s->hmax = CURVE_HMAX_DEFAULT;
+  s->max_points = CURVE_MAX_POINTS_DEFAULT;
 }
 
 typedef struct {
@@ -213,7 +233,7 @@ static int locate(trace *T, size_t k, const double *a, const double *b,
   double scale = fmax(fabs(pa), fabs(pb));
   double span = dist_inf(T, a, b);
   if (!(fabs(cert.psi) <= SC_SQRT_EPS * scale) ||
-      dist_inf(T, u, mid) > 2 * span) {
+      dist_inf(T, u, mid) > SC_CURVE_BRACKET_REACH * span) {
     snprintf(note, sizeof note,
              "rejected: the sign change is not a zero (%s = %.3g, ends "
              "%.3g, %.3g)",
@@ -237,9 +257,8 @@ static int locate(trace *T, size_t k, const double *a, const double *b,
   }
   /* A turning point where the normal-form coefficient also vanishes is
    * the cusp (reported by its own test): the coefficient tells them
-   * apart.  "Vanishes": within 100 residual tolerances, the accuracy to
-   * which the located point satisfies the system. */
-  if (fabs(coef) <= 100 * T->acc->newton_ftol) return SC_OK;
+   * apart. */
+  if (fabs(coef) <= COEF_ZERO_FTOLS * T->acc->newton_ftol) return SC_OK;
   size_t ip = k == 1 ? T->N - 2 : T->N - 1;
   int max = u[ip] >= a[ip] && u[ip] >= b[ip];
   snprintf(note, sizeof note, "%s %s", k == 1 ? xn : yn, max ? "max" : "min");
@@ -414,10 +433,10 @@ static int near_border(trace *T, const double *u, int *found) {
   double dist, w[3] = {u[0], UX(T, u), UY(T, u)};
   long jn = sc_forced_nearest(&T->fs, w, &dist);
   *found = 0;
-  if (jn < 0 || !(dist <= 4 * T->set->hmax)) return SC_OK;
+  if (jn < 0 || !(dist <= SC_CURVE_NEAR_HMAX * T->set->hmax)) return SC_OK;
   int crossed;
   return locate_border_pt(T, (size_t)jn, w, T->bpa[jn], T->bpa[jn],
-                          8 * T->set->hmax, 1, found, NULL, NULL, &crossed,
+                          SC_CURVE_LOCATE_HMAX * T->set->hmax, 1, found, NULL, NULL, &crossed,
                           NULL, NULL, NULL);
 }
 
@@ -483,7 +502,7 @@ static int cross_border(trace *T, const double *w, const double *dir3,
   if (!T->mc.fs || strcmp(old, T->itin0) == 0) return SC_OK;
   double floor;
   if (correct_start(T, v, &floor, msg) != SC_OK ||
-      !(floor <= 10 * T->acc->newton_ftol))
+      !(floor <= SC_CURVE_FLOOR_FTOLS * T->acc->newton_ftol))
     return SC_OK;
   sc_map_value val;
   if (sc_forced_eval(&T->fs, v, NULL, NULL, &val) ||
@@ -491,10 +510,8 @@ static int cross_border(trace *T, const double *w, const double *dir3,
     return SC_OK;
   double dist = fmax(fabs(v[0] - w[0]),
                      fmax(fabs(v[1] - w[1]), fabs(v[2] - w[2])));
-  /* the new side's curve must start at the border point: within a few
-   * of the small steps taken across (a multiplier that jumps across the
-   * border leaves the new itinerary's fold or flip elsewhere) */
-  *ok = dist <= 4 * T->set->h0;
+  /* the new side's curve must start at the border point */
+  *ok = dist <= CROSS_START_H0 * T->set->h0;
   return SC_OK;
 }
 
@@ -597,7 +614,7 @@ static int run(trace *T, int dir, int branch, sc_msg *msg) {
       /* the point may lie off the chord: where the steps shrank (near d*,
        * the orbit moves fast in d) the bracket is short, so at least one
        * largest step */
-      double reach = fmax(2 * span, s->hmax);
+      double reach = fmax(SC_CURVE_BRACKET_REACH * span, s->hmax);
       int found = 0, crossed = 0, njump = 0, ntried = 0;
       double wlast = -1, dir3[3], next[3];
       for (int i = 0; i < 3; i++)
@@ -667,9 +684,10 @@ static int run(trace *T, int dir, int branch, sc_msg *msg) {
     /* A point accepted at the corrector's rounding floor with a residual
      * far above the tolerance: next to d* (f'' unbounded, docs/derivations.md) the
      * multiplier's rounding error grows without bound; the curve ends
-     * where its points stop meeting their system (10 tolerances). */
+     * where its points stop meeting their system (SC_CURVE_FLOOR_FTOLS). */
     if (T->cs.pb.f(cur, T->F, T->cs.pb.user) == 0 &&
-        norm_inf(T->F, T->cs.pb.n) > 10 * T->acc->newton_ftol) {
+        norm_inf(T->F, T->cs.pb.n) >
+            SC_CURVE_FLOOR_FTOLS * T->acc->newton_ftol) {
       char why[128];
       snprintf(why, sizeof why,
                "the residual's rounding floor (%.3g) exceeds the tolerance "
@@ -705,7 +723,8 @@ static int run(trace *T, int dir, int branch, sc_msg *msg) {
     /* closed: back within one step of the start after going away */
     double dist = dist_inf(T, cur, T->u0);
     far = fmax(far, dist);
-    if (far > 4 * s->hmax && dist < 1.5 * sc_branch_step_size(b)) {
+    if (far > SC_CURVE_CLOSE_HMAX * s->hmax &&
+        dist < SC_CURVE_CLOSE_STEPS * sc_branch_step_size(b)) {
       T->closed = 1;
       st = end_point(T, cur, "the curve closes on itself");
       break;

@@ -13,9 +13,9 @@
 
 void sc_curve_ftol(sc_accuracy *acc, double floor) {
   acc->newton_ftol = fmax(acc->newton_ftol, SC_CURVE_FTOL);
-  if (floor > acc->newton_ftol && floor <= 2.5e-10) {
-    acc->newton_ftol = 4 * floor;
-    acc->newton_atol = fmax(acc->newton_atol, 4 * floor);
+  if (floor > acc->newton_ftol && floor <= SC_CURVE_FLOOR_MAX) {
+    acc->newton_ftol = SC_CURVE_FLOOR_MARGIN * floor;
+    acc->newton_atol = fmax(acc->newton_atol, SC_CURVE_FLOOR_MARGIN * floor);
   }
 }
 
@@ -337,7 +337,7 @@ static int blocate(btrace *B, size_t k, const double *a, const double *b,
     return bemit(B, rej, mid, cert.residual, note);
   }
   if (!(fabs(cert.psi) <= SC_SQRT_EPS * fmax(fabs(pa), fabs(pb))) ||
-      dist3(u, mid) > 2 * dist3(a, b)) {
+      dist3(u, mid) > SC_CURVE_BRACKET_REACH * dist3(a, b)) {
     snprintf(note, sizeof note,
              "rejected: the sign change is not a zero (test %.3g, ends %.3g, "
              "%.3g)",
@@ -355,6 +355,11 @@ static int blocate(btrace *B, size_t k, const double *a, const double *b,
              label, B->fs.watch[k - 2].name, B->fs.watch[k - 2].iterate + 1);
   return bemit(B, label, u, res, note);
 }
+
+/* Halvings of a damped Newton step at most: a step of 2^-30 (1e-9) of
+ * the full one that still does not decrease the residual means the
+ * residual is at its rounding floor. */
+#define DAMP_HALVINGS 30
 
 int sc_curve_correct_fixed(const sc_cont_problem *pb, double *u, int fix,
                            const sc_accuracy *acc, double *floor_out) {
@@ -374,7 +379,7 @@ int sc_curve_correct_fixed(const sc_cont_problem *pb, double *u, int fix,
     double dx = -(a * F[1] - c * F[0]) / det;
     double lam = 1;
     int ok = 0;
-    for (int h = 0; h < 30 && !ok; h++, lam *= 0.5) {
+    for (int h = 0; h < DAMP_HALVINGS && !ok; h++, lam *= 0.5) {
       ut[0] = u[0] + lam * dd, ut[c1] = u[c1] + lam * dx, ut[fix] = u[fix];
       ok = pb->f(ut, Ft, pb->user) == 0 && fmax(fabs(Ft[0]), fabs(Ft[1])) < r;
     }
@@ -404,7 +409,7 @@ int sc_curve_bisect(const sc_curve_system *cs, size_t k, const double *a,
   int st = SC_ENOCONV;
   *m = pa;
   memcpy(u, a, 3 * sizeof *u);
-  for (int it = 0; it < 200; it++) {
+  for (int it = 0; it < SC_CURVE_BISECTIONS; it++) {
     *width = fabs(hi[fix] - lo[fix]);
     if (sc_test_delta(*width, lo[fix], acc->newton_atol, acc->newton_rtol) ==
         SC_OK) {
@@ -415,7 +420,7 @@ int sc_curve_bisect(const sc_curve_system *cs, size_t k, const double *a,
     for (int i = 0; i < 3; i++)
       w[i] = 0.5 * (lo[i] + hi[i]);
     if (sc_curve_correct_fixed(&cs->pb, w, fix, acc, &floor) ||
-        !(floor <= 10 * acc->newton_ftol) || cs->test(w, psi, cs->user) ||
+        !(floor <= SC_CURVE_FLOOR_FTOLS * acc->newton_ftol) || cs->test(w, psi, cs->user) ||
         !isfinite(psi[k]))
       break;
     if ((psi[k] > 0) == (psi_lo > 0))
@@ -453,13 +458,13 @@ long sc_forced_nearest(sc_forced_sys *s, const double *u, double *dist) {
 static int bfallback(btrace *B, const double *u, int *st) {
   double dist, w[3] = {u[0], u[1], u[2]};
   long j = sc_forced_nearest(&B->fs, u, &dist);
-  if (j < 0 || !(dist <= 4 * B->set->hmax)) return 0;
+  if (j < 0 || !(dist <= SC_CURVE_NEAR_HMAX * B->set->hmax)) return 0;
   size_t k = 2 + (size_t)j;
   sc_curve_cert cert;
   sc_msg msg;
   char note[256];
   int rc = sc_curve_locate(&B->cs, k, w, &B->acc, &cert, &msg);
-  if (rc == SC_OK && dist3(w, u) > 8 * B->set->hmax) {
+  if (rc == SC_OK && dist3(w, u) > SC_CURVE_LOCATE_HMAX * B->set->hmax) {
     rc = SC_ENOCONV;
     snprintf(msg.text, sizeof msg.text, "converged %.3g away",
              dist3(w, u));
@@ -548,7 +553,7 @@ static int brun(btrace *B, int dir, int branch, sc_msg *msg) {
      * (next to d*, where f' is unbounded): the curve ends where its
      * points stop meeting their system, as fold and flip curves do */
     double F[2];
-    if (f_cb(cur, F, &B->fs) == 0 && norm2inf(F) > 10 * B->acc.newton_ftol) {
+    if (f_cb(cur, F, &B->fs) == 0 && norm2inf(F) > SC_CURVE_FLOOR_FTOLS * B->acc.newton_ftol) {
       if (bfallback(B, prev, &st)) break;
       if (st) goto done;
       char why[128];
@@ -573,7 +578,8 @@ static int brun(btrace *B, int dir, int branch, sc_msg *msg) {
     }
     double dist = dist3(cur, B->u0);
     far = fmax(far, dist);
-    if (far > 4 * s->hmax && dist < 1.5 * sc_branch_step_size(b)) {
+    if (far > SC_CURVE_CLOSE_HMAX * s->hmax &&
+        dist < SC_CURVE_CLOSE_STEPS * sc_branch_step_size(b)) {
       B->closed = 1;
       st = bemit(B, "EP", cur, NAN, "the curve closes on itself");
       break;
@@ -604,12 +610,12 @@ static void orbit_at(sc_map *m, int period, const sc_accuracy *acc,
 }
 
 /* Damped Newton in (d, x) at fixed y on the border system: converged
- * when at its rounding floor within the fast preset's reach (2.5e-10,
- * as sc_curve_ftol()). */
+ * when at its rounding floor within the fast preset's reach
+ * (SC_CURVE_FLOOR_MAX, as sc_curve_ftol()). */
 static int bcorrect(btrace *B, double *u, double *floor_out) {
   if (sc_curve_correct_fixed(&B->cs.pb, u, 2, &B->acc, floor_out))
     return SC_ENOCONV;
-  return *floor_out <= 2.5e-10 ? SC_OK : SC_ENOCONV;
+  return *floor_out <= SC_CURVE_FLOOR_MAX ? SC_OK : SC_ENOCONV;
 }
 
 int sc_curve_trace_border(sc_map *m, const sc_curve_settings *set, double d0,

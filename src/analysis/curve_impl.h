@@ -13,6 +13,44 @@
  * inside the 1e-10 the curves must meet (docs/curves.md). */
 #define SC_CURVE_FTOL 1e-11
 
+/* The largest residual floor met at a start that a curve accepts, and
+ * the margin above it its tolerance is then set to: 4 x 2.5e-10 is the
+ * fast preset's residual tolerance (1e-9), the loosest a curve keeps. */
+#define SC_CURVE_FLOOR_MAX 2.5e-10
+#define SC_CURVE_FLOOR_MARGIN 4
+
+/* A corrected point meets its system when its residual's rounding floor
+ * is within this many residual tolerances: a point polished to the
+ * tolerance is within one or two; beyond ten, f'' is unbounded nearby
+ * (next to d*, docs/derivations.md) and the points stop meeting their
+ * system. */
+#define SC_CURVE_FLOOR_FTOLS 10
+
+/* A zero located from a sign change between two points a and b must lie
+ * within this many times their distance of the interpolated point:
+ * Newton from there converges to the zero the sign change brackets; one
+ * farther away is another zero. */
+#define SC_CURVE_BRACKET_REACH 2
+
+/* Where a curve stopped, a watched border is near when its distance
+ * estimate (|m| over its gradient) is within SC_CURVE_NEAR_HMAX largest
+ * steps (the corrector gives up within a step or two of what stopped
+ * it), and a location that converges farther than SC_CURVE_LOCATE_HMAX
+ * largest steps away found another zero. */
+#define SC_CURVE_NEAR_HMAX 4
+#define SC_CURVE_LOCATE_HMAX 8
+
+/* A curve is closed when, having gone farther than SC_CURVE_CLOSE_HMAX
+ * largest steps from its start (so its first steps are not a return), it
+ * comes back within SC_CURVE_CLOSE_STEPS of its current step of the start
+ * (the next step would pass it). */
+#define SC_CURVE_CLOSE_HMAX 4
+#define SC_CURVE_CLOSE_STEPS 1.5
+
+/* Bisections of a bracket at most: 2^-200 of any bracket is far below
+ * the Newton tolerance, where a bisection stops. */
+#define SC_CURVE_BISECTIONS 200
+
 /* The accuracy a curve's Newton uses: at least SC_CURVE_FTOL, and 4 times
  * the residual floor met at the start where that is larger, never beyond
  * 1e-9 (the fast preset's). */

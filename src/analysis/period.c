@@ -84,10 +84,10 @@ int sc_period_alloc(int max_period, int confirm, double rtol,
     return sc_fail(msg, SC_EINVAL,
                    "sc_period_alloc: confirm = %d (valid: 1..%d)", confirm,
                    SC_PERIOD_MAX_CONFIRM);
-  if (!(rtol >= DBL_EPSILON && rtol <= 0.1))
+  if (!(rtol >= DBL_EPSILON && rtol <= SC_PERIOD_MAX_RTOL))
     return sc_fail(msg, SC_EINVAL,
-                   "sc_period_alloc: period-rtol = %g (valid: [%g, 0.1])",
-                   rtol, DBL_EPSILON);
+                   "sc_period_alloc: period-rtol = %g (valid: [%g, %g])",
+                   rtol, DBL_EPSILON, SC_PERIOD_MAX_RTOL);
   sc_period *pd = calloc(1, sizeof *pd);
   if (!pd) goto fail;
   pd->maxp = max_period;

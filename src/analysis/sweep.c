@@ -34,7 +34,7 @@ int sc_sweep_period(const double *x, size_t n, double rtol, int pmax) {
   if (hi - lo <= rtol * amax + SC_PERIOD_FLOOR_ULPS * DBL_EPSILON * amax)
     return 1;
   if (rtol < DBL_EPSILON) rtol = DBL_EPSILON;
-  if (rtol > 0.1) rtol = 0.1;
+  if (rtol > SC_PERIOD_MAX_RTOL) rtol = SC_PERIOD_MAX_RTOL;
   size_t pm = (size_t)(pmax > 0 ? pmax : 0);
   if (pm > n / 2) pm = n / 2;
   if (pm > SC_PERIOD_MAX) pm = SC_PERIOD_MAX;
