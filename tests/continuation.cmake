@@ -7,8 +7,15 @@ add_test(NAME test_curve_cli
   COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/test_curve_cli.sh
           $<TARGET_FILE:slipcont_cli> ${PROJECT_SOURCE_DIR})
 # Every bk2 curve scene of examples/ and fig 5.7(b), held to the promise
-# of its opening comment.
+# of its opening comment; curve_points recomputes the fold and flip
+# curves' points from the map layer alone.
+add_executable(curve_points curve_points.c ${SC_TEST_CLI_SOURCES})
+target_include_directories(curve_points PRIVATE ${PROJECT_SOURCE_DIR}/src)
+target_compile_options(curve_points PRIVATE ${SC_WARNINGS})
+target_link_libraries(curve_points PRIVATE slipcont_io_static slipcont_static
+                                           GSL::gsl OpenMP::OpenMP_C)
 add_test(NAME curve_examples
   COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/curve_examples.sh
-          $<TARGET_FILE:slipcont_cli> ${PROJECT_SOURCE_DIR})
+          $<TARGET_FILE:slipcont_cli> ${PROJECT_SOURCE_DIR}
+          $<TARGET_FILE:curve_points>)
 set_tests_properties(curve_examples PROPERTIES TIMEOUT 300)

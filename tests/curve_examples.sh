@@ -19,8 +19,11 @@
 #    the end is promised near a border point, not at it.
 #  - the box's edge: the coordinate on the edge exactly, the other to
 #    EDGE = 1e-3 (docs/curves.md gives it to 4 digits).
-# Usage: sh tests/curve_examples.sh PATH/TO/slipcont SOURCE_DIR
+# Usage: sh tests/curve_examples.sh PATH/TO/slipcont SOURCE_DIR CURVE_POINTS
+# (CURVE_POINTS: the test program tests/curve_points.c, which recomputes
+# the points of a fold or flip curve from the map layer alone.)
 . "$(dirname "$0")/cli_common.sh"
+CURVE_POINTS=${3:?usage: curve_examples.sh SLIPCONT SOURCE_DIR CURVE_POINTS}
 
 LOC=1e-8
 TURN=1e-5
@@ -53,6 +56,15 @@ residual() {
     "out/$1/summary.txt")
   check "$1: every point on its defining system, largest residual $r <= $2" \
     awk -v r="$r" -v m="$2" 'BEGIN { exit !(r != "" && r + 0 <= m + 0) }'
+}
+
+# recompute NAME fold|flip: every point of the curve, recomputed from the
+# map layer alone, on f^m(d) = d, (f^m)' = +-1 to 1e-10 (curve_points.c).
+recompute() {
+  "$CURVE_POINTS" "$EX/$1.ini" "out/$1/curve.csv" "$2" >"$TMP/cp.out" 2>&1
+  r=$?
+  check "$1: recomputed from the map: $(tail -n 1 "$TMP/cp.out")" test $r -eq 0
+  [ $r -eq 0 ] || cat "$TMP/cp.out"
 }
 
 # at NAME LABEL X Y TOLX TOLY: points.csv has a LABEL row within TOLX of
@@ -118,6 +130,7 @@ on_border() {
 # sign once in the box, at the GPD (3.8953, 1.1806), supercritical above.
 curve curve-fig58-flip1
 residual curve-fig58-flip1 1e-10
+recompute curve-fig58-flip1 flip
 multipliers curve-fig58-flip1 -1
 count curve-fig58-flip1 GPD 1
 at curve-fig58-flip1 GPD 3.8952574874430668 1.1805705417406247 $LOC $LOC
@@ -135,6 +148,7 @@ at curve-fig58-flip1 EP 3.9962 1.02 $EDGE 0
 # other, next to d*.
 curve curve-fig58-flip2
 residual curve-fig58-flip2 1e-10
+recompute curve-fig58-flip2 flip
 start curve-fig58-flip2 3.056846230053055 2.5
 at curve-fig58-flip2 EP 2.2941 5 $EDGE 0
 at curve-fig58-flip2 GR 3.4614585876326545 1.8005991474337746 $LOC $LOC
@@ -144,6 +158,7 @@ count curve-fig58-flip2 GPD 0
 # on across it, turns in beta and alpha, ends next to SW both ways.
 curve curve-fig58-flip4
 residual curve-fig58-flip4 1e-10
+recompute curve-fig58-flip4 flip
 start curve-fig58-flip4 3.1525203451104247 2.5
 at curve-fig58-flip4 BR 3.5164752156918295 2.1010655490689003 $LOC $LOC
 at curve-fig58-flip4 TP 3.7694004669554912 1.8719796911447033 $TURN $LOC
@@ -158,6 +173,7 @@ check "curve-fig58-flip4: continued across BR with itinerary 1|2-12-1|1|2-12-2" 
 # next to SW near (4.0006, 2.1013).
 curve curve-fig58-flip4b
 residual curve-fig58-flip4b 1e-10
+recompute curve-fig58-flip4b flip
 start curve-fig58-flip4b 3.6370578685629686 2.5
 at curve-fig58-flip4b TP 4.0206897817725737 2.1133544094451633 $LOC $TURN
 at curve-fig58-flip4b TP 4.0058590417400266 2.1008069698331129 $TURN $LOC
@@ -168,6 +184,7 @@ at curve-fig58-flip4b EP 2.3878 5 $EDGE 0
 # (4.7949, 1.2950) that is not located (docs/curves.md).
 curve curve-fig58-fold1
 residual curve-fig58-fold1 1e-10
+recompute curve-fig58-fold1 fold
 multipliers curve-fig58-fold1 1
 start curve-fig58-fold1 2.9925306744279285 2.5
 at curve-fig58-fold1 EP 2.2065 5 $EDGE 0
@@ -178,6 +195,7 @@ count curve-fig58-fold1 CP 0
 # both ends next to SW.
 curve curve-fig58-fold4
 residual curve-fig58-fold4 1e-10
+recompute curve-fig58-fold4 fold
 start curve-fig58-fold4 3.9337814025560522 2.5
 at curve-fig58-fold4 BR 3.9117144697090729 2.4618506755426077 $LOC $LOC
 ends curve-fig58-fold4 3.8930 2.4386 $END
@@ -189,6 +207,7 @@ check "curve-fig58-fold4: continued across BR with itinerary 2-12-1|1|2-12-2|1" 
 # cusp, one itinerary all around.
 curve curve-fig58-period6
 residual curve-fig58-period6 1e-10
+recompute curve-fig58-period6 fold
 multipliers curve-fig58-period6 1
 check "curve-fig58-period6: the curve is closed" \
   grep -q 'points, closed' "$D/summary.txt"
@@ -225,6 +244,7 @@ at curve-fig58-switch4 BR 4 2.1014465175860817 $LOC $LOC
 # 3.2), a cusp, a grazing where it ends, the box at beta = 5.
 curve curve-fig512-period3
 residual curve-fig512-period3 1e-10
+recompute curve-fig512-period3 fold
 multipliers curve-fig512-period3 1
 start curve-fig512-period3 5.6356664070024074 3.2
 count curve-fig512-period3 CP 1
