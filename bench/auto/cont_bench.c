@@ -1,19 +1,34 @@
-/* Times slipcont on the AUTO-07p comparison tasks: the logistic flips
- * r_1..r_6 (each period-2^(k-1) branch continued in r from a point on the
- * attractor until its flip) and the period-3 fold.  Prints the located
- * values, their errors and the median time of the continuation calls
- * (attractor iteration excluded) over 200 repetitions. */
+/* slipcont's side of the comparisons with AUTO-07p on the logistic map
+ * (docs/performance.md, "Beside AUTO-07p"): the flips r_1..r_6 of the
+ * period-doubling cascade (each period-2^(k-1) branch continued in r from
+ * a point of the attractor to its flip) and the fold of the period-3
+ * orbit at r = 1 + 2 sqrt 2.
+ *
+ *   cont_bench once cascade|fold   one computation in a fresh process
+ *   cont_bench repeat N            N computations in this process
+ *
+ * A computation includes what it needs to start: the map, and the
+ * attractor iterates that give each branch its first point (AUTO starts
+ * from a fixed point it is given and switches branches at the flips).
+ * `once` prints the located values with all their digits, their errors
+ * against 50-digit references, the points and Newton iterations, and the
+ * time inside the process with and without the starts; run_compare.py
+ * times the whole process around it.  `repeat` prints the medians over N
+ * computations in one process (warm caches). */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include <time.h>
+#include <string.h>
 
 #include "slipcont/continuation.h"
 #include "slipcont/map.h"
 #include "bench_util.h" /* bench/ */
 
-typedef struct { sc_map *m; int period; } ctx_t;
+typedef struct {
+  sc_map *m;
+  int period;
+} ctx_t;
 
 static int fn(double x, const double *p, int order, sc_map1d_jet *j, void *u) {
   ctx_t *c = u;
@@ -26,11 +41,12 @@ static int fn(double x, const double *p, int order, sc_map1d_jet *j, void *u) {
   return 0;
 }
 
-/* Points and Newton iterations of the last repetition. */
+/* Points and Newton iterations of the last computation. */
 static unsigned long npoints, nnewton;
 
 /* Continue the fixed points of f^period from (x0, r0) until the first
- * special point of test `want`; returns its r and adds the time. */
+ * special point of test `want`; returns its r and adds the time spent to
+ * *t. */
 static double locate(sc_map *m, int period, double x0, double r0, double h0,
                      double hmax, int dir, size_t want, double *t) {
   ctx_t c = {m, period};
@@ -58,6 +74,8 @@ static double locate(sc_map *m, int period, double x0, double r0, double h0,
   return r;
 }
 
+/* A point of the attractor at r: 20000 iterates from 0.5 (enough next to
+ * the flips of the cascade, where the orbit converges slowly). */
 static double attractor(sc_map *m, double r) {
   sc_map_set_param(m, 0, r, NULL);
   double x = 0.5;
@@ -66,44 +84,75 @@ static double attractor(sc_map *m, double r) {
   return x;
 }
 
-int main(void) {
-  const double ref[6] = {3.0, 3.44948974278317809819728407471,
-                         3.5440903595519228536159659866,
-                         3.56440726609543259777355758653,
-                         3.56875941954382643129821028003,
-                         3.5696916098013967142882687063};
-  enum { REP = 200 };
-  static double tc[REP], tf[REP];
-  double rk[7] = {0}, rfold = 0;
+static const double ref[6] = {3.0, 3.44948974278317809819728407471,
+                              3.5440903595519228536159659866,
+                              3.56440726609543259777355758653,
+                              3.56875941954382643129821028003,
+                              3.5696916098013967142882687063};
+
+/* The cascade: r_1..r_6 into rk[1..6]; *tc the continuation's time, the
+ * return value the whole computation's (map, starts, continuation). */
+static double cascade(double rk[7], double *tc) {
+  double t0 = bench_wall();
   sc_map *m;
   sc_map_alloc("logistic", NULL, &m, NULL);
-  for (int rep = 0; rep < REP; rep++) {
-    tc[rep] = 0;
-    npoints = nnewton = 0;
-    for (int k = 1; k <= 6; k++) {
-      double w = k == 1 ? 2 : k == 2 ? 0.45 : (rk[k - 1] - rk[k - 2]) / 4.669;
-      double r0 = k == 1 ? 2.8 : rk[k - 1] + 0.5 * w;
-      double x0 = attractor(m, r0);
-      rk[k] = locate(m, 1 << (k - 1), x0, r0, w / 40, w / 8, 1, 1, &tc[rep]);
-    }
-    unsigned long pc = npoints, nc = nnewton;
-    if (rep == REP - 1)
-      printf("cascade: %lu points, %lu Newton iterations\n", pc, nc);
-    tf[rep] = 0;
-    npoints = nnewton = 0;
-    rfold = locate(m, 3, attractor(m, 3.832), 3.832, 1e-3, 1e-2, -1, 0, &tf[rep]);
+  *tc = 0;
+  npoints = nnewton = 0;
+  for (int k = 1; k <= 6; k++) {
+    /* the window of branch k, scaled by Feigenbaum's 4.669 */
+    double w = k == 1 ? 2 : k == 2 ? 0.45 : (rk[k - 1] - rk[k - 2]) / 4.669;
+    double r0 = k == 1 ? 2.8 : rk[k - 1] + 0.5 * w;
+    double x0 = attractor(m, r0);
+    rk[k] = locate(m, 1 << (k - 1), x0, r0, w / 40, w / 8, 1, 1, tc);
   }
-  printf("fold: %lu points, %lu Newton iterations\n", npoints, nnewton);
-  for (int k = 1; k <= 6; k++)
-    printf("r_%d slipcont %.17g err %.3g\n", k, rk[k], fabs(rk[k] - ref[k - 1]));
-  printf("fold slipcont %.17g err %.3g\n", rfold, fabs(rfold - (1 + 2 * sqrt(2))));
-  qsort(tc, REP, sizeof *tc, bench_cmp_double);
-  qsort(tf, REP, sizeof *tf, bench_cmp_double);
-  printf("cascade (6 flips): median %.3g s, min %.3g s over %d runs\n",
-         tc[REP / 2], tc[0], REP);
-  printf("period-3 fold: median %.3g s, min %.3g s over %d runs\n",
-         tf[REP / 2], tf[0], REP);
-  printf("map evaluations (all runs): %lu\n", sc_map_nevals(m));
   sc_map_free(m);
+  return bench_wall() - t0;
+}
+
+static double fold(double *r, double *tc) {
+  double t0 = bench_wall();
+  sc_map *m;
+  sc_map_alloc("logistic", NULL, &m, NULL);
+  *tc = 0;
+  npoints = nnewton = 0;
+  *r = locate(m, 3, attractor(m, 3.832), 3.832, 1e-3, 1e-2, -1, 0, tc);
+  sc_map_free(m);
+  return bench_wall() - t0;
+}
+
+int main(int argc, char **argv) {
+  const double rfold = 1 + 2 * sqrt(2);
+  double rk[7] = {0}, r, tc, tw;
+  if (argc == 3 && !strcmp(argv[1], "once") && !strcmp(argv[2], "cascade")) {
+    tw = cascade(rk, &tc);
+    for (int k = 1; k <= 6; k++)
+      printf("r_%d %.17g err %.3g\n", k, rk[k], fabs(rk[k] - ref[k - 1]));
+    printf("points %lu newton %lu\n", npoints, nnewton);
+    printf("time_with_starts %.6g time_continuation %.6g\n", tw, tc);
+    return 0;
+  }
+  if (argc == 3 && !strcmp(argv[1], "once") && !strcmp(argv[2], "fold")) {
+    tw = fold(&r, &tc);
+    printf("fold %.17g err %.3g\n", r, fabs(r - rfold));
+    printf("points %lu newton %lu\n", npoints, nnewton);
+    printf("time_with_starts %.6g time_continuation %.6g\n", tw, tc);
+    return 0;
+  }
+  long n = argc == 3 && !strcmp(argv[1], "repeat") ? strtol(argv[2], NULL, 10) : 0;
+  if (n < 1 || n > 100000) {
+    fprintf(stderr, "usage: cont_bench once cascade|fold | cont_bench repeat N (1..100000)\n");
+    return 2;
+  }
+  double *t = malloc(4 * (size_t)n * sizeof *t);
+  if (!t) return 1;
+  for (long i = 0; i < n; i++) {
+    t[i] = cascade(rk, &t[n + i]);
+    t[2 * n + i] = fold(&r, &t[3 * n + i]);
+  }
+  printf("cascade median_with_starts %.6g median_continuation %.6g\n",
+         bench_median(t, (int)n), bench_median(t + n, (int)n));
+  printf("fold median_with_starts %.6g median_continuation %.6g\n",
+         bench_median(t + 2 * n, (int)n), bench_median(t + 3 * n, (int)n));
+  free(t);
   return 0;
 }
