@@ -1,4 +1,4 @@
-/* Chart benchmarks (docs/performance.md, section "Charts"):
+/* Chart benchmarks (docs/performance.md, "How to measure"):
  *
  *   bench_chart iterates   map iterates per second on one core, on the
  *                          points of fig 5.7(a): bare sc_map_eval loops,

@@ -1,5 +1,5 @@
 #!/bin/sh
-# Chart benchmarks: see docs/performance.md, section "Charts".
+# Chart benchmarks: see docs/performance.md, "How to measure".
 # usage: bench_chart.sh BENCH_CHART SLIPCONT SOURCE_DIR WORK_DIR [MPIRUN]
 # Environment: SLIPCONT_BENCH_REPEAT (default 5) repeats of the short
 # measurements, SLIPCONT_BENCH_BIG=0 to skip fig 5.7(a) at 1000 x 1000.
