@@ -11,3 +11,8 @@ add_test(NAME branch_presets
   COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/branch_presets.sh
           $<TARGET_FILE:slipcont_cli> ${PROJECT_SOURCE_DIR})
 set_tests_properties(branch_presets PROPERTIES TIMEOUT 300)
+# Hand-overs, degenerate border points and curves from branch rows.
+add_test(NAME branch_edges
+  COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/branch_edges.sh
+          $<TARGET_FILE:slipcont_cli> ${PROJECT_SOURCE_DIR})
+set_tests_properties(branch_edges PROPERTIES TIMEOUT 300)

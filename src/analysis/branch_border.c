@@ -184,18 +184,24 @@ static void newton_on_state(sc_orbit_branch *b, int period,
            BORDER_NEWTON_MAX, fx->step);
 }
 
+/* The codes of a border's defining system: the segment's, with the
+ * border's own code for its iterate where it has one (into codes4). */
+static const sc_itin_code *defining_codes(sc_orbit_branch *b, int period,
+                                          const sc_itin_code *codes,
+                                          const sc_border *like) {
+  if (like->alt.n <= 0) return codes;
+  sc_itin_code *c = b->codes4;
+  for (int i = 0; i < period; i++) c[i] = codes[i];
+  c[like->iterate] = like->alt;
+  return c;
+}
+
 void sc_ob_locate_border(sc_orbit_branch *b, int period,
                          const sc_itin_code *codes, const sc_border *like,
                          double pa, double da, double ma, double pb,
                          double db, double mb, border_fix *fx) {
   memset(fx, 0, sizeof *fx);
-  /* the border's own code for its iterate, where it has one */
-  if (like->alt.n > 0) {
-    sc_itin_code *c = b->codes4;
-    for (int i = 0; i < period; i++) c[i] = codes[i];
-    c[like->iterate] = like->alt;
-    codes = c;
-  }
+  codes = defining_codes(b, period, codes, like);
   if (like->on_state)
     newton_on_state(b, period, codes, like, pa, ma, pb, mb, fx);
   else
@@ -264,6 +270,25 @@ special_rec *sc_ob_record_border(sc_orbit_branch *b, int branch, int period,
   return r;
 }
 
+/* The orbit located at fx on border `like` into orb, aligned with the
+ * segment's start: along the border's defining codes, and for a border
+ * in the state from the point on it (the map may be singular next to it,
+ * so iterating from d0 would not land on it).  The codes are rebuilt
+ * here: locating the other borders of a step reuses their scratch. */
+static int border_orbit(sc_orbit_branch *b, int period, const sc_border *like,
+                        const border_fix *fx, double *orb) {
+  const sc_itin_code *codes = defining_codes(b, period, b->codes, like);
+  if (sc_ob_set_p(b->m, b->sp.param, fx->p)) return SC_EINVAL;
+  if (!like->on_state)
+    return sc_ob_iterate_orbit_forced(b, fx->d0, period, codes, orb);
+  int k = like->iterate;
+  for (int i = 0; i < period; i++) b->codes3[i] = codes[(i + k) % period];
+  int st = sc_ob_iterate_orbit_forced(b, fx->dk, period, b->codes3, b->seed);
+  if (st) return st;
+  for (int i = 0; i < period; i++) orb[(i + k) % period] = b->seed[i];
+  return SC_OK;
+}
+
 /* Detect: a border of the orbit at (u) that changed sign since the last
  * accepted point (whose borders are in bl_prev).  Locates every such
  * border, records the one met first, hands over, and returns 1; 0 when
@@ -311,8 +336,7 @@ int sc_ob_border_crossed(sc_orbit_branch *b, segment *S, const double *u) {
                "it (the orbit there is not real)",
                nchanged - 1);
     }
-    sc_ob_set_p(b->m, b->sp.param, best.p);
-    if (sc_ob_iterate_orbit_forced(b, best.d0, period, b->codes, orb))
+    if (border_orbit(b, period, &bbest, &best, orb))
       memcpy(orb, b->orb_c, (size_t)period * sizeof *orb);
     sc_ob_hand_over(b, r, period, b->codes, b->ctx.itin, best.p, orb, dir);
     return 1;
@@ -388,18 +412,8 @@ int sc_ob_locate_ahead(sc_orbit_branch *b, segment *S, int dir) {
              "extension ends at it)");
   }
   double *orb = b->orb_a;
-  const sc_itin_code *codes = bbest.alt.n > 0 ? b->codes4 : b->codes;
-  if (bbest.on_state) {
-    /* the orbit from the point on d*, rotated back to the segment's start */
+  if (border_orbit(b, period, &bbest, &best, orb))
     for (int i = 0; i < period; i++) orb[i] = NAN;
-    sc_ob_set_p(b->m, ip, best.p);
-    if (sc_ob_iterate_orbit_forced(b, best.dk, period, b->codes3, b->seed) == 0)
-      for (int i = 0; i < period; i++)
-        orb[(i + bbest.iterate) % period] = b->seed[i];
-  } else {
-    sc_ob_set_p(b->m, ip, best.p);
-    sc_ob_iterate_orbit_forced(b, best.d0, period, codes, orb);
-  }
   sc_ob_hand_over(b, r, period, b->codes, b->ctx.itin, best.p, orb, dir);
   return 1;
 }

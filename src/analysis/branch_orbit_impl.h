@@ -163,6 +163,9 @@ int sc_ob_orbit_borders(sc_orbit_branch *b, double d, int period,
                         sc_border_list *bl, sc_map_value *v, sc_msg *msg);
 
 /* branch_segment.c ------------------------------------------------- */
+/* The corrector's largest arclength step: the spec's hmax, or the
+ * interval over HMAX_AUTO_STEPS. */
+double sc_ob_hmax(const sc_orbit_branch *b);
 
 /* Continue the job jb as branch number `branch`. */
 int sc_ob_run_segment(sc_orbit_branch *b, const job *jb, int branch,

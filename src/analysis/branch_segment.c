@@ -56,6 +56,11 @@
 #define JOIN_DMIN_ABS 1e-3
 #define JOIN_DMIN_SLOPE 10
 
+double sc_ob_hmax(const sc_orbit_branch *b) {
+  return b->sp.hmax > 0 ? b->sp.hmax
+                        : fabs(b->sp.to - b->sp.from) / HMAX_AUTO_STEPS;
+}
+
 /* g = f^m for the continuation layer: along the segment's codes (forced),
  * or on the piece of itinerary ctx->itin only when codes cannot be
  * forced (leaving it is a recoverable failure, so such a segment never
@@ -139,10 +144,9 @@ static int segment_start(sc_orbit_branch *b, segment *S, sc_cont_problem *pb,
                            .ifree = {(int)b->sp.param, 0}};
   for (size_t i = 0; i < sys->np; i++) sys->p[i] = sc_map_get_param(m, i);
   if ((st = sc_map1d_problem(sys, pb, msg))) return st;
-  double range = fabs(b->sp.to - b->sp.from);
   sc_cont_settings *set = &S->set;
   sc_cont_settings_default(set);
-  set->hmax = b->sp.hmax > 0 ? b->sp.hmax : range / HMAX_AUTO_STEPS;
+  set->hmax = sc_ob_hmax(b);
   set->h0 = b->sp.h0 > 0 ? fmin(b->sp.h0, set->hmax)
                          : set->hmax / H0_AUTO_FRACTION;
   set->hmin = set->hmax * HMIN_REL;

@@ -87,14 +87,73 @@ static void first_change(const char *a, const char *c, char *out,
   else if (len) out[0] = '\0';
 }
 
+/* Whether f^m is continuous across a border of this label: at d* (SW)
+ * both sides start from the same positions and velocities, and where two
+ * ending events coincide (CS, BR) the motion after them depends
+ * continuously on the state; a grazing (GR) or a touching threshold (TT)
+ * adds or removes a whole slip, so f jumps there (MODEL.md). */
+static int continuous_at(sc_point_label l) {
+  return l == SC_PT_SW || l == SC_PT_CS || l == SC_PT_BR;
+}
+
+/* How many points of orbit a (na) lie within tol of a point of orbit c
+ * (nc); the largest of those distances and of the others' in *worst. */
+static int near_points(const double *a, int na, const double *c, int nc,
+                       double tol, double *worst) {
+  int n = 0;
+  *worst = 0;
+  for (int i = 0; i < na; i++) {
+    double e = HUGE_VAL;
+    for (int k = 0; k < nc; k++) e = fmin(e, fabs(a[i] - c[k]));
+    if (e <= tol) n++;
+    *worst = fmax(*worst, e);
+  }
+  return n;
+}
+
+/* Seeds of a period-q orbit at pc from the border orbit orb (m points)
+ * started at orb[k], into b->seed: for q = m its own points (where the map
+ * is continuous the orbit beyond starts at them, and next to d* iterating
+ * would multiply their error by f' ~ |d - d*|^(-1/2)); otherwise the
+ * natural iterates, each replaced by the nearest orbit point when within
+ * tol of one, so that an expanding orbit does not carry its error along. */
+static int seed_from(sc_orbit_branch *b, const double *orb, int m, int k,
+                     int q, int own, double tol) {
+  if (own && q == m) {
+    for (int i = 0; i < q; i++) b->seed[i] = orb[(k + i) % m];
+    return SC_OK;
+  }
+  b->seed[0] = orb[k];
+  for (int i = 1; i < q; i++) {
+    sc_map_value v;
+    int st = sc_map_eval(b->m, b->seed[i - 1], SC_EVAL_VALUE, &v, NULL);
+    if (st) return st;
+    double x = v.f, e = tol;
+    for (int j = 0; own && j < m; j++)
+      if (fabs(orb[j] - v.f) <= e) e = fabs(orb[j] - v.f), x = orb[j];
+    b->seed[i] = x;
+  }
+  return SC_OK;
+}
+
 /* After a located point at p (orbit orb of period m on the segment's side,
  * codes cod, itinerary itin), look for the orbit on the other side (dir)
- * and queue it.  Writes what followed into the record's note. */
+ * and queue it.  Writes what followed into the record's note.
+ *
+ * The orbit beyond continues the border orbit only if it starts within
+ * the corrector's step (hmax) of it: min(q, m) of its points each that
+ * close to a point of the border orbit (a crossing-sliding adds or
+ * removes one).  An orbit found farther away is another orbit, not the
+ * continuation: it is refused and the note says so, with its distance. */
 int sc_ob_hand_over(sc_orbit_branch *b, special_rec *r, int m,
                     const sc_itin_code *cod, const char *itin, double p,
                     double *orb, int dir) {
   char base[NOTE_LEN];
   snprintf(base, sizeof base, "%s", r ? r->note : "");
+  int own = r && continuous_at(r->label);
+  double step = sc_ob_hmax(b);
+  double far_d = HUGE_VAL, far_p = NAN;
+  int far_q = 0;
   /* Offsets from CROSS_REL up: next to a switching with the driver
    * frozen f' grows like |d - d*|^(-1/2), and shooting needs the orbit a
    * little away from d*. */
@@ -102,14 +161,17 @@ int sc_ob_hand_over(sc_orbit_branch *b, special_rec *r, int m,
   double pc = p + dir * off * (1 + fabs(p));
   if (pc < fmin(b->sp.from, b->sp.to) || pc > fmax(b->sp.from, b->sp.to))
     break;
-  double tol = CLOSE_FACTOR * off * (1 + fabs(p));
+  /* a crossing-sliding removes or adds a global stick phase; at a
+   * switching or two events at once the map is continuous, so the orbit
+   * beyond keeps the period */
   const int qs[3] = {m, m - 1, m + 1};
-  for (int iq = 0; iq < 3; iq++) {
+  int nq = r && (r->label == SC_PT_SW || r->label == SC_PT_BR) ? 1 : 3;
+  for (int iq = 0; iq < nq; iq++) {
     int q = qs[iq];
     if (q < 1 || q > b->sp.max_period) continue;
     for (int k = 0; k < m; k++) {
       if (sc_ob_set_p(b->m, b->sp.param, pc)) break;
-      if (sc_ob_iterate_orbit(b, orb[k], q, b->seed)) continue;
+      if (seed_from(b, orb, m, k, q, own, step)) continue;
       sc_shoot_result res;
       if (sc_ob_shoot_at(b, q, pc, b->seed, &res) != SC_OK) continue;
       if (q == m) {
@@ -124,12 +186,24 @@ int sc_ob_hand_over(sc_orbit_branch *b, special_rec *r, int m,
         if (same) continue;
       }
       if (sc_ob_minimal_period(b, b->orbit, q) != q) continue;
-      if (!sc_ob_close_orbits(b->orbit, q, orb, m, tol)) continue;
+      double worst;
+      int near = near_points(b->orbit, q, orb, m, step, &worst);
+      if (near < (q < m ? q : m)) {
+        if (worst < far_d) far_d = worst, far_p = pc, far_q = q;
+        continue;
+      }
+      /* the job starts at the new orbit's point nearest the border orbit */
+      int i0 = 0;
+      double e0 = HUGE_VAL;
+      for (int i = 0; i < q; i++)
+        for (int j = 0; j < m; j++)
+          if (fabs(b->orbit[i] - orb[j]) < e0)
+            e0 = fabs(b->orbit[i] - orb[j]), i0 = i;
       char origin[96];
       snprintf(origin, sizeof origin, "%s at %.10g",
                r ? sc_point_label_text(r->label) : "point", p);
       int queued =
-          sc_ob_push_job(b, q, pc, b->orbit[0], dir, fabs(pc - p), origin);
+          sc_ob_push_job(b, q, pc, b->orbit[i0], dir, fabs(pc - p), origin);
       char change[160] = "";
       first_change(itin, res.itinerary, change, sizeof change);
       if (r)
@@ -142,7 +216,13 @@ int sc_ob_hand_over(sc_orbit_branch *b, special_rec *r, int m,
     }
   }
   }
-  if (r)
+  if (r && isfinite(far_d))
+    snprintf(r->note, sizeof r->note,
+             "%.330s; hand-over refused: the period-%d orbit found beyond "
+             "(at %.10g) lies %.3g from the border orbit, more than the "
+             "corrector's step %.3g: the branch ends here",
+             base, far_q, far_p, far_d, step);
+  else if (r)
     snprintf(r->note, sizeof r->note,
              "%.400s; no orbit on the other side: the branch ends here",
              base);
