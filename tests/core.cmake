@@ -31,3 +31,5 @@ set_tests_properties(search_replay_chart search_replay_fig56 PROPERTIES
 # Velocity weakening next to d* and the crossing-sliding borders against
 # a long-double Taylor integration of the test's own.
 sc_add_test(test_vw_edges)
+# Branch starts with velocity weakening: mirror images alike.
+sc_add_test(test_vw_starts)

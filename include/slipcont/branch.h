@@ -216,11 +216,11 @@ SC_API int sc_orbit_branch_alloc(sc_map *m, const sc_orbit_branch_spec *spec,
  * @brief Add a starting orbit besides (d0, from): the period-@p period
  * orbit through a guess @p d at parameter @p p, polished by multiple
  * shooting and continued in both directions within [from, to].  Call
- * before sc_orbit_branch_run(); each start takes one or two of the
- * max_branches segments.
+ * before sc_orbit_branch_run(); each start continued takes two of the
+ * max_branches segments, and one that finds fewer than two left is not
+ * continued (a row says so: sc_orbit_branch_start_counts()).
  * @return SC_OK; SC_EINVAL for p outside the interval, a non-finite d or
- *         a period outside [1, max_period]; SC_ENOMEM when more than
- *         max_branches starts were added.
+ *         a period outside [1, max_period]; SC_ENOMEM when out of memory.
  */
 SC_API int sc_orbit_branch_add_start(sc_orbit_branch *b, double p, double d,
                               int period, sc_msg *msg);
@@ -272,6 +272,18 @@ SC_API int sc_orbit_branch_special(const sc_orbit_branch *b, size_t i,
  * doubled branch, a closed curve from two starts): reported once, and
  * counted here. */
 SC_API size_t sc_orbit_branch_nduplicate(const sc_orbit_branch *b);
+
+/**
+ * @brief How the starts added with sc_orbit_branch_add_start() fared in
+ * the last run: continued both ways (@p started), not found by shooting
+ * (@p not_found) and not continued for want of segments (@p no_room,
+ * max_branches).  Each of the last two has a row among the special
+ * points (label EP, branch -1, its reason in the note), so the counts
+ * equal those rows.
+ */
+SC_API void sc_orbit_branch_start_counts(const sc_orbit_branch *b,
+                                         size_t *started, size_t *not_found,
+                                         size_t *no_room);
 /** Branch segments computed. */
 SC_API int sc_orbit_branch_nbranches(const sc_orbit_branch *b);
 /** @brief Release @p b; NULL is accepted. */

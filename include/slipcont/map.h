@@ -108,6 +108,19 @@ SC_API int sc_map_iterate(sc_map *m, double d, int n, unsigned flags,
  * tolerances: asking for more would chase noise. */
 SC_API double sc_map_precision(const sc_map *m);
 
+/**
+ * @brief The accuracy every Newton method on the map uses: @p m's
+ * (sc_map_accuracy()) with newton_atol and newton_ftol raised to its
+ * precision (sc_map_precision()), so that shooting, the fixed-point
+ * search, the starts and the corrector of a branch all stop at the same
+ * noise floor (numerical flows: residuals of ~1e-12 are their rounding,
+ * not a failure to converge).
+ * @param m    the map
+ * @param acc  out: the accuracy (a copy; owned by the caller)
+ * Thread safety: reads @p m only.
+ */
+SC_API void sc_map_solver_accuracy(const sc_map *m, sc_accuracy *acc);
+
 /** 1 if the model of @p m declares borders and forced evaluation
  * (sc_map_eval_ex() does more than sc_map_eval()); 0 for a smooth map. */
 SC_API int sc_map_has_borders(const sc_map *m);

@@ -91,6 +91,7 @@ int sc_orbit_branch_alloc(sc_map *m, const sc_orbit_branch_spec *spec,
   b->sps = calloc(b->cap_sp, sizeof *b->sps);
   b->jobs = calloc((size_t)s->max_branches, sizeof *b->jobs);
   b->starts = calloc((size_t)s->max_branches, sizeof *b->starts);
+  b->cap_starts = (size_t)s->max_branches;
   b->orbit = calloc(np, sizeof *b->orbit);
   b->seed = calloc(np, sizeof *b->seed);
   b->orb_a = calloc(np, sizeof *b->orb_a);
@@ -175,6 +176,8 @@ int sc_orbit_branch_special(const sc_orbit_branch *b, size_t i,
   return SC_OK;
 }
 
+static int grow(void **a, size_t *cap, size_t n, size_t size);
+
 int sc_orbit_branch_add_start(sc_orbit_branch *b, double p, double d,
                               int period, sc_msg *msg) {
   double lo = fmin(b->sp.from, b->sp.to), hi = fmax(b->sp.from, b->sp.to);
@@ -184,11 +187,13 @@ int sc_orbit_branch_add_start(sc_orbit_branch *b, double p, double d,
                    "sc_orbit_branch_add_start: p = %g, d = %g, period = %d "
                    "(valid: p in [%g, %g], d finite, period in [1, %d])",
                    p, d, period, lo, hi, b->sp.max_period);
-  if (b->nstarts >= b->sp.max_branches)
+  /* Every start is kept, beyond max_branches too: one that finds no
+   * room gets a row saying so, as a failed one does. */
+  if (!grow((void **)&b->starts, &b->cap_starts, (size_t)b->nstarts,
+            sizeof *b->starts))
     return sc_fail(msg, SC_ENOMEM,
-                   "sc_orbit_branch_add_start: more than max_branches = %d "
-                   "starts",
-                   b->sp.max_branches);
+                   "sc_orbit_branch_add_start: out of memory for %d starts",
+                   b->nstarts + 1);
   b->starts[b->nstarts++] = (job){.period = period, .p = p, .d = d};
   return SC_OK;
 }
@@ -365,6 +370,13 @@ size_t sc_orbit_branch_nduplicate(const sc_orbit_branch *b) {
   return b->nduplicate;
 }
 
+void sc_orbit_branch_start_counts(const sc_orbit_branch *b, size_t *started,
+                                  size_t *not_found, size_t *no_room) {
+  *started = b->nstart_ok;
+  *not_found = b->nstart_notfound;
+  *no_room = b->nstart_noroom;
+}
+
 int sc_orbit_branch_run(sc_orbit_branch *b, sc_msg *msg) {
   sc_map *m = b->m;
   double saved = sc_map_get_param(m, b->sp.param);
@@ -372,10 +384,8 @@ int sc_orbit_branch_run(sc_orbit_branch *b, sc_msg *msg) {
   b->njobs = b->nbranches = 0;
   b->nomem = 0;
   b->nduplicate = 0;
-  b->acc = *sc_map_accuracy(m);
-  double prec = sc_map_precision(m);
-  b->acc.newton_atol = fmax(b->acc.newton_atol, prec);
-  b->acc.newton_ftol = fmax(b->acc.newton_ftol, prec);
+  b->nstart_ok = b->nstart_notfound = b->nstart_noroom = 0;
+  sc_map_solver_accuracy(m, &b->acc);
   /* The starting orbit, polished by multiple shooting at p = from.  Its
    * failure ends the run only when there is no other start. */
   int st = SC_OK;
@@ -417,13 +427,21 @@ int sc_orbit_branch_run(sc_orbit_branch *b, sc_msg *msg) {
       snprintf(why, sizeof why, "%s", msg ? msg->text : "");
       sc_ob_add_end(b, -1, a->period, a->p, a->d, NAN,
                     "added start not found: %.300s%s", why, NULL);
+      b->nstart_notfound++;
       continue;
     }
-    if (!sc_ob_push_job(b, a->period, a->p, res.d, 1, 0, "added start") ||
-        !sc_ob_push_job(b, a->period, a->p, res.d, -1, 0, "added start"))
-      sc_ob_add_end(b, -1, a->period, a->p, a->d, NAN,
-                    "added start not continued: max-branches reached%s%s", NULL,
-                    NULL);
+    /* both ways or not at all: a start continued one way only would
+     * differ from its twin (the mirror image of a symmetric model) */
+    if (b->njobs + 2 > b->sp.max_branches) {
+      sc_ob_add_end(b, -1, a->period, a->p, res.d, NAN,
+                    "added start not continued: max-branches reached%s%s",
+                    NULL, NULL);
+      b->nstart_noroom++;
+      continue;
+    }
+    sc_ob_push_job(b, a->period, a->p, res.d, 1, 0, "added start");
+    sc_ob_push_job(b, a->period, a->p, res.d, -1, 0, "added start");
+    b->nstart_ok++;
   }
   st = SC_OK;
   for (int j = 0; j < b->njobs; j++) {

@@ -75,6 +75,11 @@ struct sc_orbit_branch {
   int njobs, nbranches;
   job *starts; /* added starts (direction unused) */
   int nstarts;
+  size_t cap_starts;
+  /* how the added starts fared: continued both ways, not found by
+   * shooting, no room for their two segments (max_branches); one row
+   * each for the last two */
+  size_t nstart_ok, nstart_notfound, nstart_noroom;
   double *orbit; /* scratch: orbit points, up to max_period + 1 */
   double *seed;
   double *orb_a; /* scratch: the orbit on the known side of a DIB */

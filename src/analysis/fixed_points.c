@@ -41,7 +41,13 @@ typedef struct {
 typedef struct {
   sc_map *m;
   int period;
+  /* Newton, the gaps and the one equality rule: no tighter than the map's
+   * precision (sc_map_solver_accuracy()), as in shooting and branches */
   const sc_accuracy *acc;
+  /* the ends of a piece of constant itinerary: the map's own accuracy,
+   * so that an orbit on a piece's end (d* of the symmetric model, d = 0)
+   * does not fall into the gap left between two pieces */
+  const sc_accuracy *edge;
   sc_orbit_set *set;
   double *pts;  /* period scratch points */
   char *itin;   /* scratch itinerary text */
@@ -67,9 +73,21 @@ static int eval(search *s, double x, sample *out) {
   return SC_OK;
 }
 
+/* Whether two samples lie on one piece of constant itinerary.  The same
+ * itinerary at both ends is not enough: a piece can come back after
+ * another between two samples (A, a sliver of B, A again), and then the
+ * gap g = f^m(d) - d jumps in between.  On one smooth piece whose slope
+ * g' has one sign at both ends, g moves that way; moving the other way, g
+ * has jumped: two pieces, told apart by the bisection of the caller (the
+ * mirror image of such a pair, met in the other order by the scan, was
+ * found while the pair itself was not). */
 static int same_piece(const sample *a, const sample *b) {
   if (a->st != SC_OK || b->st != SC_OK) return a->st != SC_OK && b->st != SC_OK;
-  return strcmp(a->v.itinerary, b->v.itinerary) == 0;
+  if (strcmp(a->v.itinerary, b->v.itinerary) != 0) return 0;
+  double sa = a->v.dfdd - 1, sb = b->v.dfdd - 1;
+  double dg = (b->v.f - b->x) - (a->v.f - a->x);
+  if (a->v.neutral || b->v.neutral) return 1;
+  return !((sa > 0 && sb > 0 && dg < 0) || (sa < 0 && sb < 0 && dg > 0));
 }
 
 static int grow(sc_orbit_set *set) {
@@ -271,7 +289,10 @@ int sc_fixed_points_find(sc_map *m, const sc_fixed_points_spec *spec,
                    "sc_fixed_points_find: steps = %zu (valid: >= 2)",
                    spec->steps);
   sc_orbit_set *set = calloc(1, sizeof *set);
-  search s = {.m = m, .period = spec->period, .acc = sc_map_accuracy(m),
+  sc_accuracy acc; /* no tighter than the map's precision */
+  sc_map_solver_accuracy(m, &acc);
+  search s = {.m = m, .period = spec->period, .acc = &acc,
+              .edge = sc_map_accuracy(m),
               .set = set, .msg = msg};
   s.itin_len = (size_t)spec->period * (SC_ITIN_LEN + 1) + 1;
   s.pts = malloc((size_t)spec->period * sizeof *s.pts);
@@ -306,7 +327,7 @@ int sc_fixed_points_find(sc_map *m, const sc_fixed_points_spec *spec,
       lo = cur;
       hi = nxt;
       for (int it = 0; it < MAX_BISECT; it++) {
-        if (hi.x - lo.x <= tol_x(s.acc, lo.x)) break;
+        if (hi.x - lo.x <= tol_x(s.edge, lo.x)) break;
         double xm = 0.5 * (lo.x + hi.x);
         if (xm <= lo.x || xm >= hi.x) break;
         if ((st = eval(&s, xm, &mid))) goto done;

@@ -307,6 +307,14 @@ static int orbit_points(sc_map *m, size_t param, double p, double d, int q,
   return SC_OK;
 }
 
+/* A special point's note as written: "branch N: " before the note of a
+ * point on branch N; a start that was not continued (branch -1) belongs
+ * to no branch, and its note says what it is. */
+static void branch_note(char *buf, size_t len, int branch, const char *note) {
+  if (branch < 0) snprintf(buf, len, "%s", note);
+  else snprintf(buf, len, "branch %d: %s", branch, note);
+}
+
 static int write_points(sc_cli_run *r, const sc_orbit_branch *ob,
                         const char *pname) {
   sc_file *csv = NULL;
@@ -334,7 +342,7 @@ static int write_points(sc_cli_run *r, const sc_orbit_branch *ob,
     fprintf(f, ",%s,%s", sc_location_method_text(sp.method),
             sc_cli_csv_text(border));
     char note[1024];
-    snprintf(note, sizeof note, "branch %d: %s", sp.branch, sp.note);
+    branch_note(note, sizeof note, sp.branch, sp.note);
     fprintf(f, ",%s\n", sc_cli_csv_text(note));
   }
   return sc_cli_commit(r, "points.csv", csv);
@@ -860,10 +868,18 @@ static int branch_summary(sc_cli_run *r, void *job, FILE *f) {
   fputs("  by label:", f);
   for (int l = 0; l <= SC_PT_EP; l++)
     if (c.label[l]) fprintf(f, " %s %d", sc_point_label_text(l), c.label[l]);
-  if (has_auto(r->scene))
-    fprintf(f, "\n  starts = auto: %zu orbits found and started%s%zu not "
-               "started (max-branches)",
-            j->nauto, j->nauto_lost ? "; " : "; ", j->nauto_lost);
+  if (has_auto(r->scene)) {
+    fprintf(f, "\n  starts = auto: %zu orbits found", j->nauto);
+    if (j->nauto_lost)
+      fprintf(f, ", %zu of them not added (out of memory)", j->nauto_lost);
+  }
+  /* the outcome of every added start, counted as its rows are written */
+  size_t ok, notfound, noroom;
+  sc_orbit_branch_start_counts(ob, &ok, &notfound, &noroom);
+  if (ok + notfound + noroom)
+    fprintf(f, "\n  added starts: %zu continued both ways, %zu not found by "
+               "shooting, %zu not continued (max-branches)",
+            ok, notfound, noroom);
   fprintf(f, "\n  met again by another segment (reported once): %zu\n",
           sc_orbit_branch_nduplicate(ob));
   fprintf(f, "  located by Newton with a residual certificate: %zu; by "
@@ -874,12 +890,13 @@ static int branch_summary(sc_cli_run *r, void *job, FILE *f) {
   for (size_t i = 0; i < sc_orbit_branch_nspecial(ob); i++) {
     sc_orbit_special_info p;
     sc_orbit_branch_special(ob, i, &p);
+    char note[1024];
+    branch_note(note, sizeof note, p.branch, p.note);
     fprintf(f, "  %s  %s = %.17g  d = %.17g  period %d  multiplier %.17g\n"
-               "      %s%s residual %.3g, error %.3g; branch %d: %s\n",
+               "      %s%s residual %.3g, error %.3g; %s\n",
             sc_point_label_text(p.label), j->pname, p.p, p.d, p.period,
             p.multiplier, sc_location_method_text(p.method),
-            p.method == SC_LOC_NONE ? "" : ":", p.residual, p.error, p.branch,
-            p.note);
+            p.method == SC_LOC_NONE ? "" : ":", p.residual, p.error, note);
   }
   fprintf(f, "  continuation: %.3f s, %lu map evaluations\n", j->elapsed,
           j->nev);

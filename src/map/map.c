@@ -231,6 +231,13 @@ double sc_map_precision(const sc_map *m) {
   return m->type->precision ? m->type->precision(m->inst) : 0;
 }
 
+void sc_map_solver_accuracy(const sc_map *m, sc_accuracy *acc) {
+  *acc = *sc_map_accuracy(m);
+  double prec = sc_map_precision(m);
+  acc->newton_atol = fmax(acc->newton_atol, prec);
+  acc->newton_ftol = fmax(acc->newton_ftol, prec);
+}
+
 /* Zero every field of @p v but the itinerary's bytes past its first (an
  * empty text): the map's inner loop clears a result per iterate, and the
  * 256-byte text is most of it.  Field by field, not by two memsets, which

@@ -259,7 +259,10 @@ int sc_shoot_solve_orbit(sc_shoot *s, const double *d0, sc_shoot_result *res,
                          sc_msg *msg) {
   memset(res, 0, sizeof *res);
   res->step = HUGE_VAL;
-  const sc_accuracy *acc = sc_map_accuracy(s->map);
+  /* no tighter than the map's precision, as every Newton method on it */
+  sc_accuracy sacc;
+  sc_map_solver_accuracy(s->map, &sacc);
+  const sc_accuracy *acc = &sacc;
   int n = s->n;
   for (int i = 0; i < n; i++) {
     if (!isfinite(d0[i]))
