@@ -129,7 +129,8 @@ run_sc run "$TMP/auto.ini" --out "$TMP/auto" --quiet
 expect_rc "branch with starts = auto" 0
 has auto points.csv '^LP,alpha,3\.94001438911[0-9]*,[-0-9.e]*,4,'
 has auto points.csv '^PD,alpha,3\.87475615359[0-9]*,[-0-9.e]*,4,'
-has auto summary.txt 'starts = auto: 3 orbits found and started'
+has auto summary.txt 'starts = auto: 3 orbits found'
+has auto summary.txt 'added starts: 3 continued both ways, 0 not found by shooting, 0 not continued \(max-branches\)'
 
 # A start from a row of that points.csv (the period-4 fold), and one start
 # among several that fails: reported as an EP row, not fatal.
