@@ -3,6 +3,8 @@
 #  - a hand-over at a switching point starts at the border orbit's own
 #    points (the map is continuous at d*), and a hand-over to an orbit
 #    farther than the corrector's step is refused with its reason;
+#  - every located row of a branch (LP, PD, GR, CS, SW, BR, TT) starts
+#    the curve of its type, on its own border, at the row's point;
 # Usage: sh tests/branch_edges.sh PATH/TO/slipcont SOURCE_DIR
 . "$(dirname "$0")/cli_common.sh"
 SC=$SRC/tests/scenes
@@ -21,6 +23,61 @@ run() {
 
 # rows FILE AWK-CONDITION: the rows of points.csv that satisfy it.
 rows() { awk -F, "NR > 1 && ($2)" "$1"; }
+
+# curves_from OUT X Y X-FROM X-TO Y-FROM Y-TO 'KEY = VALUE'...: a curve
+# of its type (3 points each way, the [model] keys given) from every row
+# of $TMP/OUT/points.csv located by Newton; each must start: corrected at
+# fixed y onto the row's own x (the row is on the curve's system:
+# 1e-9 (1 + |x|), the two Newton solutions' tolerance with room),
+# following the row's own border.
+curves_from() {
+  out=$1 x=$2 y=$3 xlo=$4 xhi=$5 ylo=$6 yhi=$7
+  shift 7
+  n=0 ok=0 bad=
+  while IFS= read -r line; do
+    n=$((n + 1))
+    [ "$(echo "$line" | cut -d, -f9)" = newton ] || continue
+    case ${line%%,*} in
+    LP) t=fold ;; PD) t=flip ;; GR) t=graze ;; CS) t=cross ;;
+    SW) t=switch ;; BR) t=both ;; TT) t=touch ;; *) continue ;;
+    esac
+    val=$(echo "$line" | cut -d, -f3)
+    border=$(echo "$line" | cut -d, -f10 | tr ';' ',')
+    {
+      echo "[model]"
+      for kv in "$@"; do echo "$kv"; done
+      printf '[task]\nkind = curve\ntype = %s\nx = %s\ny = %s\n' $t $x $y
+      printf 'x-from = %s\nx-to = %s\ny-from = %s\ny-to = %s\n' \
+        $xlo $xhi $ylo $yhi
+      printf 'max-points = 3\nstart = %s:%s\n' "$TMP/$out/points.csv" $n
+    } >"$TMP/$out-c$n.ini"
+    if ! "$BIN" run "$TMP/$out-c$n.ini" --quiet --out "$TMP/$out-c$n" \
+      --set output.plot=no >"$TMP/stdout" 2>"$TMP/stderr"; then
+      bad="$bad; row $n ($t): $(cat "$TMP/stderr")"
+      continue
+    fi
+    x1=$(awk -F, 'NR == 2 { print $1 }' "$TMP/$out-c$n/curve.csv")
+    if ! awk -v a="$x1" -v b="$val" 'BEGIN { e = a - b; if (e < 0) e = -e
+        exit !(e <= 1e-9 * (1 + (b < 0 ? -b : b))) }'; then
+      bad="$bad; row $n ($t): starts at $x = $x1, not $val"
+      continue
+    fi
+    if [ -n "$border" ] &&
+      ! grep -qF "border followed: ${line%%,*}, $border, iterate 1 of" \
+        "$TMP/$out-c$n/summary.txt"; then
+      bad="$bad; row $n ($t): $(grep 'border followed' "$TMP/$out-c$n/summary.txt")"
+      continue
+    fi
+    ok=$((ok + 1))
+  done <<EOT
+$(tail -n +2 "$TMP/$out/points.csv")
+EOT
+  if [ -z "$bad" ]; then
+    pass "$out: the $ok located rows each start the curve of their type on their own border"
+  else
+    fail "$out: curves from rows$bad"
+  fi
+}
 
 # --- a hand-over at SW -------------------------------------------------
 # The segment handed over at the SW must be the orbit 1;1-12-2: its
@@ -50,6 +107,8 @@ if run branch-sw-handover sw; then
       fail "SW hand-over: (alpha, d) = ($second) is not on the fixed-point task's orbit $orbit"
     fi
   fi
+  curves_from sw alpha beta 2.5 4 2.5 3.5 "name = bk2" "driver = frozen" \
+    "alpha = 2.5" "beta = 3"
   p1=$(rows "$P" '$5 == 1')
   if [ -z "$p1" ]; then
     pass "SW hand-over: no period-1 row (the orbit near 0.3207 is unrelated)"
@@ -69,6 +128,8 @@ if run branch-gr-moving grm; then
     pass "GR of period 2: the hand-over to d = 0 is refused and said so" ;;
   *) fail "GR of period 2: $gr" ;;
   esac
+  curves_from grm v alpha 0.01 0.03 2.5 3.2 "name = bk2" "driver = moving" \
+    "alpha = 2.8" "beta = 1"
   d0=$(rows "$P" '$5 == 1 && ($4 < 0 ? -$4 : $4) < 1e-12')
   if [ -z "$d0" ]; then
     pass "GR of period 2: no segment of the synchronous orbit d = 0"

@@ -194,6 +194,14 @@ typedef struct {
   /** SC_CURVE_BORDER: the kind of border followed; the start's orbit
    * border of this kind nearest to zero is taken */
   sc_border_kind border;
+  /** SC_CURVE_BORDER: "" (the nearest border of the kind), or the name
+   * of the border to follow (sc_border.name; ';' and ',' alike, as a CSV
+   * field writes it): the border of a branch row, met by the start's
+   * first iterate (d0 is the orbit point where the border is met).  The
+   * start's itinerary is then taken from the side of d0 where the orbit
+   * has that border: on a grazing the natural map may take the other
+   * side. */
+  char border_name[SC_BORDER_NAME];
 } sc_curve_settings;
 
 /** @brief Defaults: fold, period 1, steps 1e-3 and 2e-2, 2000 points. */

@@ -609,6 +609,71 @@ static void orbit_at(sc_map *m, int period, const sc_accuracy *acc,
   }
 }
 
+/* Border names equal, ',' and ';' alike (a CSV field has ';'). */
+static int same_name(const char *a, const char *c) {
+  for (;; a++, c++) {
+    char x = *a == ',' ? ';' : *a, y = *c == ',' ? ';' : *c;
+    if (x != y) return 0;
+    if (!x) return 1;
+  }
+}
+
+/* The start d is tried, then nudged by NUDGE_ULPS * NUDGE_GROWTH^k ulps
+ * either way, k < NUDGES (up to about 1e-9 relative): a located border
+ * point lies on the border to rounding, and the natural map there may
+ * take either side of it (past a grazing the event fires); a nudge of
+ * that size is far below the corrector's tolerance. */
+#define NUDGE_ULPS 1.0
+#define NUDGE_GROWTH 4.0
+#define NUDGES 13
+
+/* The start of a curve on the border named set->border_name: the codes
+ * (into B->fs.codes) of the natural orbit at u[0], or at the nearest
+ * nudge of it, that has that border, first at iterate 0 (a branch row's
+ * d is the point where its border is met), else at any iterate; the
+ * border into *key.  u[0] is kept. */
+static int named_start(btrace *B, const double *u, sc_border *key,
+                       sc_msg *msg) {
+  const sc_curve_settings *set = B->set;
+  double ulp = DBL_EPSILON * (1 + fabs(u[0]));
+  sc_itin_code *codes = B->fs.codes;
+  int fails = 0;
+  for (int any = 0; any < 2; any++)
+    for (int k = 0; k <= 2 * NUDGES; k++) {
+      double w[3] = {u[0], u[1], u[2]};
+      if (k > 0)
+        w[0] += (k % 2 ? 1 : -1) * NUDGE_ULPS * ulp *
+                pow(NUDGE_GROWTH, (k - 1) / 2);
+      sc_map_value v;
+      if (sc_forced_eval(&B->fs, w, NULL, codes, &v)) {
+        fails++;
+        continue;
+      }
+      const sc_border *best = NULL;
+      for (size_t i = 0; i < B->fs.bl.n && i < B->fs.bl.cap; i++) {
+        const sc_border *x = &B->fs.bl.b[i];
+        if (x->kind == set->border && (any || x->iterate == 0) &&
+            same_name(x->name, set->border_name) &&
+            (!best || fabs(x->value) < fabs(best->value)))
+          best = x;
+      }
+      if (best) {
+        *key = *best;
+        return SC_OK;
+      }
+    }
+  if (fails == 2 * (2 * NUDGES + 1))
+    return sc_fail(msg, SC_ENOCONV,
+                   "curve: the map fails at the start (%.200s)",
+                   B->fs.emsg.text);
+  return sc_fail(msg, SC_EINVAL,
+                 "curve: the period-%d orbit through d = %.17g has no %s "
+                 "border '%.64s' on either side of d (valid: a start row "
+                 "of that border)",
+                 set->period, u[0], sc_border_label(set->border),
+                 set->border_name);
+}
+
 /* Damped Newton in (d, x) at fixed y on the border system: converged
  * when at its rounding floor within the fast preset's reach
  * (SC_CURVE_FLOOR_MAX, as sc_curve_ftol()). */
@@ -639,12 +704,18 @@ int sc_curve_trace_border(sc_map *m, const sc_curve_settings *set, double d0,
                           SC_CURVE_BORDER, B.acc.fd_step, msg);
   if (st) return st;
   const char *kl = sc_border_label(set->border);
-  /* the orbit at the start, its codes and the nearest border of the kind */
+  /* the orbit at the start, its codes and its border: the named one on
+   * the side of d0 where the orbit has it, or the nearest of the kind */
   double d = d0;
-  orbit_at(m, set->period, &B.acc, &d);
+  if (!set->border_name[0]) orbit_at(m, set->period, &B.acc, &d);
   double u[3] = {d, x0, y0}, floor = HUGE_VAL;
   sc_map_value v;
-  if (sc_forced_eval(&B.fs, u, NULL, B.fs.codes, &v)) {
+  sc_border keyb;
+  const sc_border *key = NULL;
+  if (set->border_name[0]) {
+    if ((st = named_start(&B, u, &keyb, msg))) goto done;
+    key = &keyb;
+  } else if (sc_forced_eval(&B.fs, u, NULL, B.fs.codes, &v)) {
     st = sc_fail(msg, SC_ENOCONV, "curve: the map fails at the start (%.200s)",
                  B.fs.emsg.text);
     goto done;
@@ -657,8 +728,7 @@ int sc_curve_trace_border(sc_map *m, const sc_curve_settings *set, double d0,
                    k + 1);
       goto done;
     }
-  const sc_border *key = NULL;
-  for (size_t i = 0; i < B.fs.bl.n; i++)
+  for (size_t i = 0; !set->border_name[0] && i < B.fs.bl.n; i++)
     if (B.fs.bl.b[i].kind == set->border &&
         (!key || fabs(B.fs.bl.b[i].value) < fabs(key->value)))
       key = &B.fs.bl.b[i];

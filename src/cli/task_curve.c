@@ -317,6 +317,9 @@ static int curve_prepare(sc_cli_run *r, void *job) {
     return sc_fail(r->msg, SC_EIO, "curve: start = %s: %s", spec, why);
   j->d0 = row.d;
   set->period = row.period;
+  /* a border row starts the curve on its own border */
+  if (set->type == SC_CURVE_BORDER)
+    snprintf(set->border_name, sizeof set->border_name, "%s", row.border);
   return sc_map_set_param(m, (size_t)set->ix, row.value, r->msg);
 }
 

@@ -239,6 +239,8 @@ typedef struct {
   char param[64];  /**< the parameter continued */
   double value, d; /**< its value and the orbit point (finite) */
   int period;      /**< in [1, 4096] */
+  char border[64]; /**< the border of a border point ("" if none, or no
+                        such column) */
 } sc_cli_points_row;
 
 /** The row named by @p spec, "FILE:N" (N = 1 is the first row after the
