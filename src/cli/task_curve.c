@@ -43,7 +43,8 @@ static const sc_key_info curve_keys[] = {
      "FILE:N, row N (1 = first after the header) of a branch task's "
      "points.csv: an LP (type = fold), PD (type = flip) or border point "
      "(GR for graze, CS cross, SW switch, BR both, TT touch) located in x; "
-     "x, d0 and period are taken from it (instead of d0)"},
+     "x, d0 and period are taken from it (instead of d0), and from a "
+     "border point its border, followed by the curve"},
     {"shooting", SC_KEY_CHOICE, 0, "single", 0, 0, 0, 0, "single|multiple",
      "single: on f^m in (d, x, y); multiple: one equation per iterate in "
      "(d_0..d_{m-1}, x, y), for long periods"},
