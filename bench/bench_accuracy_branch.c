@@ -29,7 +29,7 @@
 #include <string.h>
 #include <time.h>
 
-#include "slipcont/branch.h"
+#include "slipcont/orbits.h"
 #include "slipcont/map.h"
 #include "bench_plot.h"
 #include "bench_util.h"

@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "slipcont/curve.h"
+#include "slipcont/curve_system.h"
 
 /* Gaussian elimination with partial pivoting on the N x N row-major A;
  * b is overwritten with the solution.  Returns SC_ESING for a zero pivot

@@ -17,7 +17,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "slipcont/curve.h"
+#include "slipcont/curve_system.h"
 
 struct sc_curve_ms_work {
   size_t m;

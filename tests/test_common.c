@@ -151,7 +151,7 @@ int main(void) {
                                                           ch, sizeof ch), 2);
   tu_true(strcmp(ch, "b -> ") == 0, "missing field text: '%s'", ch);
   tu_true(strcmp(sc_strerror(SC_EUNDEF),
-                 "map undefined (no return to a global stick phase)") == 0,
+                 "map undefined (no return to the map's section)") == 0,
           "strerror(SC_EUNDEF) = %s", sc_strerror(SC_EUNDEF));
   return tu_finish();
 }

@@ -15,7 +15,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "slipcont/branch.h"
+#include "slipcont/orbits.h"
 #include "slipcont/curve.h"
 #include "test_util.h"
 

@@ -22,7 +22,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "slipcont/branch.h"
+#include "slipcont/orbits.h"
 #include "test_util.h"
 
 static void test_logistic_period2(void) {

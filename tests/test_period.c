@@ -7,7 +7,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "slipcont/chart.h"
+#include "slipcont/period.h"
 #include "test_util.h"
 
 /* Pushes until a period is accepted (at most n), returning the period and

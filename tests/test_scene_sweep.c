@@ -11,7 +11,7 @@
 #endif
 
 #include "slipcont/analysis.h"
-#include "slipcont/chart.h"
+#include "slipcont/period.h"
 #include "test_util.h"
 
 static void test_grid(void) {

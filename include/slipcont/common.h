@@ -38,7 +38,7 @@ extern "C" {
   X(SC_EINVAL, -1, "invalid argument")                                      \
   X(SC_ENOMEM, -2, "out of memory")                                         \
   X(SC_ENOCONV, -3, "iteration did not converge")                           \
-  X(SC_EUNDEF, -4, "map undefined (no return to a global stick phase)")     \
+  X(SC_EUNDEF, -4, "map undefined (no return to the map's section)")         \
   X(SC_EIO, -5, "input/output error")                                       \
   X(SC_ESING, -6, "singular linear system")                                 \
   X(SC_ENONFINITE, -7, "non-finite value")                                  \

@@ -3,7 +3,7 @@
  * (continuation.h) along one itinerary code at a time (forced, so f^m is
  * smooth along a segment), folds and flips from its test functions, and
  * the model's borders watched as test functions and located by Newton's
- * method on their defining systems.  See branch.h and docs/branches.md.
+ * method on their defining systems.  See orbits.h and docs/branches.md.
  *
  * This file: the object, its records, the orbit helpers shared by the
  * segment (branch_segment.c), border location (branch_border.c) and

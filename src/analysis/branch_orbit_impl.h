@@ -8,12 +8,12 @@
  * side, or falls back to a bisection, or switches at a flip to the
  * doubled period (branch_switch.c); each hand-over or switch queues a new
  * job.  The object, its records and the small orbit helpers are in
- * branch_orbit.c.  See orbit_branch.h and docs/branches.md. */
+ * branch_orbit.c.  See orbits.h and docs/branches.md. */
 #ifndef SC_ANALYSIS_BRANCH_ORBIT_IMPL_H
 #define SC_ANALYSIS_BRANCH_ORBIT_IMPL_H
 
 #include "analysis/border_list.h"
-#include "slipcont/branch.h"
+#include "slipcont/orbits.h"
 #include "slipcont/continuation.h"
 #include "slipcont/shooting.h"
 

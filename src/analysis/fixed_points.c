@@ -1,14 +1,14 @@
 /* Every period-m orbit in an interval of d, without a start guess: split
  * the interval into pieces of constant itinerary of f^m, bracket the roots
  * of f^m(d) - d on each piece, polish them by safeguarded Newton, report
- * each orbit once.  See branch.h. */
+ * each orbit once.  See orbits.h. */
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "slipcont/branch.h"
+#include "slipcont/orbits.h"
 
 
 /* Bisections of a bracket, far more than the 53 halvings of a double

@@ -1,5 +1,5 @@
 /* Period detection on an orbit of a one-dimensional map: the rule is
- * stated in include/slipcont/chart.h and docs/charts.md.
+ * stated in include/slipcont/period.h and docs/charts.md.
  *
  * The confirmation test is evaluated lazily.  For each lag p the detector
  * keeps the latest iterate lf[p] known to fail (|x_j - x_{j-p}| > tol_j,
@@ -29,7 +29,7 @@
 #include <stdint.h>
 #include <stdlib.h>
 
-#include "slipcont/chart.h"
+#include "slipcont/period.h"
 
 /* Iterates in one block of the settling test: at least this many, a
  * whole number of cycles. */
@@ -409,7 +409,7 @@ int sc_period_find(sc_period *pd, sc_map *m, double d0, long max_iter,
   return SC_OK;
 }
 
-/* See chart.h.  A transient converging to a period-p orbit shrinks its
+/* See period.h.  A transient converging to a period-p orbit shrinks its
  * lag-p differences block after block for as long as it lasts; a chaotic
  * orbit can do so only for a short episode (near an unstable periodic
  * orbit).  So: the smallest p whose block maxima decreased in each of the

@@ -12,7 +12,7 @@
 #endif
 
 #include "slipcont/analysis.h"
-#include "slipcont/chart.h"
+#include "slipcont/period.h"
 
 double sc_grid_point(double from, double to, size_t steps, size_t i) {
   return sc_grid(from, to, steps, i, SC_GRID_LINEAR);
@@ -54,7 +54,7 @@ struct sc_sweep {
   int npasses;
   int pass_dir[2];
   sc_map **maps;
-  sc_period **pds;      /* per map: the period detector (chart.h) */
+  sc_period **pds;      /* per map: the period detector (period.h) */
   int nmaps;
   unsigned long evals0; /* map evaluations of the clones before the run */
   double *d;            /* npoints * keep */
@@ -213,7 +213,7 @@ static int compute_point(sc_sweep *s, int t, size_t i, double x0,
   double x = x0;
   sc_map_value v;
   int k, period = 0;
-  /* The one period rule (chart.h), over every iterate from x0, as a
+  /* The one period rule (period.h), over every iterate from x0, as a
    * chart with transient = iterations would classify this point. */
   sc_period_reset(s->pds[t], x0);
   for (k = 0; k < sp->iterations; k++) {

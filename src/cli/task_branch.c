@@ -1,6 +1,6 @@
 /* Task `branch`: a periodic orbit continued in one parameter, with folds,
  * flips and discontinuity-induced bifurcations (sc_orbit_branch,
- * branch.h), drawn over the brute-force diagram of the same range, and
+ * orbits.h), drawn over the brute-force diagram of the same range, and
  * the map f^m at a chosen special point (figs 5.8-5.12 with their
  * unstable orbits added). */
 #define _POSIX_C_SOURCE 200809L
@@ -14,7 +14,7 @@
 #include "cli/progress.h"
 #include "cli/tasks.h"
 #include "slipcont/analysis.h"
-#include "slipcont/branch.h"
+#include "slipcont/orbits.h"
 
 static const sc_key_info branch_keys[] = {
     {"parameter", SC_KEY_PARAM, 1, NULL, 0, 0, 0, 0, NULL,
@@ -693,7 +693,7 @@ static int add_start(void *ctx, double p, double d, int period) {
 }
 
 /* starts = auto: every orbit of period 1..auto-period with a point in
- * auto-d, at each auto-at value (the fixed-point search, branch.h), is a
+ * auto-d, at each auto-at value (the fixed-point search, orbits.h), is a
  * start; orbits on one branch are joined by the run. */
 static int auto_starts(sc_cli_run *r, sc_orbit_branch *ob, size_t param,
                        size_t *n, size_t *lost) {

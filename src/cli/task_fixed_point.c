@@ -1,5 +1,5 @@
 /* Task `fixed-point`: every period-m orbit in an interval of d at fixed
- * parameters, without a start guess (sc_fixed_points_find, branch.h),
+ * parameters, without a start guess (sc_fixed_points_find, orbits.h),
  * and the graph of f^m against d with the diagonal. */
 #include <math.h>
 #include <stdio.h>
@@ -7,7 +7,7 @@
 
 #include "cli/progress.h"
 #include "cli/tasks.h"
-#include "slipcont/branch.h"
+#include "slipcont/orbits.h"
 
 static const sc_key_info fp_keys[] = {
     {"period", SC_KEY_INT, 0, "1", 1, 100000, 0, 0, NULL,

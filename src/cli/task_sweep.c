@@ -7,7 +7,7 @@
 #include "cli/progress.h"
 #include "cli/tasks.h"
 #include "slipcont/analysis.h"
-#include "slipcont/chart.h"
+#include "slipcont/period.h"
 
 static const sc_key_info sweep_keys[] = {
     {"parameter", SC_KEY_PARAM, 1, NULL, 0, 0, 0, 0, NULL,

@@ -8,8 +8,6 @@
 
 #include <math.h>
 
-#include "slipcont/models.h"
-
 /* Directions carried: the map's argument and the parameters of the one
  * model that uses duals (bk2: d, alpha, beta, phi, v).  Kept small because
  * duals are passed by value in the flows' inner loops. */

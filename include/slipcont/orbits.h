@@ -1,5 +1,5 @@
 /**
- * @file branch.h
+ * @file orbits.h
  * @brief Periodic orbits of event maps at fixed parameters (all period-m
  *        orbits in an interval, without a start guess) and along one
  *        parameter (branches with folds, flips and discontinuity-induced
@@ -19,8 +19,8 @@
  * while they run (a branch sets the continued parameter; it is restored
  * when the run returns).  One object per thread.
  */
-#ifndef SLIPCONT_BRANCH_H
-#define SLIPCONT_BRANCH_H
+#ifndef SLIPCONT_ORBITS_H
+#define SLIPCONT_ORBITS_H
 
 #include <stddef.h>
 
