@@ -24,3 +24,7 @@ set_tests_properties(figures PROPERTIES TIMEOUT 300)
 add_test(NAME branch_starts
   COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/branch_starts.sh
           $<TARGET_FILE:slipcont_cli> ${PROJECT_SOURCE_DIR})
+# User points (UZ) on branches and curves.
+add_test(NAME user_points
+  COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/user_points.sh
+          $<TARGET_FILE:slipcont_cli> ${PROJECT_SOURCE_DIR})

@@ -50,6 +50,13 @@ typedef struct {
    * has that border: on a grazing the natural map may take the other
    * side. */
   char border_name[SC_BORDER_NAME];
+  /** User points (UZ): values of x at which the curve records its point,
+   * located by Newton on the curve's system with x fixed there (d and y
+   * free; its residual reported).  The array is the caller's, read until
+   * sc_curve_trace() returns; NULL with nmarks = 0: none.  Every type
+   * of curve. */
+  const double *marks;
+  size_t nmarks; /**< entries of marks */
 } sc_curve_settings;
 
 /** @brief Defaults: fold, period 1, steps 1e-3 and 2e-2, 2000 points. */

@@ -116,10 +116,12 @@ typedef enum {
   SC_PT_SW,     /**< switching: an orbit point at a switching surface */
   SC_PT_BR,     /**< both re-stick: two ending events at once */
   SC_PT_TT,     /**< a threshold touched tangentially */
+  SC_PT_UZ,     /**< a user point: the parameter at one of the spec's
+                     marks (AUTO's UZ) */
   SC_PT_EP,     /**< end point of a branch, with its reason */
 } sc_point_label;
 
-/** Label text: "LP", "PD", "GR", "CS", "SW", "BR", "TT", "EP". */
+/** Label text: "LP", "PD", "GR", "CS", "SW", "BR", "TT", "UZ", "EP". */
 SC_API const char *sc_point_label_text(sc_point_label l);
 
 /** The special-point label of a border kind. */
@@ -149,6 +151,13 @@ typedef struct {
    * non-zero stops the run with SC_ECALLBACK.  May be NULL. */
   int (*progress)(void *ctx, size_t npoints);
   void *progress_ctx; /**< passed to progress */
+  /** User points (AUTO's UZ): parameter values at which every branch
+   * that passes records its orbit, a UZ special point located by Newton
+   * on f^m(d) = d with the parameter fixed there (residual |f^m(d) - d|
+   * reported).  Finite values; the array is the caller's and is read
+   * until sc_orbit_branch_run() returns.  NULL with nmarks = 0: none. */
+  const double *marks;
+  size_t nmarks; /**< entries of marks, at most 1000 */
 } sc_orbit_branch_spec;
 
 /** One accepted point of a branch. */

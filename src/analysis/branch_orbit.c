@@ -17,7 +17,8 @@
 #include "analysis/branch_orbit_impl.h"
 
 const char *sc_point_label_text(sc_point_label l) {
-  static const char *t[] = {"LP", "PD", "GR", "CS", "SW", "BR", "TT", "EP"};
+  static const char *t[] = {"LP", "PD", "GR", "CS", "SW",
+                            "BR", "TT", "UZ", "EP"};
   return (unsigned)l < sizeof t / sizeof t[0] ? t[l] : "??";
 }
 
@@ -80,6 +81,16 @@ int sc_orbit_branch_alloc(sc_map *m, const sc_orbit_branch_spec *spec,
                    "sc_orbit_branch_alloc: h0 = %g, hmax = %g (valid: >= 0, "
                    "0 for automatic)",
                    s->h0, s->hmax);
+  if (s->nmarks > 1000 || (s->nmarks && !s->marks))
+    return sc_fail(msg, SC_EINVAL,
+                   "sc_orbit_branch_alloc: nmarks = %zu (valid: [0, 1000], "
+                   "with marks)",
+                   s->nmarks);
+  for (size_t i = 0; i < s->nmarks; i++)
+    if (!isfinite(s->marks[i]))
+      return sc_fail(msg, SC_EINVAL,
+                     "sc_orbit_branch_alloc: marks[%zu] = %g (valid: finite)",
+                     i, s->marks[i]);
   sc_orbit_branch *b = calloc(1, sizeof *b);
   if (!b) return sc_fail(msg, SC_ENOMEM, "sc_orbit_branch_alloc: no memory");
   b->m = m;
@@ -241,7 +252,7 @@ special_rec *sc_ob_add_special(sc_orbit_branch *b, sc_point_label l,
    * preset's tolerances) are one point met by two branch segments: a flip
    * reached again from the doubled branch, a closed curve traversed from
    * two starts. */
-  if (l != SC_PT_EP) {
+  if (l != SC_PT_EP && l != SC_PT_UZ) { /* UZ: by orbit (branch_marks.c) */
     double tol = sc_orbit_tol(&b->acc, p);
     for (size_t i = 0; i < b->nsp; i++)
       if (b->sps[i].label == l && b->sps[i].period == period &&

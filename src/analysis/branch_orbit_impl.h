@@ -176,6 +176,12 @@ double sc_ob_hmax(const sc_orbit_branch *b);
 int sc_ob_run_segment(sc_orbit_branch *b, const job *jb, int branch,
                       sc_msg *msg);
 
+/* branch_marks.c: user points ------------------------------------- */
+
+/* The marks passed on the step from the segment's last point to u
+ * (d, p): each located at its value and recorded as a UZ point. */
+void sc_ob_marks(sc_orbit_branch *b, const segment *S, const double *u);
+
 /* branch_border.c: locating a border ------------------------------- */
 
 /* Newton on the defining system of border `like` between (pa, da, ma)

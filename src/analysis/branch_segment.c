@@ -276,6 +276,7 @@ static int segment_accept(sc_orbit_branch *b, segment *S, const double *u) {
         sc_ob_same_orbit(b, b->orbit, b->orb_f, period))
       jn = S->branch;
   }
+  if (b->sp.nmarks) sc_ob_marks(b, S, u);
   S->prev_p = u[1];
   if (jn >= 0) {
     special_rec *r = sc_ob_add_special(b, SC_PT_EP, S->branch, period, u[1],
@@ -334,6 +335,7 @@ static int segment_special(sc_orbit_branch *b, segment *S) {
                    : "; no period-doubled orbit found (or max-branches)");
     }
   }
+  if (b->sp.nmarks) sc_ob_marks(b, S, us);
   /* this point is now the reference for the borders */
   sc_border_list t = b->bl_prev;
   b->bl_prev = b->bl_cur;

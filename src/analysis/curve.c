@@ -172,7 +172,8 @@ static int emit_special(trace *T, const char *label, const double *u,
   s.coefficient = coef;
   s.residual = residual;
   snprintf(s.note, sizeof s.note, "%s", note);
-  if (strcmp(label, "EP") && !strchr(label, '?')) T->stats->nspecial++;
+  if (strcmp(label, "EP") && strcmp(label, "UZ") && !strchr(label, '?'))
+    T->stats->nspecial++; /* codimension two: not ends, user points */
   if (T->out && T->out->special && T->out->special(T->out->ctx, &s))
     return SC_ECALLBACK;
   return SC_OK;
@@ -263,6 +264,30 @@ static int locate(trace *T, size_t k, const double *a, const double *b,
   int max = u[ip] >= a[ip] && u[ip] >= b[ip];
   snprintf(note, sizeof note, "%s %s", k == 1 ? xn : yn, max ? "max" : "min");
   return emit_special(T, label, u, coef, cert.residual, note);
+}
+
+/* The user points (marks: values of x) passed on the step from a to b
+ * (sc_curve_mark(), on the single-shooting system), reported as UZ, or
+ * UZ? with the reason where Newton fails. */
+static int user_points(trace *T, const double *a, const double *b,
+                       int start) {
+  const sc_curve_settings *s = T->set;
+  double a3[3] = {a[0], UX(T, a), UY(T, a)}, b3[3] = {b[0], UX(T, b), UY(T, b)};
+  for (size_t i = 0; i < s->nmarks; i++) {
+    double u3[3], res;
+    char note[200];
+    int ok = sc_curve_mark(&T->ss.pb, T->acc, sc_map_type(T->mc.m)->params[s->ix].name,
+                           s->marks[i], a3, b3, start, u3, &res, note,
+                           sizeof note);
+    if (ok < 0) continue;
+    double *u = T->u;
+    u[0] = u3[0], UX(T, u) = u3[1], UY(T, u) = u3[2];
+    sc_curve_jet j;
+    double coef = g_at(T, u, &j) ? NAN : sc_curve_coefficient(s->type, &j);
+    int st = emit_special(T, ok ? "UZ" : "UZ?", u, coef, res, note);
+    if (st) return st;
+  }
+  return SC_OK;
 }
 
 static int end_point(trace *T, const double *u, const char *why) {
@@ -552,6 +577,7 @@ static int run(trace *T, int dir, int branch, sc_msg *msg) {
     T->mc.fs = keep;
     snprintf(T->itin0, sizeof T->itin0, "%s", T->mc.itin);
     if ((st = emit_point(T, prev, 0))) goto done;
+    if ((st = user_points(T, prev, prev, 1))) goto done;
   } else if ((st = emit_point(T, prev, 1))) {
     /* the start again, so that each direction's polyline begins there */
     goto done;
@@ -712,6 +738,7 @@ static int run(trace *T, int dir, int branch, sc_msg *msg) {
       break;
     }
     if ((st = emit_point(T, cur, branch))) goto done;
+    if ((st = user_points(T, prev, cur, 0))) goto done;
     memcpy(prev, cur, N * sizeof *prev);
     if (bs == SC_END) {
       st = end_point(T, cur,

@@ -269,7 +269,8 @@ static int bemit(btrace *B, const char *label, const double *u, double res,
   s.coefficient = f_cb(u, F, &B->fs) ? NAN : F[1];
   s.residual = res;
   snprintf(s.note, sizeof s.note, "%.127s", note);
-  if (strcmp(label, "EP") && !strchr(label, '?')) B->stats->nspecial++;
+  if (strcmp(label, "EP") && strcmp(label, "UZ") && !strchr(label, '?'))
+    B->stats->nspecial++; /* codimension two: not ends, user points */
   if (B->out && B->out->special && B->out->special(B->out->ctx, &s))
     return SC_ECALLBACK;
   return SC_OK;
@@ -390,6 +391,40 @@ int sc_curve_correct_fixed(const sc_cont_problem *pb, double *u, int fix,
   return SC_OK;
 }
 
+int sc_curve_mark(const sc_cont_problem *pb, const sc_accuracy *acc,
+                  const char *xname, double c, const double *a,
+                  const double *b, int start, double *u3, double *res,
+                  char *note, size_t len) {
+  double xa = a[1], xb = b[1];
+  if (!((xa - c) * (xb - c) < 0 || xb == c || (start && xa == c))) return -1;
+  double w = xb == xa ? (xa == c ? 0 : 1) : (c - xa) / (xb - xa);
+  double guess[3] = {a[0] + w * (b[0] - a[0]), c, a[2] + w * (b[2] - a[2])};
+  memcpy(u3, guess, sizeof guess);
+  /* down to the residual's rounding floor (no step decreases it): a user
+   * point is a reference value, not a step of the trace */
+  sc_accuracy polish = *acc;
+  polish.newton_ftol = 0;
+  double floor, F[2];
+  int st = sc_curve_correct_fixed(pb, u3, 1, &polish, &floor);
+  *res = pb->f(u3, F, pb->user) ? NAN : norm2inf(F);
+  /* located: the corrector's own acceptance, 10 residual tolerances (as
+   * the trace's points) */
+  int ok = st == SC_OK && u3[1] == c && *res <= 10 * acc->newton_ftol;
+  if (ok)
+    snprintf(note, len, "user point: %s = %.17g, located by Newton with %s "
+                        "fixed",
+             xname, c, xname);
+  else {
+    snprintf(note, len,
+             "user point NOT LOCATED at %s = %.17g (%s; residual %.3g): "
+             "interpolated between curve points",
+             xname, c, st ? sc_strerror(st) : "residual above tolerance",
+             *res);
+    memcpy(u3, guess, sizeof guess);
+  }
+  return ok;
+}
+
 /* A border that is not smooth at its zero (a square root: its derivative
  * grows without bound there) keeps |m| ~ sqrt(bracket) at the end of a
  * bisection, ~1e-7 of its size for a bracket at rounding; a jump keeps its
@@ -489,6 +524,23 @@ static int bfallback(btrace *B, const double *u, int *st) {
   return 1;
 }
 
+/* The user points passed on the step from a to b (sc_curve_mark()). */
+static int buser_points(btrace *B, const double *a, const double *b,
+                        int start) {
+  const sc_curve_settings *s = B->set;
+  for (size_t i = 0; i < s->nmarks; i++) {
+    double u3[3], res;
+    char note[200];
+    int ok = sc_curve_mark(&B->cs.pb, &B->acc,
+                           sc_map_type(B->m)->params[s->ix].name, s->marks[i],
+                           a, b, start, u3, &res, note, sizeof note);
+    if (ok < 0) continue;
+    int st = bemit(B, ok ? "UZ" : "UZ?", u3, res, note);
+    if (st) return st;
+  }
+  return SC_OK;
+}
+
 static int brun(btrace *B, int dir, int branch, sc_msg *msg) {
   const sc_curve_settings *s = B->set;
   sc_cont_settings cset;
@@ -505,6 +557,7 @@ static int brun(btrace *B, int dir, int branch, sc_msg *msg) {
   memcpy(prev, sc_branch_point(b), sizeof prev);
   if (branch == 0) memcpy(B->u0, prev, sizeof prev);
   if ((st = bpoint(B, prev, branch))) goto done;
+  if (branch == 0 && (st = buser_points(B, prev, prev, 1))) goto done;
   if (B->cs.test(prev, B->psa, B->cs.user)) {
     st = sc_fail(msg, SC_ENOCONV, "curve: test functions fail at the start");
     goto done;
@@ -569,6 +622,7 @@ static int brun(btrace *B, int dir, int branch, sc_msg *msg) {
       break;
     }
     if ((st = bpoint(B, cur, branch))) goto done;
+    if ((st = buser_points(B, prev, cur, 0))) goto done;
     memcpy(prev, cur, sizeof prev);
     if (bs == SC_END) {
       st = bemit(B, "EP", cur, NAN,

@@ -119,6 +119,17 @@ long sc_forced_nearest(sc_forced_sys *s, const double *u, double *dist);
  * residual).  SC_OK, or SC_ECALLBACK if F fails at u. */
 int sc_curve_correct_fixed(const sc_cont_problem *pb, double *u, int fix,
                            const sc_accuracy *acc, double *floor_out);
+/* A user point: whether the mark x = c is passed on the step from the
+ * curve point a to b ((d, x, y) each; reached exactly at b, or at a when
+ * `start`): -1 not passed; else the point located by damped Newton on
+ * the two-equation system pb with x fixed at c, d and y free, down to
+ * the residual's rounding floor, into u3 with its residual and a note
+ * naming x (`xname`): 1 located, 0 not (u3 then interpolated, the note
+ * says why). */
+int sc_curve_mark(const sc_cont_problem *pb, const sc_accuracy *acc,
+                  const char *xname, double c, const double *a,
+                  const double *b, int start, double *u3, double *res,
+                  char *note, size_t len);
 /* Where test k of cs changes sign between the curve points a and b
  * (values pa, pb): bisection in the parameter that changes more, each
  * midpoint corrected onto cs at that value.  u receives the point with

@@ -5,7 +5,8 @@ list(APPEND SC_SOURCES src/analysis/fixed_points.c)
 list(APPEND SC_SOURCES src/analysis/branch_orbit.c
   src/analysis/branch_segment.c
   src/analysis/branch_border.c
-  src/analysis/branch_switch.c)
+  src/analysis/branch_switch.c
+  src/analysis/branch_marks.c)
 list(APPEND SC_SOURCES src/analysis/curve.c
   src/analysis/curve_border.c
   src/analysis/border_list.c)

@@ -4,6 +4,7 @@ set(SC_CLI_SOURCES
   src/cli/help.c
   src/cli/run.c
   src/cli/inputs.c
+  src/cli/marks.c
   src/cli/tasks.c)
 list(APPEND SC_CLI_SOURCES src/cli/task_orbit.c)
 list(APPEND SC_CLI_SOURCES src/cli/task_map.c)

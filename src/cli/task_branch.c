@@ -66,8 +66,12 @@ static const sc_key_info branch_keys[] = {
      "sweep: iterates at each value, each starting from the previous one"},
     {"keep", SC_KEY_INT, 0, "150", 1, 100000000, 0, 0, NULL,
      "sweep: last iterates drawn (<= iterations)"},
+    {"marks", SC_KEY_TEXT, 0, NULL, 0, 0, 0, 0, NULL,
+     "user points (UZ): values of the parameter, separated by spaces, at "
+     "which every branch records its orbit (located by Newton with the "
+     "parameter fixed; a row of points.csv, usable as a start)"},
     {"plot-at", SC_KEY_CHOICE, 0, "first", 0, 0, 0, 0,
-     "first|LP|PD|GR|CS|SW|BR|TT",
+     "first|LP|PD|GR|CS|SW|BR|TT|UZ",
      "special point at which f^m is drawn against d (figs 5.9-5.11): the "
      "first one with that label, or the first of any label but EP"},
 };
@@ -273,7 +277,11 @@ static int branch_check(const sc_scene *s, sc_msg *msg) {
                              "(valid: >= period)",
                              sc_scene_int(s, "max-period"),
                              sc_scene_int(s, "period"));
-  return SC_OK;
+  double marks[SC_CLI_MAXMARKS];
+  size_t nmarks;
+  return sc_cli_marks(s, sc_scene_text(s, "parameter"),
+                      sc_scene_real(s, "from"), sc_scene_real(s, "to"), marks,
+                      &nmarks, msg);
 }
 
 
@@ -623,7 +631,7 @@ static int pick_special(sc_cli_run *r, const sc_orbit_branch *ob,
   int any = !which || strcmp(which, "first") == 0;
   for (size_t i = 0; idx < 0 && i < ns; i++) {
     sc_orbit_branch_special(ob, i, sp);
-    if (sp->label == SC_PT_EP) continue;
+    if (sp->label == SC_PT_EP || (any && sp->label == SC_PT_UZ)) continue;
     if (any || strcmp(which, sc_point_label_text(sp->label)) == 0)
       idx = (long)i;
   }
@@ -752,6 +760,7 @@ typedef struct {
   sc_orbit_special_info special;
   double lo, hi;         /* d-range of its plot */
   plot_marks pm;         /* what branch.png draws */
+  double marks[SC_CLI_MAXMARKS]; /* user points (UZ) */
 } branch_job;
 
 static int branch_prepare(sc_cli_run *r, void *job) {
@@ -782,6 +791,10 @@ static int branch_prepare(sc_cli_run *r, void *job) {
   j->at = sc_scene_text(s, "at") ? sc_scene_real(s, "at") : j->sp.from;
   j->d0 = j->sp.d0;
   if (j->at != j->sp.from) j->sp.d0 = NAN;
+  int st = sc_cli_marks(s, j->pname, j->sp.from, j->sp.to, j->marks,
+                        &j->sp.nmarks, r->msg);
+  if (st) return st;
+  j->sp.marks = j->marks;
   j->buf = malloc(((size_t)j->sp.max_period + 2) * sizeof *j->buf);
   if (!j->buf) return sc_fail(r->msg, SC_ENOMEM, "branch: out of memory");
   return sc_orbit_branch_alloc(r->map, &j->sp, &j->ob, r->msg);

@@ -3,14 +3,11 @@
  * (sc_curve_trace, curve.h; docs/curves.md). */
 #define _XOPEN_SOURCE 700 /* realpath */
 
-#include <fcntl.h>
 #include <glob.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 #include "cli/progress.h"
 #include "cli/tasks.h"
@@ -54,6 +51,10 @@ static const sc_key_info curve_keys[] = {
      "largest arclength step (0: the box's smaller side / 50)"},
     {"max-points", SC_KEY_INT, 0, "5000", 2, 10000000, 0, 0, NULL,
      "accepted points per direction"},
+    {"marks", SC_KEY_TEXT, 0, NULL, 0, 0, 0, 0, NULL,
+     "user points (UZ): values of x, separated by spaces, at which the "
+     "curve records its point (located by Newton with x fixed; rows of "
+     "points.csv)"},
     {"overlay", SC_KEY_TEXT, 0, NULL, 0, 0, 0, 0, NULL,
      "a chart.csv of the chart task over the same x and y, drawn under "
      "the curve (path relative to the working folder)"},
@@ -209,6 +210,11 @@ static int curve_check(const sc_scene *s, sc_msg *msg) {
   }
   st = also_check(s, xn, yn, msg);
   if (st) return st;
+  double marks[SC_CLI_MAXMARKS];
+  size_t nmarks;
+  st = sc_cli_marks(s, xn, sc_scene_real(s, "x-from"),
+                    sc_scene_real(s, "x-to"), marks, &nmarks, msg);
+  if (st) return st;
   const char *ov = sc_scene_text(s, "overlay");
   if (ov) return overlay_check(s, ov, xn, yn, msg);
   return SC_OK;
@@ -280,6 +286,7 @@ typedef struct {
   sc_curve_stats stats;
   unsigned long nev;
   double elapsed;
+  double marks[SC_CLI_MAXMARKS]; /* user points: values of x */
 } curve_job;
 
 static int curve_prepare(sc_cli_run *r, void *job) {
@@ -308,6 +315,10 @@ static int curve_prepare(sc_cli_run *r, void *job) {
   if (set->h0 == 0) set->h0 = set->hmax / 10;
   if (set->h0 > set->hmax) set->hmax = set->h0;
   set->max_points = sc_scene_int(s, "max-points");
+  int st = sc_cli_marks(s, j->xn, set->xlo, set->xhi, j->marks,
+                        &set->nmarks, r->msg);
+  if (st) return st;
+  set->marks = j->marks;
   j->d0 = sc_scene_real(s, "d0");
   const char *spec = sc_scene_text(s, "start");
   if (!spec) return SC_OK;
@@ -383,16 +394,14 @@ static int curve_summary(sc_cli_run *r, void *job, FILE *f) {
   return SC_OK;
 }
 
-/* A file another run wrote, opened for reading only if it is a regular
- * file (a FIFO or device would hang or never end); NULL otherwise. */
+/* A file another run wrote, opened as every input a scene names is
+ * (sc_input_open(): a bounded regular file, never blocking); NULL
+ * otherwise (the figure then goes without what it would have added). */
 static FILE *open_regular(const char *path) {
-  int fd = open(path, O_RDONLY | O_NONBLOCK);
-  if (fd < 0) return NULL;
-  struct stat sb;
   FILE *f = NULL;
-  if (fstat(fd, &sb) == 0 && S_ISREG(sb.st_mode)) f = fdopen(fd, "r");
-  if (!f) close(fd);
-  return f;
+  return sc_input_open(path, "a file drawn", SC_INPUT_MAXBYTES, &f, NULL)
+             ? NULL
+             : f;
 }
 
 /* Rows read from another run's file for a figure: enough for any chart or

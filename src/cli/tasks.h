@@ -148,6 +148,18 @@ int sc_cli_check_param_ends(const sc_scene *s, sc_msg *msg);
 int sc_cli_check_param_keys(const sc_scene *s, const char *param,
                             const char *const *ends, int n, sc_msg *msg);
 
+/** The most values `marks` may list. */
+#define SC_CLI_MAXMARKS 100
+
+/** For the branch and curve tasks: `[task] marks`, values of parameter
+ * @p pname separated by blanks, into out[0..*n) (at most
+ * SC_CLI_MAXMARKS; *n = 0 without the key); each a finite number in the
+ * parameter's range (the model's table) and inside [lo, hi] (the
+ * interval continued), else a message naming the value and the key's
+ * line. */
+int sc_cli_marks(const sc_scene *s, const char *pname, double lo, double hi,
+                 double *out, size_t *n, sc_msg *msg);
+
 /**
  * The graph of f^n over [from, to] on @p steps points into the CSV file
  * @p name (columns d,f,itinerary), with an empty line wherever the

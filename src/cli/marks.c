@@ -1,0 +1,53 @@
+/* The `marks` key of the branch and curve tasks: parameter values at
+ * which every branch (or curve) records a user point (UZ). */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "cli/tasks.h"
+
+int sc_cli_marks(const sc_scene *s, const char *pname, double lo, double hi,
+                 double *out, size_t *n, sc_msg *msg) {
+  const char *q = sc_scene_text(s, "marks");
+  *n = 0;
+  if (!q) return SC_OK;
+  const sc_map *m = sc_scene_map(s);
+  const sc_param_info *pi = &sc_map_type(m)->params[sc_map_param_index(m, pname)];
+  sc_key_info range = {pi->name, SC_KEY_REAL, 0, NULL, pi->lo, pi->hi,
+                       pi->lo_open, pi->hi_open, NULL, NULL};
+  char rtext[128], w[80];
+  sc_key_range_text(&range, rtext, sizeof rtext);
+  for (int k = 1;; k++) {
+    q += strspn(q, " \t");
+    size_t len = strcspn(q, " \t");
+    if (len == 0) break;
+    snprintf(w, sizeof w, "%.*s", (int)(len < sizeof w ? len : sizeof w - 1),
+             q);
+    q += len;
+    double v;
+    if (len >= sizeof w || sc_parse_double(w, &v) || !isfinite(v))
+      return sc_scene_fail_key(s, "task", "marks", msg,
+                               "marks: value %d, '%s', is not a finite "
+                               "number (valid: values of %s separated by "
+                               "spaces)",
+                               k, w, pname);
+    if (sc_param_check(pi, v, NULL))
+      return sc_scene_fail_key(s, "task", "marks", msg,
+                               "marks: value %d, %s, is out of range of %s "
+                               "(valid: %s)",
+                               k, w, pname, rtext);
+    if ((lo - v) * (hi - v) > 0)
+      return sc_scene_fail_key(s, "task", "marks", msg,
+                               "marks: value %d, %s, is outside [%.17g, "
+                               "%.17g], where %s is continued (valid: "
+                               "inside it)",
+                               k, w, fmin(lo, hi), fmax(lo, hi), pname);
+    if (*n == SC_CLI_MAXMARKS)
+      return sc_scene_fail_key(s, "task", "marks", msg,
+                               "marks: more than %d values (valid: at most "
+                               "%d)",
+                               SC_CLI_MAXMARKS, SC_CLI_MAXMARKS);
+    out[(*n)++] = v;
+  }
+  return SC_OK;
+}
