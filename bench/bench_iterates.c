@@ -32,6 +32,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "slipcont/bk2.h"
 #include "slipcont/map.h"
 #include "bench_util.h"
 

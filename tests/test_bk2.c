@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "slipcont/bk2.h"
 #include "slipcont/map.h"
 #include "test_util.h"
 
@@ -832,7 +833,37 @@ static void test_extreme_defects(void) {
   sc_map_free(m);
 }
 
+/* The model's borders in the state, asked through the map layer (as the
+ * map task draws them without knowing the model): bk2 has one, at d*
+ * exactly (the same number as sc_bk2_dstar), named "d*"; a smooth map
+ * has none. */
+static void test_state_borders(void) {
+  sc_map *m = make(3.3, 2.5, 0.01, "moving");
+  sc_border store[64];
+  sc_border_list l = {.b = store, .cap = 64};
+  sc_msg msg;
+  tu_int("state borders of bk2: status", sc_map_state_borders(m, 0.1, &l, &msg),
+         SC_OK);
+  tu_int("state borders of bk2: one", (long)l.n, 1);
+  if (l.n == 1) {
+    tu_close("state border at d* (exact)", l.b[0].d_on, sc_bk2_dstar(3.3, 2.5),
+             0); /* the model computes the same expression */
+    tu_int("state border kind SW", l.b[0].kind, SC_BORDER_SWITCHING);
+  }
+  tu_true(strcmp(sc_map_type(m)->state_point_name, "d*") == 0,
+          "bk2 names its state border's point d*");
+  sc_map_free(m);
+  sc_map *q;
+  tu_int("logistic map", sc_map_alloc("logistic", NULL, &q, &msg), SC_OK);
+  l.n = 7;
+  tu_int("state borders of a smooth map: status",
+         sc_map_state_borders(q, 0.3, &l, &msg), SC_OK);
+  tu_int("state borders of a smooth map: none", (long)l.n, 0);
+  sc_map_free(q);
+}
+
 int main(void) {
+  test_state_borders();
   test_extreme_defects();
   test_closed_forms();
   test_derivatives();

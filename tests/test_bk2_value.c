@@ -25,6 +25,7 @@
 #include <string.h>
 
 #include "models/bk2_impl.h"
+#include "slipcont/bk2.h"
 #include "slipcont/map.h"
 #include "test_util.h"
 

@@ -23,6 +23,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "slipcont/bk2.h"
 #include "slipcont/orbits.h"
 #include "slipcont/shooting.h"
 #include "test_util.h"

@@ -15,6 +15,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "slipcont/bk2.h"
 #include "slipcont/orbits.h"
 #include "slipcont/curve.h"
 #include "test_util.h"

@@ -25,6 +25,7 @@
 #include <time.h>
 
 #include "models/bk2_quad.h"
+#include "slipcont/bk2.h"
 #include "slipcont/map.h"
 #include "test_util.h"
 

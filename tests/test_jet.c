@@ -13,6 +13,7 @@
 
 #include "hybrid/jet.h"
 #include "models/bk2_jet.h"
+#include "slipcont/bk2.h"
 #include "slipcont/map.h"
 #include "test_util.h"
 

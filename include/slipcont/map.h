@@ -126,6 +126,21 @@ SC_API void sc_map_solver_accuracy(const sc_map *m, sc_accuracy *acc);
 SC_API int sc_map_has_borders(const sc_map *m);
 
 /**
+ * @brief The model's borders that are surfaces in the state itself
+ * (sc_border.on_state: m = +-(d - d_on(p))) at the current parameters,
+ * as one iterate from @p d reports them: where the state is a switching
+ * point of the map (bk2: d*).  A caller draws or reports them without
+ * knowing the model.
+ * @param out caller's storage; on return out->n of its entries are the
+ *        state borders (none for a smooth map).
+ * @return SC_OK; the evaluation's status if the iterate from @p d fails
+ *         (try another d); SC_ENOMEM if the iterate has more borders than
+ *         out->cap (out->n is then their number).
+ */
+SC_API int sc_map_state_borders(sc_map *m, double d, sc_border_list *out,
+                                sc_msg *msg);
+
+/**
  * @brief One iterate with its itinerary code and borders, optionally
  * forced along a given itinerary.
  *

@@ -205,6 +205,10 @@ typedef struct sc_model_type {
   const char *doc;        /**< one line */
   const char *state_name; /**< what the map acts on: "d" (bk2), "x" */
   const char *state_label; /**< plot label of the state, NULL: the name */
+  /** the name of the point of its borders in the state (on_state), as
+   * plots and summaries write it: "d*" (bk2); NULL: the border kind's
+   * label ("SW") */
+  const char *state_point_name;
   size_t nparam;                 /**< number of parameters */
   const sc_param_info *params;   /**< their table, in parameter order */
   size_t noption;                /**< number of options */
@@ -253,18 +257,6 @@ SC_API size_t sc_model_count(void);
 SC_API const sc_model_type *sc_model_get(size_t i);
 /** Built-in model by name, or NULL. */
 SC_API const sc_model_type *sc_model_find(const char *name);
-
-/** bk2 modes (docs/model.md): the `mode` of trajectory samples. */
-enum {
-  SC_BK2_STICK = 0,  /**< both blocks stuck: global stick phase */
-  SC_BK2_SLIP1 = 1,  /**< block 1 slips, block 2 stuck */
-  SC_BK2_SLIP2 = 2,  /**< block 2 slips, block 1 stuck */
-  SC_BK2_SLIP12 = 3, /**< both slip */
-};
-
-/** d* = (beta - 1)/(1 + 2 alpha): below it block 1 reaches its
- * threshold first (docs/model.md). */
-SC_API double sc_bk2_dstar(double alpha, double beta);
 
 #ifdef __cplusplus
 }

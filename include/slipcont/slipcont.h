@@ -18,6 +18,7 @@
 #include "slipcont/curve_system.h"
 #include "slipcont/hybrid.h"
 #include "slipcont/models.h"
+#include "slipcont/bk2.h"
 #include "slipcont/map.h"
 #include "slipcont/shooting.h"
 #include "slipcont/orbits.h"

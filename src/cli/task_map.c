@@ -23,6 +23,12 @@ static const sc_key_info map_keys[] = {
 /* Pieces of constant itinerary listed in the summary. */
 #define MAP_MAX_PIECES 64
 
+/* Borders of one iterate held while the state borders are asked for
+ * (bk2 reports some ten; more is refused by sc_map_state_borders), and
+ * state borders drawn at most. */
+#define MAP_MAX_BORDERS 64
+#define MAP_MAX_STATE_BORDERS 4
+
 typedef struct {
   double from, to;             /* first and last grid point of the piece */
   double flo, fhi;             /* range of f^n on it */
@@ -35,10 +41,6 @@ typedef struct {
   size_t n;      /* pieces stored */
   size_t extra;  /* pieces beyond MAP_MAX_PIECES */
 } map_pieces;
-
-static double param(const sc_map *m, const char *name) {
-  return sc_map_get_param(m, (size_t)sc_map_param_index(m, name));
-}
 
 static void add_point(map_pieces *ps, double d, double f, const char *itin) {
   map_piece *last = ps->n ? &ps->p[ps->n - 1] : NULL;
@@ -70,9 +72,37 @@ typedef struct {
   char first_reason[SC_MSG_LEN];  /* first undefined point */
   char first_failure[SC_MSG_LEN]; /* first point the model refused */
   map_pieces *pieces;
-  int bk2;               /* the model is bk2: d* is drawn */
-  double dstar;
+  /* the model's borders in the state (sc_map_state_borders): drawn and
+   * reported, whatever the model */
+  size_t nsb;
+  sc_border sb[MAP_MAX_STATE_BORDERS];
+  sc_border scratch[MAP_MAX_BORDERS];
 } map_job;
+
+/* The model's borders in the state at the scene's parameters, as an
+ * iterate from the grid's first, last or middle point reports them (one
+ * where the map is defined suffices); equal points are one. */
+static void state_borders(map_job *j, sc_map *m) {
+  sc_border_list l = {.b = j->scratch, .cap = MAP_MAX_BORDERS};
+  const double at[3] = {j->from, j->to, 0.5 * (j->from + j->to)};
+  j->nsb = 0;
+  for (int k = 0; k < 3; k++) {
+    if (sc_map_state_borders(m, at[k], &l, NULL) != SC_OK) continue;
+    for (size_t i = 0; i < l.n && j->nsb < MAP_MAX_STATE_BORDERS; i++) {
+      int seen = 0;
+      for (size_t q = 0; q < j->nsb; q++) seen |= j->sb[q].d_on == l.b[i].d_on;
+      if (!seen) j->sb[j->nsb++] = l.b[i];
+    }
+    return;
+  }
+}
+
+/* The name a state border's point has in plots and the summary: the
+ * model's (bk2: "d*"), or the border kind's label. */
+static const char *state_point_name(const sc_map *m, const sc_border *b) {
+  const char *s = sc_map_type(m)->state_point_name;
+  return s ? s : sc_border_label(b->kind);
+}
 
 static int map_prepare(sc_cli_run *r, void *job) {
   map_job *j = job;
@@ -84,9 +114,7 @@ static int map_prepare(sc_cli_run *r, void *job) {
   j->steps = (size_t)sc_scene_int(s, "steps");
   j->flo = HUGE_VAL;
   j->fhi = -HUGE_VAL;
-  j->bk2 = strcmp(sc_map_type(m)->name, "bk2") == 0;
-  if (j->bk2)
-    j->dstar = sc_bk2_dstar(param(m, "alpha"), param(m, "beta"));
+  state_borders(j, m);
   j->pieces = calloc(1, sizeof *j->pieces);
   return j->pieces ? SC_OK : sc_fail(r->msg, SC_ENOMEM, "map: out of memory");
 }
@@ -173,8 +201,10 @@ static int map_summary(sc_cli_run *r, void *job, FILE *f) {
   }
   if (j->pieces->extra)
     fprintf(f, "    ... and %zu more pieces\n", j->pieces->extra);
-  if (j->bk2)
-    fprintf(f, "  d* = (beta - 1)/(1 + 2 alpha) = %.17g\n", j->dstar);
+  for (size_t i = 0; i < j->nsb; i++)
+    fprintf(f, "  %s = %.17g: a border in the state (%s: %s)\n",
+            state_point_name(r->map, &j->sb[i]), j->sb[i].d_on,
+            sc_border_label(j->sb[i].kind), j->sb[i].name);
   return SC_OK;
 }
 
@@ -199,15 +229,17 @@ static int map_plots(sc_cli_run *r, void *job) {
   /* the y axis shows f^n and the diagonal over the grid */
   if (j->flo <= j->fhi)
     sc_plot_axis_format(f, "y", fmin(j->flo, xlo), fmax(j->fhi, xhi));
-  if (j->bk2) {
-    fputs("# d*: both blocks reach their threshold together\n", f);
-    fprintf(f, "dstar = %.17g\n", j->dstar);
-    fputs("set arrow 1 from dstar, graph 0 to dstar, graph 1 nohead "
-          "dt 2 lc rgb '#888888'\n",
-          f);
-    fputs("set label 1 'd*' at dstar, graph 0.97 offset 0.5,0 tc rgb "
-          "'#666666'\n",
-          f);
+  for (size_t i = 0; i < j->nsb; i++) {
+    const sc_border *b = &j->sb[i];
+    fprintf(f, "# %s: a border in the state (%s: %s)\n",
+            state_point_name(m, b), sc_border_label(b->kind), b->name);
+    fprintf(f, "sb%zu = %.17g\n", i + 1, b->d_on);
+    fprintf(f, "set arrow %zu from sb%zu, graph 0 to sb%zu, graph 1 nohead "
+               "dt 2 lc rgb '#888888'\n",
+            i + 1, i + 1, i + 1);
+    fprintf(f, "set label %zu '%s' at sb%zu, graph 0.97 offset 0.5,0 tc rgb "
+               "'#666666'\n",
+            i + 1, state_point_name(m, b), i + 1);
   }
   fputs("# points, not lines, so that jumps of the map stay open\n", f);
   /* the key lists the kinds of motion present */
@@ -219,7 +251,9 @@ static int map_plots(sc_cli_run *r, void *job) {
     else single = 1;
   }
   if (j->pieces->extra) single = both = 1; /* not all pieces kept */
-  if (j->bk2) {
+  if (sc_map_has_borders(m)) {
+    /* a piecewise-smooth model: its itineraries name the parts that slip
+     * (bk2, the only one: '12' both blocks) */
     fputs("# column 4 is the itinerary: without '12' only one block slips at "
           "a time\n# (single-block slips: f' = 1, docs/model.md)\n"
           "single(s) = strstrt(s, '12') == 0\n",

@@ -77,11 +77,19 @@ int sc_map_alloc(const char *model, const sc_accuracy *acc, sc_map **out,
                  sc_msg *msg) {
   const sc_model_type *t = sc_model_find(model);
   if (!t) {
+    /* the valid names are the registry's */
+    char valid[SC_MSG_LEN / 2] = "";
+    size_t used = 0;
+    for (size_t i = 0; i < sc_model_count(); i++) {
+      int k = snprintf(valid + used, sizeof valid - used, "%s%s",
+                       i ? ", " : "", sc_model_get(i)->name);
+      if (k < 0 || (size_t)k >= sizeof valid - used) break;
+      used += (size_t)k;
+    }
     *out = NULL;
     return sc_fail(msg, SC_EINVAL,
-                   "sc_map_alloc: unknown model '%s' (valid: bk2, logistic, "
-                   "cubic, gpd)",
-                   model ? model : "(null)");
+                   "sc_map_alloc: unknown model '%s' (valid: %s)",
+                   model ? model : "(null)", valid);
   }
   return sc_map_alloc_type(t, acc, out, msg);
 }
@@ -226,6 +234,24 @@ const char *sc_border_label(sc_border_kind k) {
 }
 
 int sc_map_has_borders(const sc_map *m) { return m->type->eval_ex != NULL; }
+
+int sc_map_state_borders(sc_map *m, double d, sc_border_list *out,
+                         sc_msg *msg) {
+  out->n = 0;
+  if (!m->type->eval_ex) return SC_OK;
+  sc_map_value v;
+  int st = sc_map_eval_ex(m, d, SC_EVAL_VALUE, NULL, NULL, out, &v, msg);
+  if (st) return st;
+  if (out->n > out->cap)
+    return sc_fail(msg, SC_ENOMEM,
+                   "sc_map_state_borders: %zu borders, room for %zu", out->n,
+                   out->cap);
+  size_t k = 0;
+  for (size_t i = 0; i < out->n; i++)
+    if (out->b[i].on_state) out->b[k++] = out->b[i];
+  out->n = k;
+  return SC_OK;
+}
 
 double sc_map_precision(const sc_map *m) {
   return m->type->precision ? m->type->precision(m->inst) : 0;

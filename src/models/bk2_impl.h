@@ -27,6 +27,7 @@
 #include "hybrid/dual.h"
 #include "hybrid/hybrid_impl.h"
 #include "models/bk2_rules.h"
+#include "slipcont/bk2.h"
 #include "slipcont/hybrid.h"
 #include "slipcont/models.h"
 

@@ -515,6 +515,7 @@ const sc_model_type sc_model_bk2 = {
     .doc = "two-block Burridge-Knopoff stick-slip model (docs/model.md)",
     .state_name = "d",
     .state_label = "Y_2 - Y_1",
+    .state_point_name = "d*",
     .nparam = BK2_NPARAM,
     .params = bk2_params,
     .noption = 3,

@@ -14,6 +14,7 @@
 
 #include <string.h>
 
+#include "slipcont/bk2.h"
 #include "slipcont/models.h"
 
 _Static_assert(SC_BK2_STICK == 0 && SC_BK2_SLIP1 == 1 && SC_BK2_SLIP2 == 2 &&
