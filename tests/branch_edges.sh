@@ -3,6 +3,8 @@
 #  - a hand-over at a switching point starts at the border orbit's own
 #    points (the map is continuous at d*), and a hand-over to an orbit
 #    farther than the corrector's step is refused with its reason;
+#  - a border point whose defining system is degenerate says so, has an
+#    error that covers every preset's answer, and lies in the interval;
 #  - every located row of a branch (LP, PD, GR, CS, SW, BR, TT) starts
 #    the curve of its type, on its own border, at the row's point;
 # Usage: sh tests/branch_edges.sh PATH/TO/slipcont SOURCE_DIR
@@ -136,6 +138,44 @@ if run branch-gr-moving grm; then
   else
     fail "GR of period 2: rows of the synchronous orbit: $d0"
   fi
+fi
+
+# --- a degenerate SW ----------------------------------------------------
+# Every preset (and numerical flows): the SW near 1.5 is "degenerate",
+# inside [1.5, 3.5], with a residual above 0 and an error that covers
+# the distance between any two presets' values.
+all=
+for pre in fast default precise numerical; do
+  set -- --set accuracy.preset=$pre
+  [ $pre = numerical ] && set -- --set model.flows=numerical
+  run branch-sw-degenerate deg-$pre "$@" || continue
+  P=$TMP/deg-$pre/points.csv
+  out=$(rows "$P" '$3 < 1.5 || $3 > 3.5')
+  if [ -z "$out" ]; then
+    pass "degenerate SW ($pre): every row inside [1.5, 3.5]"
+  else
+    fail "degenerate SW ($pre): rows outside [1.5, 3.5]: $out"
+  fi
+  sw=$(rows "$P" '$1 == "SW" && $3 < 1.51')
+  case $(echo "$sw" | cut -d, -f9) in
+  degenerate)
+    if echo "$sw" | awk -F, '{ exit !($7 > 0 && $8 > 0) }'; then
+      pass "degenerate SW ($pre): said so, residual $(echo "$sw" | cut -d, -f7) > 0, error $(echo "$sw" | cut -d, -f8)"
+    else
+      fail "degenerate SW ($pre): residual or error not above 0: $sw"
+    fi ;;
+  *) fail "degenerate SW ($pre): not said degenerate: $sw" ;;
+  esac
+  all="$all$(echo "$sw" | cut -d, -f3,8) "
+done
+if echo "$all" | awk '{ for (i = 1; i <= NF; i++) { split($i, a, ",")
+      p[i] = a[1]; e[i] = a[2] }
+    for (i = 1; i <= NF; i++) for (j = 1; j <= NF; j++) {
+      d = p[i] - p[j]; if (d < 0) d = -d
+      if (!(d <= e[i] + e[j])) exit 1 } }'; then
+  pass "degenerate SW: the presets agree within their errors ($all)"
+else
+  fail "degenerate SW: the presets disagree beyond their errors ($all)"
 fi
 
 finish

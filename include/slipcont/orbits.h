@@ -181,9 +181,16 @@ typedef enum {
   SC_LOC_FAILED,     /**< detected (a sign change) but not located: the
                           row gives the bracket's end and the reason */
   SC_LOC_NONE,       /**< an end point (EP) */
+  SC_LOC_DEGENERATE, /**< solved by Newton, but its defining system is
+                          degenerate there (its slope in the parameter
+                          vanishes: a double root, or the orbit on the
+                          border along an interval): known to `error`
+                          only, `residual` is the system's noise, no
+                          certificate */
 } sc_location_method;
 
-/** Text of a location method: "newton", "bisection", "not-located", "". */
+/** Text of a location method: "newton", "bisection", "not-located", "",
+ * "degenerate". */
 SC_API const char *sc_location_method_text(sc_location_method l);
 
 /** One special point. */

@@ -63,6 +63,26 @@ static int border_at(sc_orbit_branch *b, int period, double d, double p,
   return SC_OK;
 }
 
+/* A located border point is degenerate where the uncertainty of its
+ * root, the noise of the system reduced to the parameter, G(p), over its
+ * slope (eps / |G'|), exceeds DEGENERATE_RATIO times the distance over
+ * which that slope itself vanishes (|G'| / |G''|): a double root (the
+ * orbit touches the border and turns back), or an orbit that sits on the
+ * border along an interval (G vanishes identically).  Newton then stops
+ * anywhere within about sqrt(2 eps / |G''|) of the root, whatever the
+ * preset, and a residual at rounding certifies nothing.  For a simple
+ * root the ratio is eps |G''| / G'^2, many orders below 1. */
+#define DEGENERATE_RATIO 1.0
+
+static void mark_degenerate(border_fix *fx, double Gpp) {
+  double s = fabs(fx->slope), e = fx->noise;
+  if (!(e * fabs(Gpp) > DEGENERATE_RATIO * s * s) && s > 0) return;
+  fx->degenerate = 1;
+  double lin = s > 0 ? e / s : HUGE_VAL;
+  double quad = fabs(Gpp) > 0 ? sqrt(2 * e / fabs(Gpp)) : HUGE_VAL;
+  fx->step = fmax(fx->step, fmin(lin, quad));
+}
+
 /* Newton in (d0, p) on {f^m(d0) - d0 = 0, m_k(d0, p) = 0} from the
  * interpolation between (pa, da) and (pb, db); the codes are those of the
  * segment. */
@@ -109,6 +129,24 @@ static void newton_2d(sc_orbit_branch *b, int period, const sc_itin_code *codes,
       fx->ok = 1;
       fx->p = p, fx->d0 = d, fx->m = bd.value, fx->F = v.f - d;
       fx->mult = v.dfdd, fx->iterations = it + 1;
+      /* reduced to p along the fixed point d(p), d' = -J12 / J11:
+       * G = m_k(d(p), p), G' = det / J11; G' a difference step either
+       * side says where it vanishes */
+      double s = J11 != 0 ? -J12 / J11 : NAN;
+      fx->slope = J11 != 0 ? det / J11 : NAN;
+      fx->noise = (BORDER_NOISE_ULPS * DBL_EPSILON * (1 + fabs(d)) +
+                   sc_map_precision(b->m)) *
+                  (1 + fabs(J21 / J11));
+      double h = acc->fd_step * (1 + fabs(p)), g[2] = {NAN, NAN};
+      for (int k = 0; k < 2 && isfinite(s); k++) {
+        double hk = k ? -h : h;
+        if (border_at(b, period, d + s * hk, p + hk, codes, like, &bd, &v))
+          continue;
+        double a11 = v.dfdd - 1, a12 = v.dfdp[ip];
+        g[k] = (a11 * bd.dp[ip] - a12 * bd.dd) / a11;
+      }
+      if (isfinite(fx->slope)) mark_degenerate(fx, (g[0] - g[1]) / (2 * h));
+      sc_ob_set_p(b->m, ip, p);
       return;
     }
   }
@@ -116,6 +154,32 @@ static void newton_2d(sc_orbit_branch *b, int period, const sc_itin_code *codes,
            "Newton did not converge in %d iterations (last step %.3g in "
            "the parameter)",
            BORDER_NEWTON_MAX, fx->step);
+}
+
+/* G(p) = f^m(d_on(p)) - d_on(p) and G'(p) of a border in the state, the
+ * orbit started on it along codes3 (the codes rotated to its iterate);
+ * its point d_on(p) into *don. */
+static int on_state_G(sc_orbit_branch *b, int period, const sc_border *like,
+                      double p, double *G, double *Gp, double *don,
+                      sc_map_value *v) {
+  size_t ip = b->sp.param;
+  /* d_on(p): the border of any one iterate at p says where it is */
+  sc_border_list *l = &b->bl_tmp;
+  if (sc_ob_set_p(b->m, ip, p) ||
+      sc_map_eval_ex(b->m, like->d_on, SC_EVAL_VALUE, NULL, NULL,
+                     (l->n = 0, l), v, NULL))
+    return SC_EUNDEF;
+  double don_p = NAN;
+  *don = NAN;
+  for (size_t i = 0; i < l->n && i < l->cap; i++)
+    if (l->b[i].on_state) *don = l->b[i].d_on, don_p = l->b[i].d_on_dp[ip];
+  if (!isfinite(*don)) return SC_EUNDEF;
+  int st = sc_map_iterate_ex(b->m, *don, period, SC_EVAL_DERIV, b->codes3,
+                             NULL, NULL, v, NULL);
+  if (st) return st;
+  *G = v->f - *don;
+  *Gp = v->dfdp[ip] + (v->dfdd - 1) * don_p;
+  return SC_OK;
 }
 
 /* A border in the state itself (m = +-(d_k - d_on(p))): Newton in p on
@@ -127,7 +191,6 @@ static void newton_on_state(sc_orbit_branch *b, int period,
                             double pa, double ma, double pb, double mb,
                             border_fix *fx) {
   const sc_accuracy *acc = &b->acc;
-  size_t ip = b->sp.param;
   int k = like->iterate;
   for (int i = 0; i < period; i++) b->codes3[i] = codes[(i + k) % period];
   double t = ma / (ma - mb);
@@ -135,29 +198,16 @@ static void newton_on_state(sc_orbit_branch *b, int period,
   double p = pa + t * (pb - pa);
   sc_map_value v;
   for (int it = 0; it < BORDER_NEWTON_MAX; it++) {
-    /* d_on(p): the border of any one iterate at p says where it is */
-    sc_border_list *l = &b->bl_tmp;
-    if (sc_ob_set_p(b->m, ip, p) ||
-        sc_map_eval_ex(b->m, like->d_on, SC_EVAL_VALUE, NULL, NULL,
-                       (l->n = 0, l), &v, NULL)) {
-      snprintf(fx->why, sizeof fx->why, "cannot evaluate the map at %.17g",
-               p);
-      return;
-    }
-    double don = NAN, don_p = NAN;
-    for (size_t i = 0; i < l->n && i < l->cap; i++)
-      if (l->b[i].on_state) don = l->b[i].d_on, don_p = l->b[i].d_on_dp[ip];
-    int st = sc_map_iterate_ex(b->m, don, period, SC_EVAL_DERIV, b->codes3,
-                               NULL, NULL, &v, NULL);
-    if (st || !isfinite(don)) {
+    double G, Gp, don;
+    int st = on_state_G(b, period, like, p, &G, &Gp, &don, &v);
+    if (st) {
       snprintf(fx->why, sizeof fx->why,
                "the orbit from the border cannot be evaluated at %.17g (%s)",
                p, sc_strerror(st));
       return;
     }
-    double G = v.f - don;
-    double Gp = v.dfdp[ip] + (v.dfdd - 1) * don_p;
     fx->F = G, fx->m = 0, fx->mult = v.dfdd, fx->iterations = it;
+    fx->slope = Gp;
     if (!isfinite(Gp) || Gp == 0) {
       snprintf(fx->why, sizeof fx->why, "singular derivative (%.3g)", Gp);
       return;
@@ -167,6 +217,8 @@ static void newton_on_state(sc_orbit_branch *b, int period,
       fx->ok = 1;
       fx->p = p, fx->dk = don, fx->step = fabs(dp);
       fx->iterations = it + 1;
+      fx->noise = BORDER_NOISE_ULPS * DBL_EPSILON * (1 + fabs(don)) +
+                  sc_map_precision(b->m);
       /* the orbit's first point: iterate back is not possible; report
        * the continued point by iterating forward the remaining steps */
       double *o = b->seed;
@@ -174,6 +226,14 @@ static void newton_on_state(sc_orbit_branch *b, int period,
         fx->d0 = o[(period - k) % period];
       else
         fx->d0 = NAN;
+      /* G' a difference step either side: where it vanishes */
+      double h = acc->fd_step * (1 + fabs(p)), g[2] = {NAN, NAN}, Gh, dh;
+      for (int s = 0; s < 2; s++)
+        if (on_state_G(b, period, like, p + (s ? -h : h), &Gh, &g[s], &dh,
+                       &v))
+          g[s] = NAN;
+      mark_degenerate(fx, (g[0] - g[1]) / (2 * h));
+      sc_ob_set_p(b->m, b->sp.param, p);
       return;
     }
     p -= dp;
@@ -217,6 +277,19 @@ void sc_ob_locate_border(sc_orbit_branch *b, int period,
              fx->p, lo, hi);
     return;
   }
+  /* Points are reported only inside the task's interval: a degenerate
+   * one known to fx->step only is put on the interval's end when within
+   * that of it (where Newton stops within its uncertainty is rounding). */
+  double plo = fmin(b->sp.from, b->sp.to), phi = fmax(b->sp.from, b->sp.to);
+  if (fx->degenerate && fx->p < plo && plo - fx->p <= fx->step) fx->p = plo;
+  if (fx->degenerate && fx->p > phi && fx->p - phi <= fx->step) fx->p = phi;
+  if (fx->p < plo || fx->p > phi) {
+    fx->ok = 0;
+    snprintf(fx->why, sizeof fx->why,
+             "Newton converged to %.17g, outside the interval [%.17g, %.17g]",
+             fx->p, fmin(b->sp.from, b->sp.to), fmax(b->sp.from, b->sp.to));
+    return;
+  }
   double *o = b->seed;
   if (!like->on_state) {
     if (sc_ob_set_p(b->m, b->sp.param, fx->p) ||
@@ -250,6 +323,9 @@ special_rec *sc_ob_record_border(sc_orbit_branch *b, int branch, int period,
     r = sc_ob_add_special(b, l, branch, period, fx->p, fx->dk, fx->mult, fx->m);
     if (!r) return NULL;
     r->residual = fmax(fabs(fx->F), fabs(fx->m));
+    /* degenerate: no certificate, the residual is at the system's noise
+     * anywhere within the uncertainty */
+    if (fx->degenerate) r->residual = fmax(r->residual, fx->noise);
     r->error = fx->step;
     r->iterations = fx->iterations;
     snprintf(r->note, sizeof r->note,
@@ -257,6 +333,15 @@ special_rec *sc_ob_record_border(sc_orbit_branch *b, int branch, int period,
              "iterations, residual %.2g",
              sc_point_label_text(l), bd->iterate + 1, bd->name, period,
              fx->iterations, r->residual);
+    if (fx->degenerate) {
+      r->method = SC_LOC_DEGENERATE;
+      size_t n = strlen(r->note);
+      snprintf(r->note + n, sizeof r->note - n,
+               "; DEGENERATE: the system's slope in the parameter %.2g is "
+               "at its noise %.2g (a double root, or the orbit on the border "
+               "along an interval): known to %.2g only, no certificate",
+               fx->slope, fx->noise, r->error);
+    }
   } else {
     r = sc_ob_add_special(b, l, branch, period, p_est, d_est, NAN, bd->value);
     if (!r) return NULL;

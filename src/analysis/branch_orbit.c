@@ -33,7 +33,8 @@ sc_point_label sc_point_label_of_border(sc_border_kind k) {
 }
 
 const char *sc_location_method_text(sc_location_method l) {
-  static const char *t[] = {"newton", "bisection", "not-located", ""};
+  static const char *t[] = {"newton", "bisection", "not-located", "",
+                            "degenerate"};
   return (unsigned)l < sizeof t / sizeof t[0] ? t[l] : "";
 }
 

@@ -106,6 +106,9 @@ typedef struct {
   double step;    /* last Newton step in p (the error estimate) */
   double mult;    /* (f^m)' there */
   int iterations;
+  int degenerate; /* the reduced system G(p) is degenerate there */
+  double slope;   /* G'(p) at the solution */
+  double noise;   /* the rounding level of G there */
   char why[200];
 } border_fix;
 

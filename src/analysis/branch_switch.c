@@ -150,6 +150,15 @@ int sc_ob_hand_over(sc_orbit_branch *b, special_rec *r, int m,
                     double *orb, int dir) {
   char base[NOTE_LEN];
   snprintf(base, sizeof base, "%s", r ? r->note : "");
+  /* A degenerate point is a touch, not a crossing: the orbit turns back
+   * at the border (or stays on it), so no orbit lies beyond it. */
+  if (r && r->method == SC_LOC_DEGENERATE) {
+    snprintf(r->note, sizeof r->note,
+             "%.400s; the orbit touches the border there: the branch ends "
+             "here",
+             base);
+    return SC_END;
+  }
   int own = r && continuous_at(r->label);
   double step = sc_ob_hmax(b);
   double far_d = HUGE_VAL, far_p = NAN;

@@ -857,16 +857,18 @@ static int branch_write(sc_cli_run *r, void *job) {
 typedef struct {
   int label[SC_PT_EP + 1];
   int nbis, nfail; /* by bisection (fallback); detected, not located */
+  int ndeg;        /* solved on a degenerate system: no certificate */
 } special_count;
 
 static special_count count_specials(const sc_orbit_branch *ob) {
-  special_count c = {{0}, 0, 0};
+  special_count c = {{0}, 0, 0, 0};
   for (size_t i = 0; i < sc_orbit_branch_nspecial(ob); i++) {
     sc_orbit_special_info p;
     sc_orbit_branch_special(ob, i, &p);
     if ((unsigned)p.label <= SC_PT_EP) c.label[p.label]++;
     c.nbis += p.method == SC_LOC_BISECTION;
     c.nfail += p.method == SC_LOC_FAILED;
+    c.ndeg += p.method == SC_LOC_DEGENERATE;
   }
   return c;
 }
@@ -896,10 +898,15 @@ static int branch_summary(sc_cli_run *r, void *job, FILE *f) {
   fprintf(f, "\n  met again by another segment (reported once): %zu\n",
           sc_orbit_branch_nduplicate(ob));
   fprintf(f, "  located by Newton with a residual certificate: %zu; by "
-             "bisection (fallback): %d; detected but NOT located: %d\n",
-          sc_orbit_branch_nspecial(ob) - (size_t)(c.nbis + c.nfail) -
+             "bisection (fallback): %d; detected but NOT located: %d",
+          sc_orbit_branch_nspecial(ob) - (size_t)(c.nbis + c.nfail + c.ndeg) -
               (size_t)c.label[SC_PT_EP],
           c.nbis, c.nfail);
+  if (c.ndeg)
+    fprintf(f, "; by Newton on a DEGENERATE system (not certified, known to "
+               "its error): %d",
+            c.ndeg);
+  fputc('\n', f);
   for (size_t i = 0; i < sc_orbit_branch_nspecial(ob); i++) {
     sc_orbit_special_info p;
     sc_orbit_branch_special(ob, i, &p);
