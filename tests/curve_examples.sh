@@ -84,16 +84,17 @@ count() {
   check "$1: $3 $2 row(s) (got $n)" test "$n" -eq "$3"
 }
 
-# ends NAME X Y TOL: one end of the curve (the first or last row of
-# curve.csv, or an EP row) within TOL of (X, Y) in both coordinates.
+# ends NAME X Y TOL: one end of the curve (the last point of a piece of
+# curve.csv, whose pieces are separated by a blank line, or an EP row)
+# within TOL of (X, Y) in both coordinates.
 ends() {
   check "$1: ends at ($2, $3) to $4" awk -F, -v x="$2" -v y="$3" -v t="$4" '
     function abs(v) { return v < 0 ? -v : v }
     function near(a, b) { return abs(a - x) <= t + 0 && abs(b - y) <= t + 0 }
     FILENAME ~ /points/ && $1 == "EP" && near($2, $3) { ok = 1 }
-    FILENAME ~ /curve.csv/ && FNR == 2 && near($1, $2) { ok = 1 }
-    FILENAME ~ /curve.csv/ && FNR > 1 { lx = $1; ly = $2 }
-    END { if (near(lx, ly)) ok = 1; exit !ok }' \
+    FILENAME ~ /curve.csv/ && FNR > 1 && NF == 0 && have && near(lx, ly) { ok = 1 }
+    FILENAME ~ /curve.csv/ && FNR > 1 && NF > 1 { lx = $1; ly = $2; have = 1 }
+    END { if (have && near(lx, ly)) ok = 1; exit !ok }' \
     "out/$1/points.csv" "out/$1/curve.csv"
 }
 
