@@ -13,6 +13,11 @@ foreach(script cli_errors cli_refusals cli_signals cli_steps cli_outputs cli_exa
             $<TARGET_FILE:slipcont_cli> ${PROJECT_SOURCE_DIR})
 endforeach()
 set_tests_properties(cli_examples PROPERTIES TIMEOUT 300)
+# Every example is run by some test (by name), so a new one cannot go
+# unchecked.
+add_test(NAME examples_covered
+  COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/examples_covered.sh
+          $<TARGET_FILE:slipcont_cli> ${PROJECT_SOURCE_DIR})
 # A model that hangs must fail the suite, not stall it.
 set_tests_properties(test_scene_sweep PROPERTIES TIMEOUT 300)
 # The examples' figures: labels clear of each other, keys, tick formats.
