@@ -122,12 +122,12 @@ cmp -s change/chart.csv ref500/chart.csv &&
   pass "restarted chart identical to a fresh one" || fail "restarted differs"
 
 # 4. SIGINT in the middle of the rows (the checkpoint written on the
-#    signal, not the hook's): a chart of minutes on one thread, signalled
+#    signal, not the hook's): a chart of about 40 s on one thread, signalled
 #    once its first periodic checkpoint is there (so inside the rows,
 #    whatever the machine's load), must stop with exit 1 and a checkpoint
 #    of the rows done, which a rerun resumes.  A signal that missed (the
 #    chart finished) fails here.
-big="--set task.x-steps=64 --set task.y-steps=4096 --set task.transient=2000"
+big="--set task.x-steps=64 --set task.y-steps=1024 --set task.transient=2000"
 "$BIN" run small.ini --quiet --out sig $big --threads 1 2> sig.err &
 pid=$!
 while [ ! -f sig/chart.checkpoint ] && kill -0 $pid 2> /dev/null; do
@@ -136,7 +136,7 @@ done
 kill -INT $pid 2> /dev/null
 wait $pid
 rc=$?
-done_rows=$(sed -n 's/.*interrupted after \([0-9]*\) of 4096 rows.*/\1/p' sig.err)
+done_rows=$(sed -n 's/.*interrupted after \([0-9]*\) of 1024 rows.*/\1/p' sig.err)
 ck_rows=$(sed -n 's/^rows //p' sig/chart.checkpoint 2> /dev/null)
 if [ $rc -eq 1 ] && [ -n "$done_rows" ] && [ "$done_rows" = "$ck_rows" ]; then
   pass "SIGINT inside the rows: exit 1, checkpoint of the $done_rows rows done"
@@ -149,7 +149,7 @@ no_temporaries "SIGINT" sig
 "$BIN" run small.ini --out sig $big --threads 1 --interrupt-before compute \
   2> sig2.err
 check "rerun after SIGINT resumes from its $done_rows rows" \
-  grep -q "resuming from .*: $done_rows of 4096 rows done" sig2.err
+  grep -q "resuming from .*: $done_rows of 1024 rows done" sig2.err
 
 # 5. Progress: a bar on a terminal (script(1) gives one), none with
 #    --quiet, none when stderr is a file.
