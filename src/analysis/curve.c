@@ -540,35 +540,36 @@ static int cross_border(trace *T, const double *w, const double *dir3,
   return SC_OK;
 }
 
-/* One direction from the corrected start. */
-static int run(trace *T, int dir, int branch, sc_msg *msg) {
-  const sc_curve_settings *s = T->set;
+/* One direction of a curve being traced: run() and its steps. */
+typedef struct {
+  int branch;             /* 0: the first direction, 1: the other */
+  sc_cont_problem pb;     /* the system (multiple shooting: sparse) */
+  sc_cont_settings cset;  /* its continuation settings */
+  sc_branch *b;           /* the pseudo-arclength branch */
+  double psi_prev[3];     /* the tests at the last point */
+  size_t nw;              /* borders watched */
+  double far;             /* farthest distance from the start so far */
+  int ncross;             /* borders crossed */
+} walk;
+
+/* What a step of run() says about the loop. */
+enum { WALK_ON, WALK_NEXT, WALK_STOP };
+
+/* The branch and its first point: the corrected start, emitted (and, in
+ * the first direction, taken as the start with its itinerary). */
+static int walk_start(trace *T, walk *W, sc_msg *msg) {
   size_t N = T->N;
-  sc_cont_settings cset;
-  sc_curve_cont_settings(s, dir, &cset);
-  /* multiple shooting: the sparse pattern and KLU (about 5 m nonzeros
-   * in an (m + 2)^2 bordered matrix) */
-  sc_cont_problem pb = T->cs.pb;
-  if (s->multiple) {
-    int rc = sc_curve_map1d_ms_sparse(&T->msys, &pb, msg);
-    if (rc) return rc;
-    cset.linsolve = sc_linsolve_klu;
-  }
-  sc_branch *b;
   int st;
-  if (branch == 1 && T->bpa && (st = watch_reset(T, T->start3, msg)))
+  if (W->branch == 1 && T->bpa && (st = watch_reset(T, T->start3, msg)))
     return st;
-  st = sc_branch_alloc(&pb, &cset, T->acc, &b, msg);
+  st = sc_branch_alloc(&W->pb, &W->cset, T->acc, &W->b, msg);
   if (st) return st;
-  st = sc_branch_set(b, T->u0, msg);
-  if (st) {
-    sc_branch_free(b);
-    return st;
-  }
-  double *prev = T->prev, *cur = T->cur, psi_prev[3], psi[3];
-  memcpy(prev, sc_branch_point(b), N * sizeof *prev);
+  st = sc_branch_set(W->b, T->u0, msg);
+  if (st) return st;
+  double *prev = T->prev;
+  memcpy(prev, sc_branch_point(W->b), N * sizeof *prev);
   sc_curve_jet j;
-  if (branch == 0) {
+  if (W->branch == 0) {
     memcpy(T->u0, prev, N * sizeof *prev);
     /* the start's itinerary: the curve follows this one */
     sc_forced_sys *keep = T->mc.fs;
@@ -576,189 +577,246 @@ static int run(trace *T, int dir, int branch, sc_msg *msg) {
     g_at(T, prev, &j);
     T->mc.fs = keep;
     snprintf(T->itin0, sizeof T->itin0, "%s", T->mc.itin);
-    if ((st = emit_point(T, prev, 0))) goto done;
-    if ((st = user_points(T, prev, prev, 1))) goto done;
+    if ((st = emit_point(T, prev, 0))) return st;
+    if ((st = user_points(T, prev, prev, 1))) return st;
   } else if ((st = emit_point(T, prev, 1))) {
     /* the start again, so that each direction's polyline begins there */
-    goto done;
+    return st;
   }
-  if (T->cs.test(prev, psi_prev, T->cs.user)) {
-    st = sc_fail(msg, SC_ENOCONV, "curve: test functions fail at the start");
-    goto done;
+  if (T->cs.test(prev, W->psi_prev, T->cs.user))
+    return sc_fail(msg, SC_ENOCONV, "curve: test functions fail at the start");
+  W->nw = T->fs.nwatch;
+  if (W->nw) border_values(T, prev, T->bpa);
+  return SC_OK;
+}
+
+/* The borders at the new point: the first to change sign along the step
+ * (its index, or nw, into *jb; the fraction of the step, 2 for none,
+ * into *wb); the values before the step are kept in T->bpc. */
+static void step_borders(trace *T, walk *W, size_t *jb, double *wb) {
+  size_t nw = W->nw;
+  *jb = nw;
+  *wb = 2;
+  if (!nw) return;
+  border_values(T, T->cur, T->bpb);
+  for (size_t k = 0; k < nw; k++) {
+    double ba = T->bpa[k], bb = T->bpb[k];
+    if (((ba > 0 && bb < 0) || (ba < 0 && bb > 0)) && ba / (ba - bb) < *wb)
+      *wb = ba / (ba - bb), *jb = k;
   }
-  size_t nw = T->fs.nwatch;
-  if (nw) border_values(T, prev, T->bpa);
-  double far = 0;
-  int ncross = 0;
+  memcpy(T->bpc, T->bpa, nw * sizeof *T->bpa);
+  memcpy(T->bpa, T->bpb, nw * sizeof *T->bpa);
+}
+
+/* The codimension-two tests that changed sign along the step before the
+ * first border (fraction wb), each located. */
+static int step_tests(trace *T, walk *W, double wb) {
+  double psi[3];
+  if (T->cs.test(T->cur, psi, T->cs.user) != 0) return SC_OK;
+  int st;
+  for (size_t k = 0; k < 3; k++)
+    if (((W->psi_prev[k] > 0 && psi[k] < 0) ||
+         (W->psi_prev[k] < 0 && psi[k] > 0)) &&
+        W->psi_prev[k] / (W->psi_prev[k] - psi[k]) < wb)
+      if ((st = locate(T, k, T->prev, T->cur, W->psi_prev[k], psi[k])))
+        return st;
+  memcpy(W->psi_prev, psi, sizeof psi);
+  return SC_OK;
+}
+
+/* Across a located border: a new branch from the other side, going on
+ * the same way in y, from next (d, x, y); WALK_NEXT, or WALK_STOP where
+ * the new side cannot start. */
+static int walk_cross(trace *T, walk *W, const double *dir3,
+                      const double *next, int *st, sc_msg *msg) {
+  size_t N = T->N;
+  sc_msg bm;
+  W->ncross++;
+  sc_branch_free(W->b);
+  W->b = NULL;
+  W->cset.direction = dir3[2] >= 0 ? 1 : -1;
+  double *u = T->mid;
+  u[0] = next[0], UX(T, u) = next[1], UY(T, u) = next[2];
+  for (size_t k = 1; k + 2 < N; k++) /* multiple: not crossed */
+    u[k] = next[0];
+  if ((*st = sc_branch_alloc(&W->pb, &W->cset, T->acc, &W->b, msg)))
+    return WALK_STOP;
+  if (sc_branch_set(W->b, u, &bm)) {
+    char why[128];
+    snprintf(why, sizeof why, "across the border the start fails: %.90s",
+             bm.text);
+    *st = end_point(T, u, why);
+    return WALK_STOP;
+  }
+  double *prev = T->prev;
+  memcpy(prev, sc_branch_point(W->b), N * sizeof *prev);
+  if ((*st = emit_point(T, prev, W->branch))) return WALK_STOP;
+  if (T->cs.test(prev, W->psi_prev, T->cs.user)) {
+    *st = end_point(T, prev, "across the border the tests fail");
+    return WALK_STOP;
+  }
+  W->nw = T->fs.nwatch;
+  if (W->nw) border_values(T, prev, T->bpa);
+  return WALK_NEXT;
+}
+
+/* Every border that changed sign along the step, in the order met (a
+ * border may jump rather than cross: its location fails and is
+ * reported, and the next one is tried), from the first, jb.  The first
+ * located ends the curve, or is crossed (walk_cross()).  WALK_ON where
+ * only borders that jump changed sign (the itinerary check still watches
+ * the orbit). */
+static int step_cross(trace *T, walk *W, size_t jb, int *st, sc_msg *msg) {
+  const double *prev = T->prev, *cur = T->cur;
+  size_t nw = W->nw;
+  double a3[3], b3[3];
+  a3[0] = prev[0], a3[1] = UX(T, prev), a3[2] = UY(T, prev);
+  b3[0] = cur[0], b3[1] = UX(T, cur), b3[2] = UY(T, cur);
+  double span = fmax(fabs(b3[0] - a3[0]),
+                     fmax(fabs(b3[1] - a3[1]), fabs(b3[2] - a3[2])));
+  /* the point may lie off the chord: where the steps shrank (near d*,
+   * the orbit moves fast in d) the bracket is short, so at least one
+   * largest step */
+  double reach = fmax(SC_CURVE_BRACKET_REACH * span, T->set->hmax);
+  int found = 0, crossed = 0, njump = 0, ntried = 0;
+  double wlast = -1, dir3[3], next[3];
+  for (int i = 0; i < 3; i++)
+    dir3[i] = b3[i] - a3[i];
   for (;;) {
+    size_t jn = nw;
+    double wn = 2;
+    for (size_t k = 0; k < nw; k++) {
+      double ba = T->bpc[k], bb = T->bpb[k];
+      if (((ba > 0 && bb < 0) || (ba < 0 && bb > 0))) {
+        double wk = ba / (ba - bb);
+        if ((wk > wlast || (wk == wlast && k > jb)) && wk < wn)
+          wn = wk, jn = k;
+      }
+    }
+    if (jn == nw) break;
+    jb = jn, wlast = wn;
+    double w[3];
+    for (int i = 0; i < 3; i++)
+      w[i] = a3[i] + wn * (b3[i] - a3[i]);
+    int jump = 0;
+    if ((*st = locate_border_pt(
+             T, jn, w, T->bpc[jn], T->bpb[jn], reach, 0, &found,
+             W->ncross < SC_CURVE_MAX_CROSSINGS ? dir3 : NULL, next,
+             &crossed, a3, b3, &jump)))
+      return WALK_STOP;
+    if (found) break;
+    njump += jump, ntried++;
+  }
+  if (found && crossed) return walk_cross(T, W, dir3, next, st, msg);
+  if (found) return WALK_STOP;
+  if (njump < ntried) {
+    *st = end_point(T, prev, "borders changed sign, none located (rows "
+                             "above)");
+    return WALK_STOP;
+  }
+  return WALK_ON;
+}
+
+/* The accepted point cur: whether it still meets its system and keeps
+ * its itinerary and the box; then emitted, and the curve's ends (the
+ * box in y, max points, closing). */
+static int step_accept(trace *T, walk *W, int bs, int *st) {
+  const sc_curve_settings *s = T->set;
+  double *prev = T->prev, *cur = T->cur;
+  sc_curve_jet j;
+  /* A point accepted at the corrector's rounding floor with a residual
+   * far above the tolerance: next to d* (f'' unbounded,
+   * docs/derivations.md) the multiplier's rounding error grows without
+   * bound; the curve ends where its points stop meeting their system
+   * (SC_CURVE_FLOOR_FTOLS). */
+  if (T->cs.pb.f(cur, T->F, T->cs.pb.user) == 0 &&
+      norm_inf(T->F, T->cs.pb.n) >
+          SC_CURVE_FLOOR_FTOLS * T->acc->newton_ftol) {
+    char why[128];
+    snprintf(why, sizeof why,
+             "the residual's rounding floor (%.3g) exceeds the tolerance "
+             "(%.3g): f'' grows without bound here",
+             norm_inf(T->F, T->cs.pb.n), T->acc->newton_ftol);
+    int found = 0;
+    if (W->nw && (*st = near_border(T, prev, &found))) return WALK_STOP;
+    if (!found) *st = end_point(T, prev, why);
+    return WALK_STOP;
+  }
+  /* the orbit must keep its itinerary: a change without a border of
+   * the orbit changing sign is reported as such */
+  if (g_at(T, cur, &j) == 0 && T->mc.itin[0] && strcmp(T->mc.itin, T->itin0)) {
+    char why[128];
+    snprintf(why, sizeof why, "border: itinerary %.40s -> %.40s", T->itin0,
+             T->mc.itin);
+    *st = end_point(T, prev, why);
+    return WALK_STOP;
+  }
+  if (UX(T, cur) < s->xlo || UX(T, cur) > s->xhi) {
+    *st = end_point(T, prev, "the box's edge in x");
+    return WALK_STOP;
+  }
+  if ((*st = emit_point(T, cur, W->branch))) return WALK_STOP;
+  if ((*st = user_points(T, prev, cur, 0))) return WALK_STOP;
+  memcpy(prev, cur, T->N * sizeof *prev);
+  if (bs == SC_END) {
+    *st = end_point(T, cur,
+                    UY(T, cur) <= s->ylo || UY(T, cur) >= s->yhi
+                        ? "the box's edge in y"
+                        : "max-points reached");
+    return WALK_STOP;
+  }
+  /* closed: back within one step of the start after going away */
+  double dist = dist_inf(T, cur, T->u0);
+  W->far = fmax(W->far, dist);
+  if (W->far > SC_CURVE_CLOSE_HMAX * s->hmax &&
+      dist < SC_CURVE_CLOSE_STEPS * sc_branch_step_size(W->b)) {
+    T->closed = 1;
+    *st = end_point(T, cur, "the curve closes on itself");
+    return WALK_STOP;
+  }
+  return WALK_ON;
+}
+
+/* One direction from the corrected start: each step's borders and tests,
+ * a border crossed or ending the curve, then the point accepted. */
+static int run(trace *T, int dir, int branch, sc_msg *msg) {
+  const sc_curve_settings *s = T->set;
+  walk W = {.branch = branch, .pb = T->cs.pb};
+  sc_curve_cont_settings(s, dir, &W.cset);
+  /* multiple shooting: the sparse pattern and KLU (about 5 m nonzeros
+   * in an (m + 2)^2 bordered matrix) */
+  if (s->multiple) {
+    int rc = sc_curve_map1d_ms_sparse(&T->msys, &W.pb, msg);
+    if (rc) return rc;
+    W.cset.linsolve = sc_linsolve_klu;
+  }
+  int st = walk_start(T, &W, msg);
+  while (!st) {
     sc_msg bm;
-    int bs = sc_branch_step(b, &bm);
-    if (bs < 0 && nw) {
+    int bs = sc_branch_step(W.b, &bm);
+    if (bs < 0 && W.nw) {
       int found = 0;
-      if ((st = near_border(T, prev, &found))) goto done;
-      if (found) break;
+      if ((st = near_border(T, T->prev, &found)) || found) break;
     }
     if (bs < 0) {
       char why[128];
       snprintf(why, sizeof why, "stopped: %.110s", bm.text);
-      st = end_point(T, prev, why);
+      st = end_point(T, T->prev, why);
       break;
     }
-    memcpy(cur, sc_branch_point(b), N * sizeof *cur);
-    /* the borders of the orbit: the first to change sign along the step
-     * is located, and the curve ends there */
-    size_t jb = nw;
-    double wb = 2;
-    if (nw) {
-      border_values(T, cur, T->bpb);
-      for (size_t k = 0; k < nw; k++) {
-        double ba = T->bpa[k], bb = T->bpb[k];
-        if (((ba > 0 && bb < 0) || (ba < 0 && bb > 0)) && ba / (ba - bb) < wb)
-          wb = ba / (ba - bb), jb = k;
-      }
-      memcpy(T->bpc, T->bpa, nw * sizeof *T->bpa);
-      memcpy(T->bpa, T->bpb, nw * sizeof *T->bpa);
+    memcpy(T->cur, sc_branch_point(W.b), T->N * sizeof *T->cur);
+    size_t jb;
+    double wb;
+    step_borders(T, &W, &jb, &wb);
+    if ((st = step_tests(T, &W, wb))) break;
+    if (jb < W.nw) {
+      int w = step_cross(T, &W, jb, &st, msg);
+      if (w == WALK_STOP) break;
+      if (w == WALK_NEXT) continue;
     }
-    if (T->cs.test(cur, psi, T->cs.user) == 0) {
-      for (size_t k = 0; k < 3; k++)
-        if (((psi_prev[k] > 0 && psi[k] < 0) ||
-             (psi_prev[k] < 0 && psi[k] > 0)) &&
-            psi_prev[k] / (psi_prev[k] - psi[k]) < wb)
-          if ((st = locate(T, k, prev, cur, psi_prev[k], psi[k]))) goto done;
-      memcpy(psi_prev, psi, sizeof psi);
-    }
-    if (jb < nw) {
-      /* every border that changed sign, in the order met along the step
-       * (a border may jump rather than cross: its location fails and is
-       * reported, and the next one is tried); the first located ends the
-       * curve */
-      double a3[3], b3[3];
-      a3[0] = prev[0], a3[1] = UX(T, prev), a3[2] = UY(T, prev);
-      b3[0] = cur[0], b3[1] = UX(T, cur), b3[2] = UY(T, cur);
-      double span = fmax(fabs(b3[0] - a3[0]),
-                         fmax(fabs(b3[1] - a3[1]), fabs(b3[2] - a3[2])));
-      /* the point may lie off the chord: where the steps shrank (near d*,
-       * the orbit moves fast in d) the bracket is short, so at least one
-       * largest step */
-      double reach = fmax(SC_CURVE_BRACKET_REACH * span, s->hmax);
-      int found = 0, crossed = 0, njump = 0, ntried = 0;
-      double wlast = -1, dir3[3], next[3];
-      for (int i = 0; i < 3; i++)
-        dir3[i] = b3[i] - a3[i];
-      for (;;) {
-        size_t jn = nw;
-        double wn = 2;
-        for (size_t k = 0; k < nw; k++) {
-          double ba = T->bpc[k], bb = T->bpb[k];
-          if (((ba > 0 && bb < 0) || (ba < 0 && bb > 0))) {
-            double wk = ba / (ba - bb);
-            if ((wk > wlast || (wk == wlast && k > jb)) && wk < wn)
-              wn = wk, jn = k;
-          }
-        }
-        if (jn == nw) break;
-        jb = jn, wlast = wn;
-        double w[3];
-        for (int i = 0; i < 3; i++)
-          w[i] = a3[i] + wn * (b3[i] - a3[i]);
-        int jump = 0;
-        if ((st = locate_border_pt(
-                 T, jn, w, T->bpc[jn], T->bpb[jn], reach, 0, &found,
-                 ncross < SC_CURVE_MAX_CROSSINGS ? dir3 : NULL, next,
-                 &crossed, a3, b3, &jump)))
-          goto done;
-        if (found) break;
-        njump += jump, ntried++;
-      }
-      if (found && crossed) {
-        /* a new branch from the other side, going on the same way in y */
-        ncross++;
-        sc_branch_free(b);
-        b = NULL;
-        cset.direction = dir3[2] >= 0 ? 1 : -1;
-        double *u = T->mid;
-        u[0] = next[0], UX(T, u) = next[1], UY(T, u) = next[2];
-        for (size_t k = 1; k + 2 < N; k++) /* multiple: not crossed */
-          u[k] = next[0];
-        if ((st = sc_branch_alloc(&pb, &cset, T->acc, &b, msg))) goto done;
-        if (sc_branch_set(b, u, &bm)) {
-          char why[128];
-          snprintf(why, sizeof why, "across the border the start fails: %.90s",
-                   bm.text);
-          st = end_point(T, u, why);
-          break;
-        }
-        memcpy(prev, sc_branch_point(b), N * sizeof *prev);
-        if ((st = emit_point(T, prev, branch))) goto done;
-        if (T->cs.test(prev, psi_prev, T->cs.user)) {
-          st = end_point(T, prev, "across the border the tests fail");
-          break;
-        }
-        nw = T->fs.nwatch;
-        if (nw) border_values(T, prev, T->bpa);
-        continue;
-      }
-      if (found) break;
-      if (njump < ntried) {
-        st = end_point(T, prev, "borders changed sign, none located (rows "
-                                "above)");
-        break;
-      }
-      /* only borders that jump: no crossing, the curve goes on (the
-       * itinerary check below still watches the orbit) */
-    }
-    /* A point accepted at the corrector's rounding floor with a residual
-     * far above the tolerance: next to d* (f'' unbounded, docs/derivations.md) the
-     * multiplier's rounding error grows without bound; the curve ends
-     * where its points stop meeting their system (SC_CURVE_FLOOR_FTOLS). */
-    if (T->cs.pb.f(cur, T->F, T->cs.pb.user) == 0 &&
-        norm_inf(T->F, T->cs.pb.n) >
-            SC_CURVE_FLOOR_FTOLS * T->acc->newton_ftol) {
-      char why[128];
-      snprintf(why, sizeof why,
-               "the residual's rounding floor (%.3g) exceeds the tolerance "
-               "(%.3g): f'' grows without bound here",
-               norm_inf(T->F, T->cs.pb.n), T->acc->newton_ftol);
-      int found = 0;
-      if (nw && (st = near_border(T, prev, &found))) goto done;
-      if (!found) st = end_point(T, prev, why);
-      break;
-    }
-    /* the orbit must keep its itinerary: a change without a border of
-     * the orbit changing sign is reported as such */
-    if (g_at(T, cur, &j) == 0 && T->mc.itin[0] && strcmp(T->mc.itin, T->itin0)) {
-      char why[128];
-      snprintf(why, sizeof why, "border: itinerary %.40s -> %.40s", T->itin0,
-               T->mc.itin);
-      st = end_point(T, prev, why);
-      break;
-    }
-    if (UX(T, cur) < s->xlo || UX(T, cur) > s->xhi) {
-      st = end_point(T, prev, "the box's edge in x");
-      break;
-    }
-    if ((st = emit_point(T, cur, branch))) goto done;
-    if ((st = user_points(T, prev, cur, 0))) goto done;
-    memcpy(prev, cur, N * sizeof *prev);
-    if (bs == SC_END) {
-      st = end_point(T, cur,
-                     UY(T, cur) <= s->ylo || UY(T, cur) >= s->yhi
-                         ? "the box's edge in y"
-                         : "max-points reached");
-      break;
-    }
-    /* closed: back within one step of the start after going away */
-    double dist = dist_inf(T, cur, T->u0);
-    far = fmax(far, dist);
-    if (far > SC_CURVE_CLOSE_HMAX * s->hmax &&
-        dist < SC_CURVE_CLOSE_STEPS * sc_branch_step_size(b)) {
-      T->closed = 1;
-      st = end_point(T, cur, "the curve closes on itself");
-      break;
-    }
+    if (step_accept(T, &W, bs, &st) == WALK_STOP) break;
   }
-done:
-  sc_branch_free(b);
+  sc_branch_free(W.b);
   return st;
 }
 

@@ -50,8 +50,9 @@ static const sc_key_info branch_keys[] = {
     {"max-branches", SC_KEY_INT, 0, "16", 1, 1000, 0, 0, NULL,
      "branch segments at most (period-doubled branches and continuations "
      "past discontinuity-induced bifurcations count)"},
-    {"max-period", SC_KEY_INT, 0, "64", 1, 4096, 0, 0, NULL,
-     "no branch is followed beyond this period"},
+    {"max-period", SC_KEY_INT, 0, "16", 1, 4096, 0, 0, NULL,
+     "longest period resolved: no branch is followed beyond it (as a "
+     "chart tells periods apart up to its max-period)"},
     {"h0", SC_KEY_REAL, 0, "0", 0, HUGE_VAL, 0, 1, NULL,
      "initial arclength step (0: hmax / 10)"},
     {"hmax", SC_KEY_REAL, 0, "0", 0, HUGE_VAL, 0, 1, NULL,
@@ -62,10 +63,12 @@ static const sc_key_info branch_keys[] = {
      "yes: draw the branch over a brute-force sweep of the same range"},
     {"sweep-steps", SC_KEY_INT, 0, "400", 2, 1000000, 0, 0, NULL,
      "parameter values of the brute-force sweep"},
-    {"iterations", SC_KEY_INT, 0, "400", 1, 100000000, 0, 0, NULL,
-     "sweep: iterates at each value, each starting from the previous one"},
-    {"keep", SC_KEY_INT, 0, "150", 1, 100000000, 0, 0, NULL,
-     "sweep: last iterates drawn (<= iterations)"},
+    {"sweep-iterations", SC_KEY_INT, 0, "400", 1, 100000000, 0, 0, NULL,
+     "sweep: iterates at each value, each starting from the previous one "
+     "(the sweep task's iterations; its own name and default, those of "
+     "the chapter's figs 5.8 and 5.12)"},
+    {"sweep-keep", SC_KEY_INT, 0, "150", 1, 100000000, 0, 0, NULL,
+     "sweep: last iterates drawn (<= sweep-iterations)"},
     {"marks", SC_KEY_TEXT, 0, NULL, 0, 0, 0, 0, NULL,
      "user points (UZ): values of the parameter, separated by spaces, at "
      "which every branch records its orbit (located by Newton with the "
@@ -242,12 +245,12 @@ static int branch_check(const sc_scene *s, sc_msg *msg) {
     return sc_scene_fail_key(s, "task", "to", msg,
                              "to = %s equals from (valid: to != from)",
                              sc_scene_text(s, "to"));
-  if (sc_scene_int(s, "keep") > sc_scene_int(s, "iterations"))
-    return sc_scene_fail_key(s, "task", "keep", msg,
-                             "keep = %ld is more than iterations = %ld "
-                             "(valid: [1, iterations])",
-                             sc_scene_int(s, "keep"),
-                             sc_scene_int(s, "iterations"));
+  if (sc_scene_int(s, "sweep-keep") > sc_scene_int(s, "sweep-iterations"))
+    return sc_scene_fail_key(s, "task", "sweep-keep", msg,
+                             "sweep-keep = %ld is more than sweep-iterations "
+                             "= %ld (valid: [1, sweep-iterations])",
+                             sc_scene_int(s, "sweep-keep"),
+                             sc_scene_int(s, "sweep-iterations"));
   st = parse_starts(s, NULL, NULL, msg);
   if (st) return st;
   if (!sc_scene_text(s, "d0") && !sc_scene_text(s, "starts"))
@@ -489,8 +492,8 @@ static int run_sweep(sc_cli_run *r, size_t param, double from, double to,
   sp.from = from;
   sp.to = to;
   sp.steps = (size_t)sc_scene_int(s, "sweep-steps");
-  sp.iterations = (int)sc_scene_int(s, "iterations");
-  sp.keep = (int)sc_scene_int(s, "keep");
+  sp.iterations = (int)sc_scene_int(s, "sweep-iterations");
+  sp.keep = (int)sc_scene_int(s, "sweep-keep");
   sp.d0 = d0;
   sp.direction = to >= from ? SC_SWEEP_UP : SC_SWEEP_DOWN;
   sp.seed = SC_SEED_PREVIOUS;

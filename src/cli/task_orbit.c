@@ -11,8 +11,8 @@
 static const sc_key_info orbit_keys[] = {
     {"d0", SC_KEY_REAL, 1, NULL, -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
      "initial state (bk2: d = Y2 - Y1 of the first global stick phase)"},
-    {"iterations", SC_KEY_INT, 0, "100", 1, 10000000, 0, 0, NULL,
-     "map iterates"},
+    {"iterations", SC_KEY_INT, 0, "300", 1, 10000000, 0, 0, NULL,
+     "map iterates (as the sweep task's iterations)"},
     {"trajectory", SC_KEY_BOOL, 0, "no", 0, 0, 0, 0, NULL,
      "also write the continuous motion (models with one: bk2)"},
     {"trajectory-iterates", SC_KEY_INT, 0, "0", 0, 10000000, 0, 0, NULL,
