@@ -82,7 +82,7 @@ refuse starts-outside "'$TMP/pts.csv:2': alpha = 5.5 (valid: inside [from, to] =
   "$TMP/branch.ini" --set "task.starts=$TMP/pts.csv:2"
 refuse starts-param "'$TMP/pts.csv:3' is a point in beta (valid: a row of a branch continued in alpha)" \
   "$TMP/branch.ini" --set "task.starts=$TMP/pts.csv:3"
-refuse starts-period "'3.9 0.2 0': period 0 (valid: [1, max-period = 64])" \
+refuse starts-period "'3.9 0.2 0': period 0 (valid: [1, max-period = 16])" \
   "$TMP/branch.ini" --set "task.starts=3.9 0.2 0"
 case $ERR in
 *"(valid:"*"(valid:"*) fail "starts: (valid: ...) given twice: $ERR" ;;
