@@ -22,113 +22,6 @@
 #define SLIP12_PERIODS 16
 
 
-/* ---- the forced oscillator q'' + w^2 q = F0 + F1 t ------------------- */
-
-/* Coefficients of q(t) = s0 + s1 t + A cos(w t) + B sin(w t). */
-typedef struct {
-  sc_dual s0, s1, A, B, w;
-} osc;
-
-/* The oscillator from q(0) = q0, q'(0) = p0, with the force's constant
- * F0, the drift s1 = F1 / w^2 (a parameter), and rw = 1 / w, rw2 =
- * 1 / w^2 (bk2_dpar): s0 = F0 / w^2, B = (p0 - s1) / w by products. */
-static osc osc_make(sc_dual q0, sc_dual p0, sc_dual F0, sc_dual s1, sc_dual w,
-                    sc_dual rw, sc_dual rw2, int nd) {
-  osc o;
-  o.s0 = sc_dmul(F0, rw2, nd);
-  o.s1 = s1;
-  o.A = sc_dsub(q0, o.s0, nd);
-  o.B = sc_dmul(sc_dsub(p0, o.s1, nd), rw, nd);
-  o.w = w;
-  return o;
-}
-
-/* sin and cos of the dual w t whose values are given (sv, cv): those
- * the root search left at an event (sc_root's cs, sn), in place of libm's
- * (sc_dsincos), with the same derivative parts. */
-static void dsincos_given(sc_dual a, double sv, double cv, int nd, sc_dual *s,
-                          sc_dual *c) {
-  *s = a;
-  *c = a;
-  s->v = sv;
-  c->v = cv;
-  for (int k = 0; k < nd; k++) {
-    s->d[k] = cv * a.d[k];
-    c->d[k] = -sv * a.d[k];
-  }
-}
-
-/* q(t), q'(t) and q''(t) at a plain time t (derivatives at fixed t);
- * cs: NULL, or cos and sin of w t (cs[0], cs[1]) from the root search. */
-static void osc_at(const osc *o, double t, int nd, sc_dual *q, sc_dual *p,
-                   double *acc, const double *cs) {
-  sc_dual wt = sc_dscale(o->w, t, nd), s, c;
-  if (cs) dsincos_given(wt, cs[1], cs[0], nd, &s, &c);
-  else sc_dsincos(wt, nd, &s, &c);
-  sc_dual Ac = sc_dmul(o->A, c, nd), Bs = sc_dmul(o->B, s, nd);
-  *q = sc_dadd(sc_daxpy(o->s0, t, o->s1, nd), sc_dadd(Ac, Bs, nd), nd);
-  *p = sc_dadd(o->s1,
-               sc_dmul(o->w,
-                       sc_dsub(sc_dmul(o->B, c, nd), sc_dmul(o->A, s, nd), nd),
-                       nd),
-               nd);
-  if (acc) *acc = -o->w.v * o->w.v * (Ac.v + Bs.v);
-}
-
-/* Guard pieces: q(t) and q'(t) as c0 + c1 t + a cos + b sin, scaled. */
-static void guard_add_q(sc_guard *g, const osc *o, double scale) {
-  g->c0 += scale * o->s0.v;
-  g->c1 += scale * o->s1.v;
-  g->w[g->n] = o->w.v;
-  g->a[g->n] = scale * o->A.v;
-  g->b[g->n] = scale * o->B.v;
-  g->n++;
-}
-
-static void guard_add_qdot(sc_guard *g, const osc *o, double scale) {
-  double w = o->w.v;
-  g->c0 += scale * o->s1.v;
-  g->w[g->n] = w;
-  g->a[g->n] = scale * w * o->B.v;
-  g->b[g->n] = -scale * w * o->A.v;
-  g->n++;
-}
-
-/* ---- one mode ------------------------------------------------------- */
-
-/* The flow of one slip mode from x0, in closed form. */
-typedef struct {
-  int mode;
-  osc o1, o2;     /* SLIP1/SLIP2: o1 the slipping block; SLIP12: sum, dif */
-  bk2_state x0;
-} mode_flow;
-
-static mode_flow flow_make(const bk2_dpar *P, int mode, const bk2_state *x0) {
-  int nd = P->nd;
-  mode_flow f;
-  f.mode = mode;
-  f.x0 = *x0;
-  if (mode == SC_BK2_SLIP1) {
-    /* Y1'' = mu - (1+alpha) Y1 + alpha (Y20 + Vs t) */
-    f.o1 = osc_make(x0->y1, x0->u1,
-                    sc_dadd(P->k1, sc_dmul(P->alpha, x0->y2, nd), nd), P->s1,
-                    P->w1, P->rw1, P->rw1sq, nd);
-  } else if (mode == SC_BK2_SLIP2) {
-    f.o1 = osc_make(x0->y2, x0->u2,
-                    sc_dadd(P->k2, sc_dmul(P->alpha, x0->y1, nd), nd), P->s1,
-                    P->w1, P->rw1, P->rw1sq, nd);
-  } else {
-    /* Sum'' + Sum = mu (1 + beta), Dif'' + w2^2 Dif = mu (1 - beta) */
-    sc_dual zero = sc_dconst(0, nd), one = sc_dconst(1, nd);
-    f.o1 = osc_make(sc_dadd(x0->y1, x0->y2, nd), sc_dadd(x0->u1, x0->u2, nd),
-                    sc_dadd(P->k1, P->k2, nd), zero, one, one, one, nd);
-    f.o2 = osc_make(sc_dsub(x0->y1, x0->y2, nd), sc_dsub(x0->u1, x0->u2, nd),
-                    sc_dsub(P->k1, P->k2, nd), zero, P->w2, P->rw2, P->rw2sq,
-                    nd);
-  }
-  return f;
-}
-
 /* cos and sin of oscillator k's w t at the root r of a guard of this
  * flow, when the search left them (a guard's term k is oscillator k, the
  * same frequency: guard_restick, guard_threshold): {cos, sin} into
@@ -138,66 +31,6 @@ static const double *event_trig(const sc_root *r, int mode, double *cs) {
   if (!r || r->ntrig < need) return NULL;
   for (int k = 0; k < need; k++) cs[2 * k] = r->cs[k], cs[2 * k + 1] = r->sn[k];
   return cs;
-}
-
-/* State at time t of the mode, and the accelerations (values); r: NULL,
- * or the root at t whose cos and sin the flow takes (event_trig). */
-static void flow_at(const bk2_dpar *P, const mode_flow *f, double t,
-                    bk2_state *x, double acc[2], const sc_root *r) {
-  int nd = P->nd;
-  sc_dual q, p;
-  double a, tb[4];
-  const double *cs = event_trig(r, f->mode, tb);
-  if (f->mode == SC_BK2_SLIP1) {
-    osc_at(&f->o1, t, nd, &q, &p, &a, cs);
-    x->y1 = q, x->u1 = p;
-    x->y2 = sc_daxpy(f->x0.y2, t, P->vs, nd);
-    x->u2 = P->vs;
-    acc[0] = a, acc[1] = 0;
-  } else if (f->mode == SC_BK2_SLIP2) {
-    osc_at(&f->o1, t, nd, &q, &p, &a, cs);
-    x->y2 = q, x->u2 = p;
-    x->y1 = sc_daxpy(f->x0.y1, t, P->vs, nd);
-    x->u1 = P->vs;
-    acc[0] = 0, acc[1] = a;
-  } else {
-    sc_dual q2, p2;
-    double a2;
-    osc_at(&f->o1, t, nd, &q, &p, &a, cs);
-    osc_at(&f->o2, t, nd, &q2, &p2, &a2, cs ? cs + 2 : NULL);
-    x->y1 = sc_dscale(sc_dadd(q, q2, nd), 0.5, nd);
-    x->y2 = sc_dscale(sc_dsub(q, q2, nd), 0.5, nd);
-    x->u1 = sc_dscale(sc_dadd(p, p2, nd), 0.5, nd);
-    x->u2 = sc_dscale(sc_dsub(p, p2, nd), 0.5, nd);
-    acc[0] = 0.5 * (a + a2), acc[1] = 0.5 * (a - a2);
-  }
-}
-
-/* The re-stick guard U_i - Vs of slipping block i (1 or 2). */
-static sc_guard guard_restick(const bk2_dpar *P, const mode_flow *f, int i) {
-  sc_guard g = {0};
-  g.c0 = -P->vs.v;
-  if (f->mode != SC_BK2_SLIP12) {
-    guard_add_qdot(&g, &f->o1, 1);
-  } else {
-    guard_add_qdot(&g, &f->o1, 0.5);
-    guard_add_qdot(&g, &f->o2, i == 1 ? 0.5 : -0.5);
-  }
-  return g;
-}
-
-/* The threshold guard S_j - T_j of the stuck block j while the other
- * slips alone: S_j = (1+alpha)(Yj0 + Vs t) - alpha q(t). */
-static sc_guard guard_threshold(const bk2_dpar *P, const mode_flow *f) {
-  sc_guard g = {0};
-  double a = P->alpha.v;
-  int j = f->mode == SC_BK2_SLIP1 ? 2 : 1;
-  double yj0 = j == 2 ? f->x0.y2.v : f->x0.y1.v;
-  double tj = j == 2 ? P->t2.v : 1;
-  g.c0 = (1 + a) * yj0 - tj;
-  g.c1 = (1 + a) * P->vs.v;
-  guard_add_q(&g, &f->o1, -a);
-  return g;
 }
 
 /* A horizon past which the guard keeps one sign (or its pattern repeats):
@@ -309,23 +142,17 @@ static int guard_maxima(const sc_guard *g, double tend, double atol,
 
 /* The guard of event kind k on duals at fixed time t: its sensitivity to
  * d and the parameters there. */
-static sc_dual guard_dual(const bk2_dpar *P, const mode_flow *f, int kind,
-                          double t) {
-  int nd = P->nd;
+static sc_dual guard_dual(const bk2_dpar *P, const bk2_mode_flow *f,
+                          int kind, double t) {
   bk2_state xs;
   double a2[2];
-  flow_at(P, f, t, &xs, a2, NULL);
-  kind = BK2_GUARD_OF(kind);
-  if (kind == BK2_EV_RESTICK1) return sc_dsub(xs.u1, P->vs, nd);
-  if (kind == BK2_EV_RESTICK2) return sc_dsub(xs.u2, P->vs, nd);
-  if (f->mode == SC_BK2_SLIP1)
-    return sc_dsub(bk2_spring(P, xs.y2, xs.y1), P->t2, nd);
-  return sc_daddc(bk2_spring(P, xs.y1, xs.y2), -1);
+  bk2_flow_at(P, f, t, NULL, &xs, a2);
+  return bk2_guard_value(P, f->mode, kind, &xs);
 }
 
 /* An event time t (root of the guard of kind k, slope g') as a dual:
  * dt = -dg / g' at fixed time. */
-static sc_dual event_time(const bk2_dpar *P, const mode_flow *f, int kind,
+static sc_dual event_time(const bk2_dpar *P, const bk2_mode_flow *f, int kind,
                           double t, double slope) {
   sc_dual g = guard_dual(P, f, kind, t), r = sc_dconst(t, P->nd);
   for (int k = 0; k < P->nd; k++) r.d[k] = slope != 0 ? -g.d[k] / slope : NAN;
@@ -340,7 +167,7 @@ static sc_dual event_time(const bk2_dpar *P, const mode_flow *f, int kind,
  * (crossing-sliding against a threshold, both re-sticks at once against a
  * re-stick).  The threshold gap after a re-stick is added by the caller
  * for exact and numerical flows alike. */
-static void phase_borders(const bk2_dpar *P, const mode_flow *f, int fresh,
+static void phase_borders(const bk2_dpar *P, const bk2_mode_flow *f, int fresh,
                           const sc_guard *g, const int *kind, int ng,
                           int first, int ekind, int atmax, int nbefore,
                           const sc_root *re, double tmax, double atol,
@@ -424,8 +251,8 @@ static void phase_borders(const bk2_dpar *P, const mode_flow *f, int fresh,
  * far above the rounding of the coefficient itself (its constant and
  * cosine terms come from the parameters alone, the same operations in
  * every onset). */
-static inline double build_size(const bk2_dpar *P, double y1, double y2) {
-  return 1 + fabs(y1) + fabs(y2) + fabs(P->k1.v) + fabs(P->k2.v);
+static inline double build_size(const bk2_vpar *P, double y1, double y2) {
+  return 1 + fabs(y1) + fabs(y2) + fabs(P->k1) + fabs(P->k2);
 }
 
 /* Two guards equal up to the rounding of building them from a state:
@@ -442,20 +269,19 @@ static SC_ALWAYS_INLINE int same_guard(const sc_guard *g, const sc_guard *h,
          fabs(g->b[0] - h->b[0]) <= tol + BK2_SAME_GUARD_EPS * h->w[0] * bsize;
 }
 
-static mode_flow flow_make(const bk2_dpar *P, int mode, const bk2_state *x0);
-static sc_guard guard_restick(const bk2_dpar *P, const mode_flow *f, int i);
 static double guard_horizon(const sc_guard *g);
 static double root_window(const sc_guard *g, const sc_root *r);
 
 void sc_bk2_first_restick(bk2_inst *b) {
   for (int i = 1; i <= 2; i++) {
-    bk2_state x;
+    bk2_vstate x;
     /* an onset of block i: any d on its side of d* */
     double d = i == 1 ? b->dstar - 1e-6 : b->dstar + 1e-6;
-    int mode = sc_bk2_onset(b, &b->p0, sc_dconst(d, 0), &x);
-    mode_flow f = flow_make(&b->p0, mode, &x);
-    b->first_g[i - 1] = guard_restick(&b->p0, &f, i);
-    b->first_bsize[i - 1] = build_size(&b->p0, x.y1.v, x.y2.v);
+    int mode = BK2_ONSET_MODE(d, b->dstar);
+    bk2v_onset_state(&b->pv, d, mode, &x);
+    bk2v_mode_flow f = bk2v_flow_make(&b->pv, mode, &x);
+    bk2v_guard_restick(&b->pv, &f, i, &b->first_g[i - 1]);
+    b->first_bsize[i - 1] = build_size(&b->pv, x.y1, x.y2);
     b->first_r[i - 1].ntrig = 0;
     b->first_ok[i - 1] =
         mode == i &&
@@ -552,54 +378,6 @@ static double phase_horizon(const sc_guard *g, int ng) {
   return tmax;
 }
 
-/* The candidate events of a phase of `mode`, in the order they are
- * searched (kinds: 1, 2 re-stick of block i; 3 threshold of the stuck
- * block): later guards are searched only up to the earliest root so far,
- * so the likelier first event goes first: in SLIP12, the block that has
- * slipped longer (not fresh); there the two are searched together
- * (first_event()) and the order only breaks exact ties of the roots'
- * times (and orders guards that do not pair).  Returns their number.
- * The dual and the value-only phases share it. */
-static int phase_kinds(int mode, int fresh, int kind[2]) {
-  int ng = 0;
-  int order[2] = {1, 2};
-  if (mode == SC_BK2_SLIP12 && (fresh & 1) && !(fresh & 2))
-    order[0] = 2, order[1] = 1;
-  for (int k = 0; k < 2; k++)
-    if (mode == order[k] || mode == SC_BK2_SLIP12) kind[ng++] = order[k];
-  if (mode != SC_BK2_SLIP12) kind[ng++] = BK2_EV_THRESHOLD;
-  return ng;
-}
-
-/* g and g' at t = 0, as sc_guard_eval(g, 0, ...) computes them, with the
- * same operations in the same order (so bit for bit the same), but with
- * sin(w 0) = w 0 (a signed zero) and cos(w 0) = 1 written out in place of
- * two libm calls a term: every phase takes them once or twice.  A
- * frequency that is not finite goes to sc_guard_eval (its NaNs). */
-static void guard_at_zero(const sc_guard *g, double *g0, double *g1) {
-  double v = g->c0 + g->c1 * 0.0, d1 = g->c1;
-  for (int k = 0; k < g->n; k++) {
-    double w = g->w[k], s = w * 0.0, c = 1.0;
-    if (!isfinite(w)) {
-      sc_guard_eval(g, 0, g0, g1, NULL);
-      return;
-    }
-    v += g->a[k] * c + g->b[k] * s;
-    d1 += w * (g->b[k] * c - g->a[k] * s);
-  }
-  *g0 = v, *g1 = d1;
-}
-
-/* The stuck block's threshold guard at the onset of a slip from a GSP:
- * its value at 0 as the onset formula gives it, (1 + 2 alpha)(d - d*) up
- * to sign, not as rounding builds it from the state (next to d* the sign
- * can flip, and the other block's trigger be missed). */
-static void set_onset_gap(sc_guard *g, double gap) {
-  double g0, g1;
-  guard_at_zero(g, &g0, &g1);
-  g->c0 += gap - g0;
-}
-
 /* A re-stick guard U_i - Vs that starts within rounding of zero and
  * falls: block i began to slip just before this phase (U_i = Vs within
  * the rounding of the state, ~ eps V, and moving away from it), so the
@@ -614,7 +392,7 @@ static void set_onset_gap(sc_guard *g, double gap) {
 #define START_ROUND_ULPS 64.0
 static SC_ALWAYS_INLINE int falls_from_zero(const sc_guard *g) {
   double g0, g1, size = fabs(g->c0), wsize = fabs(g->c1);
-  guard_at_zero(g, &g0, &g1);
+  bk2_guard_at_zero(g, &g0, &g1);
   for (int k = 0; k < g->n; k++) {
     size += fabs(g->a[k]) + fabs(g->b[k]);
     wsize += g->w[k] * (fabs(g->a[k]) + fabs(g->b[k]));
@@ -719,7 +497,7 @@ static SC_ALWAYS_INLINE int first_event(const bk2_inst *b, int mode, int fresh,
     if (skip && mode != SC_BK2_SLIP12 && b->first_ok[kind[i] - 1] &&
         (first < 0 || b->first_r[kind[i] - 1].t <= lim) &&
         same_guard(&g[i], &b->first_g[kind[i] - 1],
-                   (fresh & kind[i]) ? build_size(&b->p0, y1, y2) +
+                   (fresh & kind[i]) ? build_size(&b->pv, y1, y2) +
                                            b->first_bsize[kind[i] - 1]
                                      : 0)) {
       /* the slip from a GSP: d-free, and so is the root's window (the
@@ -762,6 +540,68 @@ static SC_ALWAYS_INLINE int first_event(const bk2_inst *b, int mode, int fresh,
   return first;
 }
 
+/* The end of a phase that follows the code `force` (its two bytes: the
+ * event kind, and the local maxima of its guard to pass): the forced
+ * guard's first rise through zero after its first `skip` local maxima,
+ * or its (skip + 1)-th maximum (BK2_EV_ATMAX, *atmaxp set); the other
+ * guards are not taken.  Returns the index of the guard in g (its root
+ * in r), or a negative status; *bothp: the code ends the slip of both
+ * blocks. */
+static int forced_event(const bk2_inst *b, int mode, int fresh,
+                        const sc_guard *g, const int *kind, int ng,
+                        double tmax, const unsigned char *force, sc_root *r,
+                        int *bothp, int *atmaxp, long *steps, sc_msg *msg) {
+  double atol = b->acc.event_atol, rtol = b->acc.event_rtol;
+  int want = force[0] & ~BK2_EV_ATMAX, skip = force[1], first = -1;
+  int atmax = *atmaxp = (force[0] & BK2_EV_ATMAX) != 0;
+  int gk = BK2_GUARD_OF(want);
+  for (int i = 0; i < ng; i++)
+    if (kind[i] == gk) first = i;
+  if (first < 0 || (BK2_IS_BOTH(want) && mode != SC_BK2_SLIP12))
+    return sc_fail(msg, SC_EINVAL,
+                   "bk2: the forced itinerary code does not fit slip mode "
+                   "%s (event %d)",
+                   bk2_mode_name(mode), want);
+  double ts = 0, tb, gb;
+  int sk = kind[first] < 3 && (fresh & kind[first]);
+  if (atmax) {
+    /* end at the guard's (skip + 1)-th maximum: a grazing's system */
+    int nm = kind[first] < 3 ? guard_maxima(&g[first], tmax, atol, rtol,
+                                            skip + 1, &ts, &tb, &gb)
+                             : -1;
+    if (nm < skip + 1)
+      return sc_fail(msg, SC_EUNDEF,
+                     "bk2: the forced grazing event of slip mode %s needs "
+                     "%d maxima of its guard, found %d",
+                     bk2_mode_name(mode), skip + 1, nm);
+    double g2;
+    sc_guard_eval(&g[first], ts, NULL, NULL, &g2);
+    r[first] = (sc_root){.found = 1, .t = ts, .slope = g2};
+  } else if (skip > 0) {
+    int nm = guard_maxima(&g[first], tmax, atol, rtol, skip, &ts, &tb, &gb);
+    if (nm < skip)
+      return sc_fail(msg, SC_EUNDEF,
+                     "bk2: the forced event of slip mode %s needs %d "
+                     "maxima of its guard, found %d",
+                     bk2_mode_name(mode), skip, nm);
+    sk = 0;
+  }
+  int st = atmax ? 1
+                 : upward_root(&g[first], ts, tmax, sk, atol, rtol,
+                               &r[first]);
+  if (st < 0)
+    return sc_fail(msg, SC_EINTERNAL,
+                   "bk2: malformed guard in mode %d", mode);
+  if (st == 0)
+    return sc_fail(msg, SC_EUNDEF,
+                   "bk2: the forced event (%s reaching zero) does not "
+                   "occur in slip mode %s within %.6g time units",
+                   bk2_guard_text(kind[first]), bk2_mode_name(mode), tmax);
+  *steps += r[first].steps;
+  *bothp = BK2_IS_BOTH(want);
+  return first;
+}
+
 /* One slip phase with exact flows: find its end (the first event, or the
  * event the code forces), the next mode, and the state there.  `fresh`
  * bit i-1: block i started slipping at this phase's start (U_i = Vs by
@@ -770,78 +610,20 @@ static SC_ALWAYS_INLINE int first_event(const bk2_inst *b, int mode, int fresh,
 static int exact_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
                        int fresh, bk2_state *x, double *duration,
                        bk2_events *ev, sc_msg *msg) {
-  mode_flow f = flow_make(P, mode, x);
-  const sc_accuracy *acc = &b->acc;
-  double atol = acc->event_atol, rtol = acc->event_rtol;
-  /* Candidate events: re-stick of each slipping block, threshold of the
-   * stuck one. */
+  bk2_mode_flow f = bk2_flow_make(P, mode, x);
+  double atol = b->acc.event_atol, rtol = b->acc.event_rtol;
+  double onset_gap = ev->onset ? ev->onset_gap : NAN;
   sc_guard g[2];
-  int kind[2], ng = phase_kinds(mode, fresh, kind);
-  for (int i = 0; i < ng; i++) {
-    g[i] = kind[i] < 3 ? guard_restick(P, &f, kind[i])
-                       : guard_threshold(P, &f);
-    if (kind[i] == BK2_EV_THRESHOLD && ev->onset)
-      set_onset_gap(&g[i], ev->onset_gap);
-  }
+  int kind[2], ng = bk2_phase_guards(P, &f, fresh, onset_gap, g, kind);
   sc_root r[2];
   double tmax = phase_horizon(g, ng);
-  int first = -1, both = 0, atmax = 0;
-  if (!ev->force) {
-    first = first_event(
-        b, mode, fresh, g, kind, ng, tmax, ev->onset ? ev->onset_gap : NAN,
-        x->y1.v, x->y2.v, r, &both, &ev->steps, msg);
-    if (first < 0) return first;
-  } else {
-    /* Follow the code: the forced guard's first rise through zero after
-     * its first `skip` local maxima; the other guards are not taken. */
-    int want = ev->force[0] & ~BK2_EV_ATMAX, skip = ev->force[1];
-    atmax = (ev->force[0] & BK2_EV_ATMAX) != 0;
-    int gk = BK2_GUARD_OF(want);
-    for (int i = 0; i < ng; i++)
-      if (kind[i] == gk) first = i;
-    if (first < 0 || (BK2_IS_BOTH(want) && mode != SC_BK2_SLIP12))
-      return sc_fail(msg, SC_EINVAL,
-                     "bk2: the forced itinerary code does not fit slip mode "
-                     "%s (event %d)",
-                     bk2_mode_name(mode), want);
-    double ts = 0, tb, gb;
-    int sk = kind[first] < 3 && (fresh & kind[first]);
-    if (atmax) {
-      /* end at the guard's (skip + 1)-th maximum: a grazing's system */
-      int nm = kind[first] < 3 ? guard_maxima(&g[first], tmax, atol, rtol,
-                                              skip + 1, &ts, &tb, &gb)
-                               : -1;
-      if (nm < skip + 1)
-        return sc_fail(msg, SC_EUNDEF,
-                       "bk2: the forced grazing event of slip mode %s needs "
-                       "%d maxima of its guard, found %d",
-                       bk2_mode_name(mode), skip + 1, nm);
-      double g2;
-      sc_guard_eval(&g[first], ts, NULL, NULL, &g2);
-      r[first] = (sc_root){.found = 1, .t = ts, .slope = g2};
-    } else if (skip > 0) {
-      int nm = guard_maxima(&g[first], tmax, atol, rtol, skip, &ts, &tb, &gb);
-      if (nm < skip)
-        return sc_fail(msg, SC_EUNDEF,
-                       "bk2: the forced event of slip mode %s needs %d "
-                       "maxima of its guard, found %d",
-                       bk2_mode_name(mode), skip, nm);
-      sk = 0;
-    }
-    int st = atmax ? 1
-                   : upward_root(&g[first], ts, tmax, sk, atol, rtol,
-                                 &r[first]);
-    if (st < 0)
-      return sc_fail(msg, SC_EINTERNAL,
-                     "bk2: malformed guard in mode %d", mode);
-    if (st == 0)
-      return sc_fail(msg, SC_EUNDEF,
-                     "bk2: the forced event (%s reaching zero) does not "
-                     "occur in slip mode %s within %.6g time units",
-                     bk2_guard_text(kind[first]), bk2_mode_name(mode), tmax);
-    ev->steps += r[first].steps;
-    both = BK2_IS_BOTH(want);
-  }
+  int both = 0, atmax = 0;
+  int first = !ev->force
+                  ? first_event(b, mode, fresh, g, kind, ng, tmax, onset_gap,
+                                x->y1.v, x->y2.v, r, &both, &ev->steps, msg)
+                  : forced_event(b, mode, fresh, g, kind, ng, tmax, ev->force,
+                                 r, &both, &atmax, &ev->steps, msg);
+  if (first < 0) return first;
   double t = r[first].t;
   int ekind = !both ? kind[first]
               : kind[first] == BK2_EV_RESTICK1 ? BK2_EV_BOTH
@@ -863,8 +645,8 @@ static int exact_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
   if (ev->borders)
     phase_borders(P, &f, fresh, g, kind, ng, first, ekind, atmax, nbefore,
                   &r[first], tmax, atol, rtol, ev);
-  double a2[2];
-  flow_at(P, &f, t, x, a2, &r[first]);
+  double a2[2], tb[4];
+  bk2_flow_at(P, &f, t, event_trig(&r[first], mode, tb), x, a2);
   *duration = t;
   if (r[first].tangent) ev->tangent = 1;
   return atmax ? sc_bk2_take_event_at_max(P, mode, kind[first],
@@ -877,178 +659,37 @@ static int exact_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
  * charts, shooting residuals) with exact flows, no forced code and no
  * borders, on plain doubles.  The dual path with nd = 0 computes the same
  * numbers (its loops over directions are empty) but passes 48-byte duals
- * by value through every flow operation.  Every value here is computed by
- * the same operations in the same order as the dual path's .v parts, so
- * the two give bit-identical f and itineraries (tests/test_bk2_value.c
- * checks it); the events, ties and messages are those of exact_phase(). */
+ * by value through every flow operation.  The flows are bk2_flow.h's on
+ * doubles, the events first_event()'s: the same operations in the same
+ * order as the dual path's .v parts, so the two give bit-identical f and
+ * itineraries (tests/test_bk2_value.c checks it). */
 
-/* q(t) = s0 + s1 t + A cos(w t) + B sin(w t), as osc on values. */
-typedef struct {
-  double s0, s1, A, B, w;
-} vosc;
-
-static inline vosc vosc_make(double q0, double p0, double F0, double s1,
-                             double w, double rw, double rw2) {
-  vosc o;
-  o.s0 = F0 * rw2;
-  o.s1 = s1;
-  o.A = q0 - o.s0;
-  o.B = (p0 - o.s1) * rw;
-  o.w = w;
-  return o;
-}
-
-static inline void vosc_at(const vosc *o, double t, const double *cs,
-                           double *q, double *p) {
-  double wt = o->w * t, s, c;
-  if (cs) c = cs[0], s = cs[1];
-  else s = sin(wt), c = cos(wt);
-  double Ac = o->A * c, Bs = o->B * s;
-  *q = (o->s0 + t * o->s1) + (Ac + Bs);
-  *p = o->s1 + o->w * (o->B * c - o->A * s);
-}
-
-/* Positions and velocities on values. */
-typedef struct {
-  double y1, y2, u1, u2;
-} vstate;
-
-typedef struct {
-  int mode;
-  vosc o1, o2;
-  vstate x0;
-} vflow;
-
-static inline vflow vflow_make(const bk2_dpar *P, int mode, const vstate *x0) {
-  vflow f;
-  f.mode = mode;
-  f.x0 = *x0;
-  double al = P->alpha.v;
-  if (mode == SC_BK2_SLIP1) {
-    f.o1 = vosc_make(x0->y1, x0->u1, P->k1.v + al * x0->y2, P->s1.v,
-                     P->w1.v, P->rw1.v, P->rw1sq.v);
-  } else if (mode == SC_BK2_SLIP2) {
-    f.o1 = vosc_make(x0->y2, x0->u2, P->k2.v + al * x0->y1, P->s1.v,
-                     P->w1.v, P->rw1.v, P->rw1sq.v);
-  } else {
-    f.o1 = vosc_make(x0->y1 + x0->y2, x0->u1 + x0->u2, P->k1.v + P->k2.v, 0,
-                     1, 1, 1);
-    f.o2 = vosc_make(x0->y1 - x0->y2, x0->u1 - x0->u2, P->k1.v - P->k2.v, 0,
-                     P->w2.v, P->rw2.v, P->rw2sq.v);
-  }
-  return f;
-}
-
-static inline void vflow_at(const bk2_dpar *P, const vflow *f, double t,
-                            const sc_root *r, vstate *x) {
-  double q, p, tb[4];
-  const double *cs = event_trig(r, f->mode, tb);
-  vosc_at(&f->o1, t, cs, &q, &p);
-  if (f->mode == SC_BK2_SLIP1) {
-    x->y1 = q, x->u1 = p;
-    x->y2 = f->x0.y2 + t * P->vs.v;
-    x->u2 = P->vs.v;
-  } else if (f->mode == SC_BK2_SLIP2) {
-    x->y2 = q, x->u2 = p;
-    x->y1 = f->x0.y1 + t * P->vs.v;
-    x->u1 = P->vs.v;
-  } else {
-    double q2, p2;
-    vosc_at(&f->o2, t, cs ? cs + 2 : NULL, &q2, &p2);
-    x->y1 = (q + q2) * 0.5;
-    x->y2 = (q - q2) * 0.5;
-    x->u1 = (p + p2) * 0.5;
-    x->u2 = (p - p2) * 0.5;
-  }
-}
-
-static inline void vguard_add_q(sc_guard *g, const vosc *o, double scale) {
-  g->c0 += scale * o->s0;
-  g->c1 += scale * o->s1;
-  g->w[g->n] = o->w;
-  g->a[g->n] = scale * o->A;
-  g->b[g->n] = scale * o->B;
-  g->n++;
-}
-
-static inline void vguard_add_qdot(sc_guard *g, const vosc *o, double scale) {
-  double w = o->w;
-  g->c0 += scale * o->s1;
-  g->w[g->n] = w;
-  g->a[g->n] = scale * w * o->B;
-  g->b[g->n] = -scale * w * o->A;
-  g->n++;
-}
-
-/* The guards are built in place, and only their first n terms are set
- * (all that is ever read of them): zeroing and copying the whole struct
- * cost more than building it. */
-static inline void vguard_restick(const bk2_dpar *P, const vflow *f, int i,
-                                  sc_guard *g) {
-  g->c0 = -P->vs.v;
-  g->c1 = 0;
-  g->n = 0;
-  if (f->mode != SC_BK2_SLIP12) {
-    vguard_add_qdot(g, &f->o1, 1);
-  } else {
-    vguard_add_qdot(g, &f->o1, 0.5);
-    vguard_add_qdot(g, &f->o2, i == 1 ? 0.5 : -0.5);
-  }
-}
-
-static inline void vguard_threshold(const bk2_dpar *P, const vflow *f,
-                                    sc_guard *g) {
-  double a = P->alpha.v;
-  int j = f->mode == SC_BK2_SLIP1 ? 2 : 1;
-  double yj0 = j == 2 ? f->x0.y2 : f->x0.y1;
-  double tj = j == 2 ? P->t2.v : 1;
-  g->c0 = (1 + a) * yj0 - tj;
-  g->c1 = (1 + a) * P->vs.v;
-  g->n = 0;
-  vguard_add_q(g, &f->o1, -a);
-}
-
-/* exact_phase() without a forced code, code bytes or borders, on values. */
-static int value_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
-                       int fresh, double onset_gap, vstate *x, sc_msg *msg) {
-  vflow f = vflow_make(P, mode, x);
+/* exact_phase() without a forced code, code bytes or borders. */
+static int value_phase(const bk2_inst *b, const bk2_vpar *P, int mode,
+                       int fresh, double onset_gap, bk2_vstate *x,
+                       sc_msg *msg) {
+  bk2v_mode_flow f = bk2v_flow_make(P, mode, x);
   sc_guard g[2];
-  int kind[2], ng = phase_kinds(mode, fresh, kind);
-  for (int i = 0; i < ng; i++) {
-    if (kind[i] < 3) vguard_restick(P, &f, kind[i], &g[i]);
-    else vguard_threshold(P, &f, &g[i]);
-    if (kind[i] == BK2_EV_THRESHOLD && !isnan(onset_gap))
-      set_onset_gap(&g[i], onset_gap);
-  }
+  int kind[2], ng = bk2v_phase_guards(P, &f, fresh, onset_gap, g, kind);
   sc_root r[2];
   int both = 0;
   long steps = 0;
   int first = first_event(b, mode, fresh, g, kind, ng, NAN, onset_gap,
                           x->y1, x->y2, r, &both, &steps, msg);
   if (first < 0) return first;
-  vflow_at(P, &f, r[first].t, &r[first], x);
-  int next = bk2_next_mode(mode, both ? BK2_EV_BOTH : kind[first]),
-      stuck = bk2_stuck_blocks(mode, next);
-  if (stuck & 1) x->u1 = P->vs.v;
-  if (stuck & 2) x->u2 = P->vs.v;
-  return next;
+  double acc[2], tb[4];
+  bk2v_flow_at(P, &f, r[first].t, event_trig(&r[first], mode, tb), x, acc);
+  return bk2v_stick(P, mode, both ? BK2_EV_BOTH : kind[first], x);
 }
 
 /* sc_bk2_iterate() on values (exact flows, no force, no code, no
  * borders, no phase callback). */
 static int value_iterate(const bk2_inst *b, double d, unsigned flags,
                          sc_map_value *out, sc_msg *msg) {
-  const bk2_dpar *P = &b->p0;
-  vstate x;
+  const bk2_vpar *P = &b->pv;
+  bk2_vstate x;
   int mode = BK2_ONSET_MODE(d, b->dstar);
-  if (mode == SC_BK2_SLIP1) {
-    x.y1 = P->alpha.v * d + 1;
-    x.y2 = x.y1 + d;
-  } else {
-    x.y2 = P->beta.v - P->alpha.v * d;
-    x.y1 = x.y2 - d;
-  }
-  x.u1 = x.u2 = P->vs.v;
+  bk2v_onset_state(P, d, mode, &x);
   int fresh = bk2_fresh_blocks(SC_BK2_STICK, mode), first_mode = mode;
   size_t ilen = 0;
   out->itinerary[0] = '\0';
@@ -1087,13 +728,13 @@ static void exact_release(bk2_inst *b) { (void)b; }
 static int exact_sample(const bk2_inst *b, const bk2_dpar *P, int mode,
                         const bk2_state *x0, double dur, bk2_traj *c) {
   (void)b;
-  mode_flow f = flow_make(P, mode, x0);
+  bk2_mode_flow f = bk2_flow_make(P, mode, x0);
   double a2[2];
   bk2_state x;
   long n = (long)floor(dur / c->dtau);
   for (long i = 0; i <= n + 1; i++) {
     double t = i <= n ? i * c->dtau : dur;
-    flow_at(P, &f, t, &x, a2, NULL);
+    bk2_flow_at(P, &f, t, NULL, &x, a2);
     double s[4] = {x.y1.v, x.y2.v, x.u1.v, x.u2.v};
     if (bk2_traj_emit(c, t, s, mode)) return SC_ECALLBACK;
   }
@@ -1116,3 +757,4 @@ const bk2_flows sc_bk2_flows_exact = {
     .precision = exact_precision,
     .value = value_iterate,
 };
+

@@ -1,6 +1,5 @@
-/* The rules of the bk2 model that every flow obeys (bk2_impl.h): the
- * onset of a slip from a global stick phase, what an event does to the
- * state and to its sensitivities, and how borders and itineraries are
+/* The rules of the bk2 model that every flow obeys (bk2_impl.h): what an
+ * event does to the state and to its sensitivities, and how borders are
  * recorded.  The derivations are in docs/derivations.md. */
 #include <math.h>
 #include <string.h>
@@ -29,23 +28,10 @@ void sc_bk2_event_shift(const bk2_dpar *P, sc_dual gval, double slope,
 
 int sc_bk2_take_event(const bk2_dpar *P, int mode, int kind, double slope,
                       const double acc[2], bk2_state *x) {
-  int nd = P->nd;
-  if (nd) {
-    /* the guard on duals at fixed time: its sensitivity moves the event */
-    sc_dual gv;
-    int gk = BK2_GUARD_OF(kind);
-    if (gk == BK2_EV_RESTICK1) gv = sc_dsub(x->u1, P->vs, nd);
-    else if (gk == BK2_EV_RESTICK2) gv = sc_dsub(x->u2, P->vs, nd);
-    else if (mode == SC_BK2_SLIP1)
-      gv = sc_dsub(bk2_spring(P, x->y2, x->y1), P->t2, nd);
-    else
-      gv = sc_daddc(bk2_spring(P, x->y1, x->y2), -1);
-    sc_bk2_event_shift(P, gv, slope, acc, x);
-  }
-  int next = bk2_next_mode(mode, kind), stuck = bk2_stuck_blocks(mode, next);
-  if (stuck & 1) x->u1 = P->vs;
-  if (stuck & 2) x->u2 = P->vs;
-  return next;
+  /* the guard on duals at fixed time: its sensitivity moves the event */
+  if (P->nd)
+    sc_bk2_event_shift(P, bk2_guard_value(P, mode, kind, x), slope, acc, x);
+  return bk2_stick(P, mode, kind, x);
 }
 
 int sc_bk2_take_event_at_max(const bk2_dpar *P, int mode, int kind,
@@ -57,9 +43,7 @@ int sc_bk2_take_event_at_max(const bk2_dpar *P, int mode, int kind,
                    ? sc_dsub(P->k1, bk2_spring(P, x->y1, x->y2), nd)
                    : sc_dsub(P->k2, bk2_spring(P, x->y2, x->y1), nd);
   sc_bk2_event_shift(P, gp, g2, acc, x);
-  bk2_dpar P0 = *P;
-  P0.nd = 0; /* shifted already */
-  return sc_bk2_take_event(&P0, mode, kind, g2, acc, x);
+  return bk2_stick(P, mode, kind, x);
 }
 
 void sc_bk2_patch(bk2_events *ev, int c0, int c1, int drop_next) {
@@ -70,28 +54,6 @@ void sc_bk2_patch(bk2_events *ev, int c0, int c1, int drop_next) {
   ev->patch[ev->npatch].c1 = (unsigned char)c1;
   ev->patch[ev->npatch].drop_next = drop_next;
   ev->npatch++;
-}
-
-/* ---- the onset of a slip ------------------------------------------------ */
-
-void sc_bk2_onset_state(const bk2_dpar *P, sc_dual d, int mode,
-                        bk2_state *x) {
-  int nd = P->nd;
-  if (bk2_onset_block(mode) == 1) {
-    x->y1 = sc_daddc(sc_dmul(P->alpha, d, nd), 1);
-    x->y2 = sc_dadd(x->y1, d, nd);
-  } else {
-    x->y2 = sc_dsub(P->beta, sc_dmul(P->alpha, d, nd), nd);
-    x->y1 = sc_dsub(x->y2, d, nd);
-  }
-  x->u1 = x->u2 = P->vs;
-}
-
-int sc_bk2_onset(const bk2_inst *b, const bk2_dpar *P, sc_dual d,
-                 bk2_state *x) {
-  int mode = BK2_ONSET_MODE(d.v, b->dstar);
-  sc_bk2_onset_state(P, d, mode, x);
-  return mode;
 }
 
 /* ---- borders ------------------------------------------------------------ */

@@ -37,15 +37,38 @@ typedef struct bk2_flows bk2_flows;
 /* Parameters: alpha, beta, phi, v, gamma (velocity weakening only). */
 #define BK2_NPARAM 5
 
+/* The fields of the parameter and state types, for any number type T
+ * (bk2_flow.h): the parameters, the kinetic forces K_i and the threshold
+ * T_2 (T_1 = 1), the driver's and a stuck block's velocities V and V_s,
+ * the frequencies w1 = sqrt(1 + alpha), w2 = sqrt(1 + 2 alpha), their
+ * inverses and inverse squares, and the drift s1 = alpha V_s / w1^2 of a
+ * single block's slip (the flows multiply by these: a division on every
+ * phase's chain from its start state to its guards, otherwise). */
+#define BK2_PAR_FIELDS(T)                                                      \
+  T alpha, beta, mu, k1, k2, t2, v, vs, w1, w2;                                \
+  T rw1, rw1sq, rw2, rw2sq, s1
+/* Positions and velocities of the two blocks. */
+#define BK2_STATE_FIELDS(T) T y1, y2, u1, u2
+
 /* Parameters as duals: direction 0 is d, 1..4 are alpha, beta, phi, v. */
 typedef struct {
   int nd;
-  sc_dual alpha, beta, mu, k1, k2, t2, v, vs, w1, w2;
-  /* 1 / w and 1 / w^2 of both frequencies, and the drift alpha Vs / w1^2
-   * of a single block's slip: the flows multiply by them (a division on
-   * every phase's chain from its start state to its guards, otherwise) */
-  sc_dual rw1, rw1sq, rw2, rw2sq, s1;
+  BK2_PAR_FIELDS(sc_dual);
 } bk2_dpar;
+
+/* The state on duals. */
+typedef struct {
+  BK2_STATE_FIELDS(sc_dual);
+} bk2_state;
+
+/* Parameters and state on plain doubles (the value-only path). */
+typedef struct {
+  BK2_PAR_FIELDS(double);
+} bk2_vpar;
+
+typedef struct {
+  BK2_STATE_FIELDS(double);
+} bk2_vstate;
 
 typedef struct {
   double alpha, beta, phi, v, gamma;
@@ -60,6 +83,7 @@ typedef struct {
   int unresolved;
   bk2_num *num;                 /* owned; NULL for exact flows */
   bk2_dpar p0;                  /* the parameters without derivatives */
+  bk2_vpar pv;                  /* the same on plain doubles */
   /* The first-root search of the exact flows: sc_guard_first_root, set
    * by bk2_setup; tests put a frozen earlier search here to check that a
    * faster one changes nothing but speed (tests/test_map_equiv.c). */
@@ -94,16 +118,82 @@ static inline int bk2_nd(const bk2_inst *b) {
 }
 
 
-/* Positions and velocities of the two blocks. */
-typedef struct {
-  sc_dual y1, y2, u1, u2;
-} bk2_state;
-
-/* Spring force S_a = (1 + alpha) Y_a - alpha Y_b on block a. */
-static inline sc_dual bk2_spring(const bk2_dpar *P, sc_dual ya, sc_dual yb) {
-  int nd = P->nd;
-  return sc_dadd(ya, sc_dmul(P->alpha, sc_dsub(ya, yb, nd), nd), nd);
+/* sin and cos of the dual a whose values are given (sv, cv): those the
+ * root search left at an event, in place of libm's (sc_dsincos), with
+ * the same derivative parts. */
+static inline void bk2_dsincos_at(sc_dual a, double sv, double cv, int nd,
+                                  sc_dual *s, sc_dual *c) {
+  *s = a;
+  *c = a;
+  s->v = sv;
+  c->v = cv;
+  for (int k = 0; k < nd; k++) {
+    s->d[k] = cv * a.d[k];
+    c->d[k] = -sv * a.d[k];
+  }
 }
+
+/* The closed-form physics on duals: bk2_load_params, bk2_onset_state,
+ * bk2_spring, bk2_guard_value, bk2_stick, bk2_flow_make, bk2_flow_at,
+ * bk2_phase_guards, ... (bk2_flow.h). */
+#define BK2_FN(name) bk2_##name
+#define BK2_NUM sc_dual
+#define BK2_TIME double
+#define BK2_ACC double
+#define BK2_PAR bk2_dpar
+#define BK2_STATE bk2_state
+#define BK2_ND(P) ((P)->nd)
+#define BK2_SET_ND(P, n) ((P)->nd = (n))
+#define N_CONST(c) sc_dconst(c, nd)
+#define N_VAR(x, dir) sc_dvar(x, dir, nd)
+#define N_VAL(a) ((a).v)
+#define N_ADD(a, b) sc_dadd(a, b, nd)
+#define N_SUB(a, b) sc_dsub(a, b, nd)
+#define N_MUL(a, b) sc_dmul(a, b, nd)
+#define N_SCALE(a, s) sc_dscale(a, s, nd)
+#define N_ADDC(a, c) sc_daddc(a, c)
+#define N_INV(a) sc_ddiv(sc_dconst(1, nd), a, nd)
+#define N_SQRT(a) sc_dsqrt(a, nd)
+#define N_TMUL(a, t) sc_dscale(a, t, nd)
+#define N_TAXPY(a, t, b) sc_daxpy(a, t, b, nd)
+#define N_SINCOS(a, s, c) sc_dsincos(a, nd, s, c)
+#define N_SINCOS_AT(a, sv, cv, s, c) bk2_dsincos_at(a, sv, cv, nd, s, c)
+#define N_ACC(w, q) (-(w).v * (w).v * (q).v)
+#define A_ZERO 0
+#define A_ADD(a, b) ((a) + (b))
+#define A_SUB(a, b) ((a) - (b))
+#define A_SCALE(a, s) ((s) * (a))
+#include "models/bk2_flow.h"
+
+/* The same on plain doubles: bk2v_load_params, bk2v_flow_make, ... */
+#define BK2_FN(name) bk2v_##name
+#define BK2_NUM double
+#define BK2_TIME double
+#define BK2_ACC double
+#define BK2_PAR bk2_vpar
+#define BK2_STATE bk2_vstate
+#define BK2_ND(P) 0
+#define BK2_SET_ND(P, n) ((void)(P))
+#define N_CONST(c) ((double)(c))
+#define N_VAR(x, dir) (x)
+#define N_VAL(a) (a)
+#define N_ADD(a, b) ((a) + (b))
+#define N_SUB(a, b) ((a) - (b))
+#define N_MUL(a, b) ((a) * (b))
+#define N_SCALE(a, s) ((a) * (s))
+#define N_ADDC(a, c) ((a) + (c))
+#define N_INV(a) (1 / (a))
+#define N_SQRT(a) sqrt(a)
+#define N_TMUL(a, t) ((a) * (t))
+#define N_TAXPY(a, t, b) ((a) + (t) * (b))
+#define N_SINCOS(a, s, c) (*(s) = sin(a), *(c) = cos(a))
+#define N_SINCOS_AT(a, sv, cv, s, c) (*(s) = (sv), *(c) = (cv))
+#define N_ACC(w, q) (-(w) * (w) * (q))
+#define A_ZERO 0
+#define A_ADD(a, b) ((a) + (b))
+#define A_SUB(a, b) ((a) - (b))
+#define A_SCALE(a, s) ((s) * (a))
+#include "models/bk2_flow.h"
 
 /* What one slip phase is asked to do and what it reveals.  In: `force`
  * (NULL: take the first event) is the phase's two code bytes, the ending
@@ -158,16 +248,9 @@ int sc_bk2_slip_cycle(const bk2_inst *b, sc_msg *msg);
 typedef int (*bk2_phase_fn)(void *ctx, int mode, const bk2_state *x0,
                             double duration);
 
-void sc_bk2_dparams(const bk2_inst *b, int nd, bk2_dpar *P);
 /* Fill first_g, first_r, first_ok with b->search (again after changing
  * the search). */
 void sc_bk2_first_restick(bk2_inst *b);
-/* The onset state of a slip of `mode` from the GSP of displacement d. */
-void sc_bk2_onset_state(const bk2_dpar *P, sc_dual d, int mode,
-                        bk2_state *x);
-/* The onset mode of d (BK2_ONSET_MODE) and its state. */
-int sc_bk2_onset(const bk2_inst *b, const bk2_dpar *P, sc_dual d,
-                 bk2_state *x);
 void sc_bk2_event_shift(const bk2_dpar *P, sc_dual gval, double slope,
                         const double acc[2], bk2_state *x);
 /* Take the event `kind` (bk2_rules.h: a re-stick, a threshold, or both

@@ -79,7 +79,8 @@ static int bk2_setup(void *vinst, const double *p, const int *opt,
   b->w2 = sqrt(1 + 2 * b->alpha);
   b->vs = b->frozen ? 0 : b->v;
   b->dstar = sc_bk2_dstar(b->alpha, b->beta);
-  sc_bk2_dparams(b, 0, &b->p0); /* value-only evaluations start from it */
+  bk2_load_params(b, 0, &b->p0);
+  bk2v_load_params(b, 0, &b->pv); /* value-only evaluations start from it */
   b->search = sc_guard_first_root;
   b->search_pair = sc_guard_first_root_pair;
   if (b->v > 0 && b->v < DBL_MIN)
@@ -108,30 +109,6 @@ static void bk2_release(void *vinst) {
   bk2_inst *b = vinst;
   if (b->flows) b->flows->release(b);
 }
-
-/* ---- parameters as duals ------------------------------------------- */
-
-void sc_bk2_dparams(const bk2_inst *b, int nd, bk2_dpar *P) {
-  P->nd = nd;
-  P->alpha = sc_dvar(b->alpha, 1, nd);
-  P->beta = sc_dvar(b->beta, 2, nd);
-  sc_dual phi = sc_dvar(b->phi, 3, nd);
-  P->mu = sc_ddiv(sc_dconst(1, nd), phi, nd);
-  P->k1 = P->mu;
-  P->k2 = sc_dmul(P->beta, P->mu, nd);
-  P->t2 = P->beta;
-  P->v = sc_dvar(b->v, 4, nd);
-  P->vs = b->frozen ? sc_dconst(0, nd) : P->v;
-  P->w1 = sc_dsqrt(sc_daddc(P->alpha, 1), nd);
-  P->w2 = sc_dsqrt(sc_daddc(sc_dscale(P->alpha, 2, nd), 1), nd);
-  sc_dual one = sc_dconst(1, nd);
-  P->rw1 = sc_ddiv(one, P->w1, nd);
-  P->rw1sq = sc_ddiv(one, sc_dmul(P->w1, P->w1, nd), nd);
-  P->rw2 = sc_ddiv(one, P->w2, nd);
-  P->rw2sq = sc_ddiv(one, sc_dmul(P->w2, P->w2, nd), nd);
-  P->s1 = sc_dmul(sc_dmul(P->alpha, P->vs, nd), P->rw1sq, nd);
-}
-
 
 /* The switching border of a GSP: the distance of d from d* on the side of
  * the onset mode, a surface in the state (d_on = d*). */
@@ -225,7 +202,7 @@ int sc_bk2_iterate_ex(const bk2_inst *b, const bk2_dpar *P, sc_dual d,
     mode = fc[0];
     if (mode < SC_BK2_SLIP1 || mode > SC_BK2_SLIP12 || force->n % 2 == 0)
       return sc_fail(msg, SC_EINVAL, "bk2: malformed itinerary code");
-    sc_bk2_onset_state(P, d, mode, x);
+    bk2_onset_state(P, d, mode, x);
     /* Exactly on the switching surface a forced one-block start whose
      * first phase ends at once at the other block's threshold is the
      * start of both (the tie rule), and that phase has length zero. */
@@ -233,7 +210,8 @@ int sc_bk2_iterate_ex(const bk2_inst *b, const bk2_dpar *P, sc_dual d,
         fc[1] == BK2_EV_THRESHOLD)
       mode = SC_BK2_SLIP12, fpos = 3;
   } else {
-    mode = sc_bk2_onset(b, P, d, x);
+    mode = BK2_ONSET_MODE(d.v, b->dstar);
+    bk2_onset_state(P, d, mode, x);
   }
   int fresh = bk2_fresh_blocks(SC_BK2_STICK, mode);
   bk2_events ev = {0};
@@ -340,7 +318,7 @@ int sc_bk2_eval_jet_ex(const bk2_inst *b, double d, unsigned flags,
                    "bk2: second derivatives (SC_EVAL_DERIV2) need the "
                    "closed-form flows (valid: flows = exact)");
   bk2_dpar P;
-  sc_bk2_dparams(b, 5, &P);
+  bk2_load_params(b, 5, &P);
   bk2_state x;
   bk2_phase_log L;
   L.n = 0;
@@ -414,7 +392,7 @@ static int bk2_eval(void *vinst, double d, unsigned flags, sc_map_value *out,
   int nd = (flags & SC_EVAL_DERIV) ? bk2_nd(b) : 0;
   if (!nd && b->flows->value && !b->dual_only)
     return b->flows->value(b, d, flags, out, msg);
-  if (nd) sc_bk2_dparams(b, nd, &P);
+  if (nd) bk2_load_params(b, nd, &P);
   else P = b->p0;
   bk2_state x;
   int st = sc_bk2_iterate(b, &P, sc_dvar(d, 0, nd), flags, &x, out, NULL,
@@ -441,7 +419,7 @@ static int bk2_eval_ex(void *vinst, double d, unsigned flags,
   if (!nd && b->flows->value && !b->dual_only && !(force && force->n > 0) &&
       !code)
     return b->flows->value(b, d, flags, out, msg);
-  if (nd) sc_bk2_dparams(b, nd, &P);
+  if (nd) bk2_load_params(b, nd, &P);
   else P = b->p0;
   bk2_state x;
   int st = sc_bk2_iterate_ex(b, &P, sc_dvar(d, 0, nd), flags, force, code,
@@ -479,7 +457,7 @@ static int bk2_trajectory(void *vinst, double d, int iterations, double dtau,
   const bk2_inst *b = vinst;
   if (out_of_reach(b, d, msg)) return SC_EUNDEF;
   bk2_dpar P;
-  sc_bk2_dparams(b, 0, &P);
+  bk2_load_params(b, 0, &P);
   traj_ctx c = {b, &P, {0, dtau, fn, ctx}};
   sc_map_value out;
   for (int k = 0; k < iterations; k++) {

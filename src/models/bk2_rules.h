@@ -69,6 +69,26 @@ static inline int bk2_event_between(int mode, int next) {
 static inline int bk2_fresh_blocks(int mode, int next) { return next & ~mode; }
 static inline int bk2_stuck_blocks(int mode, int next) { return mode & ~next; }
 
+/* The events that can end a phase of `mode` (fresh: the blocks that
+ * started slipping with it, bk2_fresh_blocks()), into kind in the order
+ * the exact flows search them: a re-stick of each slipping block, the
+ * threshold of a stuck one.  Later guards are searched only up to the
+ * earliest root so far, so the likelier first event goes first: in
+ * SLIP12, the block that has slipped longer (not fresh); there the two
+ * are searched together and the order only breaks exact ties of the
+ * roots' times (and orders guards that do not pair).  Returns their
+ * number (at most 2). */
+static inline int bk2_phase_kinds(int mode, int fresh, int kind[2]) {
+  int ng = 0;
+  int order[2] = {1, 2};
+  if (mode == SC_BK2_SLIP12 && (fresh & 1) && !(fresh & 2))
+    order[0] = 2, order[1] = 1;
+  for (int k = 0; k < 2; k++)
+    if (mode == order[k] || mode == SC_BK2_SLIP12) kind[ng++] = order[k];
+  if (mode != SC_BK2_SLIP12) kind[ng++] = BK2_EV_THRESHOLD;
+  return ng;
+}
+
 /* The mode of the slip that ends a GSP of displacement d (any number
  * type): block 1 is at its threshold first iff d < d* (docs/model.md,
  * "The event map"); at d* both are, and both start (the tie rule). */
