@@ -5,6 +5,8 @@
 #    farther than the corrector's step is refused with its reason;
 #  - a border point whose defining system is degenerate says so, has an
 #    error that covers every preset's answer, and lies in the interval;
+#  - a point located by bisection is labelled by the border it knows
+#    (beyond, or vanishing on its side), or IC when it knows none;
 #  - every located row of a branch (LP, PD, GR, CS, SW, BR, TT) starts
 #    the curve of its type, on its own border, at the row's point;
 # Usage: sh tests/branch_edges.sh PATH/TO/slipcont SOURCE_DIR
@@ -155,6 +157,13 @@ for pre in fast default precise numerical; do
     pass "degenerate SW ($pre): every row inside [1.5, 3.5]"
   else
     fail "degenerate SW ($pre): rows outside [1.5, 3.5]: $out"
+  fi
+  # a bisection row names the border it knows, or says it knows none (IC)
+  unk=$(rows "$P" '$9 == "bisection" && $10 == "" && $1 != "IC"')
+  if [ -z "$unk" ]; then
+    pass "bisection rows ($pre): each names its border or is labelled IC"
+  else
+    fail "bisection rows ($pre): labelled without a known border: $unk"
   fi
   sw=$(rows "$P" '$1 == "SW" && $3 < 1.51')
   case $(echo "$sw" | cut -d, -f9) in

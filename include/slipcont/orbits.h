@@ -116,12 +116,15 @@ typedef enum {
   SC_PT_SW,     /**< switching: an orbit point at a switching surface */
   SC_PT_BR,     /**< both re-stick: two ending events at once */
   SC_PT_TT,     /**< a threshold touched tangentially */
+  SC_PT_IC,     /**< the itinerary changes (located by bisection) at a
+                     border of unknown kind */
   SC_PT_UZ,     /**< a user point: the parameter at one of the spec's
                      marks (AUTO's UZ) */
   SC_PT_EP,     /**< end point of a branch, with its reason */
 } sc_point_label;
 
-/** Label text: "LP", "PD", "GR", "CS", "SW", "BR", "TT", "UZ", "EP". */
+/** Label text: "LP", "PD", "GR", "CS", "SW", "BR", "TT", "IC", "UZ",
+ * "EP". */
 SC_API const char *sc_point_label_text(sc_point_label l);
 
 /** The special-point label of a border kind. */

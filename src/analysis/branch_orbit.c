@@ -18,7 +18,7 @@
 
 const char *sc_point_label_text(sc_point_label l) {
   static const char *t[] = {"LP", "PD", "GR", "CS", "SW",
-                            "BR", "TT", "UZ", "EP"};
+                            "BR", "TT", "IC", "UZ", "EP"};
   return (unsigned)l < sizeof t / sizeof t[0] ? t[l] : "??";
 }
 

@@ -367,8 +367,31 @@ static void after_bisection(sc_orbit_branch *b, int branch, int m, double pa,
                fabs(pb - pa));
     }
   } else {
+    /* No border known beyond: the border of this side's orbit (at pa,
+     * along the segment's codes) nearest to its zero in the parameter is
+     * what is known; with none, the label says only that the itinerary
+     * changes here (IC), not which border. */
+    const char *side = "beyond";
+    if (!bbest.name[0] && b->ctx.force && sc_map_has_borders(b->m)) {
+      sc_map_value v;
+      if (sc_ob_set_p(b->m, b->sp.param, pa) == SC_OK &&
+          sc_ob_orbit_borders(b, orb[0], m, b->codes, NULL, &b->bl_cur, &v,
+                              NULL) == SC_OK) {
+        double tbest = HUGE_VAL;
+        for (size_t i = 0; i < b->bl_cur.n && i < b->bl_cur.cap; i++) {
+          const sc_border *x = &b->bl_cur.b[i];
+          double rate = fabs(x->dp[b->sp.param]);
+          double t = rate > 0 ? x->value / rate : HUGE_VAL;
+          if (x->value >= 0 && t < tbest) tbest = t, bbest = *x;
+        }
+        /* it must vanish within the bisection's reach of pa */
+        if (!(tbest <= BISECTION_REACH * (1 + fabs(pa))))
+          memset(&bbest, 0, sizeof bbest);
+        side = "on this side, vanishing at the bracket";
+      }
+    }
     sc_point_label l = bbest.name[0] ? sc_point_label_of_border(bbest.kind)
-                                     : SC_PT_GR;
+                                     : SC_PT_IC;
     sc_map_value va;
     double mult = NAN;
     if (!sc_ob_set_p(b->m, b->sp.param, pa) &&
@@ -382,9 +405,12 @@ static void after_bisection(sc_orbit_branch *b, int branch, int m, double pa,
       snprintf(r->border, sizeof r->border, "%s", bbest.name);
       snprintf(r->note, sizeof r->note,
                "located by BISECTION (fallback) on a change of itinerary, "
-               "bracket %.2g; %s%s%s",
+               "bracket %.2g; %s%s%s%s%s",
                fabs(pb - pa),
-               bbest.name[0] ? "nearest border beyond: " : "no border known",
+               bbest.name[0] ? "nearest border " : "no border known (IC: "
+                                                   "the itinerary changes, "
+                                                   "its kind is unknown)",
+               bbest.name[0] ? side : "", bbest.name[0] ? ": " : "",
                bbest.name, best.why[0] ? "; Newton: " : "");
       if (best.why[0])
         strncat(r->note, best.why, sizeof r->note - strlen(r->note) - 1);

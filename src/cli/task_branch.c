@@ -424,8 +424,8 @@ static int write_point_orbits(sc_cli_run *r, const sc_orbit_branch *ob,
 
 /* The kinds a branch plot may mark, in the key's order; markers and
  * colours are the figures' shared ones (sc_plot_point_style). */
-static const char *const branch_kinds[] = {"LP", "PD", "GR", "CS",
-                                           "SW", "BR", "TT", "UZ"};
+static const char *const branch_kinds[] = {"LP", "PD", "GR", "CS", "SW",
+                                           "BR", "TT", "IC", "UZ"};
 
 static int write_branch(sc_cli_run *r, const sc_orbit_branch *ob,
                         const char *pname, size_t param, double *buf,

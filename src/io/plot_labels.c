@@ -33,6 +33,7 @@ static const struct {
     {"SW", "switching (d = d*)", 11, "#17becf"},
     {"BR", "both re-stick", 15, "#8c564b"},
     {"TT", "threshold touched", 3, "#e377c2"},
+    {"IC", "itinerary change (border unknown)", 1, "#555555"},
     {"CP", "cusp", 8, "#d62728"},
     {"GPD", "generalized flip", 12, "#1f77b4"},
     {"TP", "turning point", 10, "#2ca02c"},
