@@ -7,6 +7,8 @@
 #    error that covers every preset's answer, and lies in the interval;
 #  - a point located by bisection is labelled by the border it knows
 #    (beyond, or vanishing on its side), or IC when it knows none;
+#  - a curve whose start is corrected says where it landed (summary and
+#    plot title);
 #  - every located row of a branch (LP, PD, GR, CS, SW, BR, TT) starts
 #    the curve of its type, on its own border, at the row's point;
 # Usage: sh tests/branch_edges.sh PATH/TO/slipcont SOURCE_DIR
@@ -185,6 +187,29 @@ if echo "$all" | awk '{ for (i = 1; i <= NF; i++) { split($i, a, ",")
   pass "degenerate SW: the presets agree within their errors ($all)"
 else
   fail "degenerate SW: the presets disagree beyond their errors ($all)"
+fi
+
+# --- a curve's start moved ----------------------------------------------
+# The fold of fig 5.8's period-1 orbit at beta = 2.5: alpha =
+# 2.9925306744279 (docs/branches.md), to the corrector's 1e-9.
+if "$BIN" run "$SC/curve-fold-moved.ini" --quiet --out "$TMP/moved" \
+  --set output.plot=no >"$TMP/stdout" 2>"$TMP/stderr"; then
+  line=$(grep "^  start:" "$TMP/moved/summary.txt")
+  if echo "$line" | awk '{ x = $4; sub(",", "", x); e = x - 2.9925306744279
+      if (e < 0) e = -e; exit !(e < 1e-9) }' &&
+    echo "$line" | grep -qF "corrected from the given alpha = 3.2000000000000002 (moved by -0.207)"; then
+    pass "curve start moved: the summary says where ($line)"
+  else
+    fail "curve start moved: summary's start line: '$line'"
+  fi
+  title=$(grep "^set title" "$TMP/moved/curve.gp")
+  case $title in
+  *"alpha = 2.99253067"*"start moved -0.207 from alpha = 3.2"*)
+    pass "curve start moved: the title says where ($title)" ;;
+  *) fail "curve start moved: title '$title'" ;;
+  esac
+else
+  fail "curve-fold-moved ran: $(cat "$TMP/stderr")"
 fi
 
 finish

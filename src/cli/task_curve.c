@@ -227,10 +227,14 @@ typedef struct {
   sc_curve_special *sp;
   size_t nsp, cap;
   int oom;
+  int have_start;          /* the first point: the corrected start */
+  double start_x, start_y;
 } out_ctx;
 
 static int on_point(void *vc, const sc_curve_point *p) {
   out_ctx *c = vc;
+  if (!c->have_start)
+    c->have_start = 1, c->start_x = p->x, c->start_y = p->y;
   if (p->branch != c->last_branch) fputc('\n', c->curve);
   c->last_branch = p->branch;
   sc_csv_double(c->curve, p->x);
@@ -284,6 +288,7 @@ typedef struct {
   double d0;
   out_ctx c;     /* the streams while tracing; the special points */
   sc_curve_stats stats;
+  double x0, y0; /* the start given: the scene's or the row's x, y */
   unsigned long nev;
   double elapsed;
   double marks[SC_CLI_MAXMARKS]; /* user points: values of x */
@@ -353,6 +358,8 @@ static int curve_compute(sc_cli_run *r, void *job) {
   fprintf(c->points, "label,%s,%s,%s,period,note,coefficient,residual\n",
           j->xn, j->yn, state);
   sc_curve_output out = {on_point, on_special, c};
+  j->x0 = sc_map_get_param(m, (size_t)j->set.ix);
+  j->y0 = sc_map_get_param(m, (size_t)j->set.iy);
   unsigned long ev0 = sc_map_nevals(m);
   double t0 = sc_progress_now();
   st = sc_curve_trace(m, &j->set, j->d0, &out, &j->stats, r->msg);
@@ -375,6 +382,16 @@ static int curve_summary(sc_cli_run *r, void *job, FILE *f) {
           "%.3g\n",
           stats->max_residual);
   fprintf(f, "  residual tolerance used: %.3g\n", stats->ftol);
+  /* the start is corrected onto the curve at fixed y: where it landed */
+  if (j->c.have_start && j->c.start_x != j->x0)
+    fprintf(f,
+            "  start: %s = %.17g, %s = %.17g, corrected from the given %s = "
+            "%.17g (moved by %.3g)\n",
+            j->xn, j->c.start_x, j->yn, j->c.start_y, j->xn, j->x0,
+            j->c.start_x - j->x0);
+  else if (j->c.have_start)
+    fprintf(f, "  start: %s = %.17g, %s = %.17g, as given\n", j->xn,
+            j->c.start_x, j->yn, j->c.start_y);
   if (stats->border_iterate >= 0)
     fprintf(f, "  border followed: %s, %s, iterate %d of %d\n",
             type_labels[j->ti], stats->border, stats->border_iterate + 1,
@@ -612,9 +629,18 @@ static int curve_plots(sc_cli_run *r, void *job) {
   sc_file *gp = NULL;
   int st;
   if (!also) {
+    /* the parameters where the curve starts: the corrected start */
+    size_t ix = (size_t)j->set.ix;
+    double xs = sc_map_get_param(m, ix);
+    if (j->c.have_start) sc_map_set_param(m, ix, j->c.start_x, NULL);
     sc_plot_title(m, NULL, title, sizeof title);
-    snprintf(full, sizeof full, "%s curve, period %d (%s)",
-             type_names[j->ti], j->set.period, title);
+    sc_map_set_param(m, ix, xs, NULL);
+    char moved[160] = "";
+    if (j->c.have_start && j->c.start_x != j->x0)
+      snprintf(moved, sizeof moved, "; start moved %.3g from %s = %.10g",
+               j->c.start_x - j->x0, j->xn, j->x0);
+    snprintf(full, sizeof full, "%s curve, period %d (%s%s)",
+             type_names[j->ti], j->set.period, title, moved);
     st = sc_cli_plot_begin(r, "curve", full, sc_plot_label(m, j->xn),
                            sc_plot_label(m, j->yn), &gp);
   } else {
