@@ -737,6 +737,114 @@ static int bcorrect(btrace *B, double *u, double *floor_out) {
   return *floor_out <= SC_CURVE_FLOOR_MAX ? SC_OK : SC_ENOCONV;
 }
 
+/* The start of a border curve: the orbit through d0 (polished unless a
+ * border is named), its codes, and the border followed (the named one,
+ * or the nearest of the kind), into B->fs.key; the orbit rotated to
+ * start on a border in the state.  u: (d, x0, y0) of the start. */
+static int bstart(btrace *B, double d0, double x0, double y0, double *u,
+                  sc_msg *msg) {
+  sc_map *m = B->m;
+  const sc_curve_settings *set = B->set;
+  sc_curve_stats *stats = B->stats;
+  int st;
+  const char *kl = sc_border_label(set->border);
+  /* the orbit at the start, its codes and its border: the named one on
+   * the side of d0 where the orbit has it, or the nearest of the kind */
+  double d = d0;
+  if (!set->border_name[0]) orbit_at(m, set->period, &B->acc, &d);
+  u[0] = d, u[1] = x0, u[2] = y0;
+  sc_map_value v;
+  sc_border keyb;
+  const sc_border *key = NULL;
+  if (set->border_name[0]) {
+    if ((st = named_start(B, u, &keyb, msg))) return st;
+    key = &keyb;
+  } else if (sc_forced_eval(&B->fs, u, NULL, B->fs.codes, &v)) {
+    st = sc_fail(msg, SC_ENOCONV, "curve: the map fails at the start (%.200s)",
+                 B->fs.emsg.text);
+    return st;
+  }
+  for (int k = 0; k < set->period; k++)
+    if (B->fs.codes[k].n == 0) {
+      st = sc_fail(msg, SC_EINVAL,
+                   "curve: iterate %d of the start has no itinerary code "
+                   "(too many phases to force)",
+                   k + 1);
+      return st;
+    }
+  for (size_t i = 0; !set->border_name[0] && i < B->fs.bl.n; i++)
+    if (B->fs.bl.b[i].kind == set->border &&
+        (!key || fabs(B->fs.bl.b[i].value) < fabs(key->value)))
+      key = &B->fs.bl.b[i];
+  if (!key) {
+    st = sc_fail(msg, SC_EINVAL,
+                 "curve: the period-%d orbit through d = %.17g has no %s "
+                 "border (valid: a start on an orbit with one, e.g. a %s row "
+                 "of a branch task's points.csv)",
+                 set->period, d, kl, kl);
+    return st;
+  }
+  B->fs.key = *key;
+  if (key->on_state && key->iterate > 0) {
+    /* the orbit from the iterate on the border: codes rotated, d its
+     * point there */
+    int k = key->iterate, per = set->period;
+    sc_itin_code *rot = malloc((size_t)per * sizeof *rot);
+    if (!rot) {
+      st = sc_fail(msg, SC_ENOMEM, "curve: out of memory");
+      return st;
+    }
+    for (int i = 0; i < per; i++)
+      rot[i] = B->fs.codes[(i + k) % per];
+    memcpy(B->fs.codes, rot, (size_t)per * sizeof *rot);
+    free(rot);
+    for (int i = 0; i < k; i++) {
+      sc_map_value vi;
+      if (sc_map_eval(m, u[0], SC_EVAL_VALUE, &vi, NULL)) break;
+      u[0] = vi.f;
+    }
+    B->fs.key.iterate = 0;
+  }
+  stats->border_iterate = key->iterate;
+  snprintf(stats->border, sizeof stats->border, "%s", key->name);
+  B->fs.emsg.text[0] = '\0';
+  sc_forced_use_alt(&B->fs, key);
+  return SC_OK;
+}
+
+/* Every other border of the start's orbit watched, the system made
+ * again with them, and the tests' storage. */
+static int bwatch(btrace *B, const double *u, sc_msg *msg) {
+  sc_map_value v;
+  int st;
+  /* every other border of the orbit is watched */
+  if (sc_forced_eval(&B->fs, u, B->fs.codes, NULL, &v))
+    return sc_fail(msg, SC_ENOCONV, "curve: the map fails at the start");
+  size_t nb = B->fs.bl.n, nw = 0;
+  sc_border *w = malloc((nb ? nb : 1) * sizeof *w);
+  if (!w) {
+    st = sc_fail(msg, SC_ENOMEM, "curve: out of memory");
+    return st;
+  }
+  for (size_t i = 0; i < nb; i++) {
+    const sc_border *bi = &B->fs.bl.b[i];
+    if (!(bi->iterate == B->fs.key.iterate && bi->kind == B->fs.key.kind &&
+          strcmp(bi->name, B->fs.key.name) == 0))
+      w[nw++] = *bi;
+  }
+  st = sc_forced_watch(&B->fs, w, nw, msg);
+  free(w);
+  if (st) return st;
+  sc_forced_system(&B->fs, &B->cs);
+  B->psa = calloc(2 * B->cs.ntest, sizeof *B->psa);
+  if (!B->psa) {
+    st = sc_fail(msg, SC_ENOMEM, "curve: out of memory");
+    return st;
+  }
+  B->psb = B->psa + B->cs.ntest;
+  return SC_OK;
+}
+
 int sc_curve_trace_border(sc_map *m, const sc_curve_settings *set, double d0,
                           const sc_curve_output *out, sc_curve_stats *stats,
                           sc_msg *msg) {
@@ -757,68 +865,9 @@ int sc_curve_trace_border(sc_map *m, const sc_curve_settings *set, double d0,
   int st = sc_forced_init(&B.fs, m, set->period, set->ix, set->iy,
                           SC_CURVE_BORDER, B.acc.fd_step, msg);
   if (st) return st;
+  double u[3], floor = HUGE_VAL;
   const char *kl = sc_border_label(set->border);
-  /* the orbit at the start, its codes and its border: the named one on
-   * the side of d0 where the orbit has it, or the nearest of the kind */
-  double d = d0;
-  if (!set->border_name[0]) orbit_at(m, set->period, &B.acc, &d);
-  double u[3] = {d, x0, y0}, floor = HUGE_VAL;
-  sc_map_value v;
-  sc_border keyb;
-  const sc_border *key = NULL;
-  if (set->border_name[0]) {
-    if ((st = named_start(&B, u, &keyb, msg))) goto done;
-    key = &keyb;
-  } else if (sc_forced_eval(&B.fs, u, NULL, B.fs.codes, &v)) {
-    st = sc_fail(msg, SC_ENOCONV, "curve: the map fails at the start (%.200s)",
-                 B.fs.emsg.text);
-    goto done;
-  }
-  for (int k = 0; k < set->period; k++)
-    if (B.fs.codes[k].n == 0) {
-      st = sc_fail(msg, SC_EINVAL,
-                   "curve: iterate %d of the start has no itinerary code "
-                   "(too many phases to force)",
-                   k + 1);
-      goto done;
-    }
-  for (size_t i = 0; !set->border_name[0] && i < B.fs.bl.n; i++)
-    if (B.fs.bl.b[i].kind == set->border &&
-        (!key || fabs(B.fs.bl.b[i].value) < fabs(key->value)))
-      key = &B.fs.bl.b[i];
-  if (!key) {
-    st = sc_fail(msg, SC_EINVAL,
-                 "curve: the period-%d orbit through d = %.17g has no %s "
-                 "border (valid: a start on an orbit with one, e.g. a %s row "
-                 "of a branch task's points.csv)",
-                 set->period, d, kl, kl);
-    goto done;
-  }
-  B.fs.key = *key;
-  if (key->on_state && key->iterate > 0) {
-    /* the orbit from the iterate on the border: codes rotated, d its
-     * point there */
-    int k = key->iterate, per = set->period;
-    sc_itin_code *rot = malloc((size_t)per * sizeof *rot);
-    if (!rot) {
-      st = sc_fail(msg, SC_ENOMEM, "curve: out of memory");
-      goto done;
-    }
-    for (int i = 0; i < per; i++)
-      rot[i] = B.fs.codes[(i + k) % per];
-    memcpy(B.fs.codes, rot, (size_t)per * sizeof *rot);
-    free(rot);
-    for (int i = 0; i < k; i++) {
-      sc_map_value vi;
-      if (sc_map_eval(m, u[0], SC_EVAL_VALUE, &vi, NULL)) break;
-      u[0] = vi.f;
-    }
-    B.fs.key.iterate = 0;
-  }
-  stats->border_iterate = key->iterate;
-  snprintf(stats->border, sizeof stats->border, "%s", key->name);
-  B.fs.emsg.text[0] = '\0';
-  sc_forced_use_alt(&B.fs, key);
+  if ((st = bstart(&B, d0, x0, y0, u, msg))) goto done;
   sc_forced_system(&B.fs, &B.cs); /* again once the watch is known */
   st = bcorrect(&B, u, &floor);
   if (st) {
@@ -831,33 +880,7 @@ int sc_curve_trace_border(sc_map *m, const sc_curve_settings *set, double d0,
   }
   sc_curve_ftol(&B.acc, floor);
   stats->ftol = B.acc.newton_ftol;
-  /* every other border of the orbit is watched */
-  if (sc_forced_eval(&B.fs, u, B.fs.codes, NULL, &v)) {
-    st = sc_fail(msg, SC_ENOCONV, "curve: the map fails at the start");
-    goto done;
-  }
-  size_t nb = B.fs.bl.n, nw = 0;
-  sc_border *w = malloc((nb ? nb : 1) * sizeof *w);
-  if (!w) {
-    st = sc_fail(msg, SC_ENOMEM, "curve: out of memory");
-    goto done;
-  }
-  for (size_t i = 0; i < nb; i++) {
-    const sc_border *bi = &B.fs.bl.b[i];
-    if (!(bi->iterate == B.fs.key.iterate && bi->kind == B.fs.key.kind &&
-          strcmp(bi->name, B.fs.key.name) == 0))
-      w[nw++] = *bi;
-  }
-  st = sc_forced_watch(&B.fs, w, nw, msg);
-  free(w);
-  if (st) goto done;
-  sc_forced_system(&B.fs, &B.cs);
-  B.psa = calloc(2 * B.cs.ntest, sizeof *B.psa);
-  if (!B.psa) {
-    st = sc_fail(msg, SC_ENOMEM, "curve: out of memory");
-    goto done;
-  }
-  B.psb = B.psa + B.cs.ntest;
+  if ((st = bwatch(&B, u, msg))) goto done;
   memcpy(B.u0, u, sizeof u);
   st = brun(&B, +1, 0, msg);
   if (st == SC_OK && !B.closed) st = brun(&B, -1, 1, msg);

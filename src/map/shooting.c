@@ -255,6 +255,33 @@ static int finite_all(const double *x, int n) {
   return 1;
 }
 
+/* Every component of the last Newton step s->dx within the step
+ * tolerance at s->x. */
+static int step_within_tol(const sc_shoot *s, const sc_accuracy *acc) {
+  for (int i = 0; i < s->n; i++)
+    if (sc_test_delta(s->dx[i], s->x[i], acc->newton_atol,
+                      acc->newton_rtol) != SC_OK)
+      return 0;
+  return 1;
+}
+
+/* Newton has converged after its last step (residual fnorm, tolerance
+ * ftol, the last two step sizes): step and residual within tolerance,
+ * or steps stagnant at rounding, or the noise floor. */
+static int converged(const sc_shoot *s, const sc_accuracy *acc, double fnorm,
+                     double ftol, double last, double before) {
+  int stagnant = 1;
+  for (int i = 0; i < s->n; i++)
+    if (fabs(s->dx[i]) > STAGNATION_ULPS * DBL_EPSILON * fabs(s->x[i]))
+      stagnant = 0;
+  /* At the noise floor of an ill-conditioned Jacobian (near a fold or
+   * flip) the residual is within tolerance but the steps, the rounding
+   * of F amplified by the condition number, stop shrinking: that is
+   * convergence too. */
+  int at_floor = fnorm <= ftol && last >= 0.5 * before;
+  return (step_within_tol(s, acc) && fnorm <= ftol) || stagnant || at_floor;
+}
+
 int sc_shoot_solve_orbit(sc_shoot *s, const double *d0, sc_shoot_result *res,
                          sc_msg *msg) {
   memset(res, 0, sizeof *res);
@@ -295,24 +322,9 @@ int sc_shoot_solve_orbit(sc_shoot *s, const double *d0, sc_shoot_result *res,
     double ftol = acc->newton_ftol;
     if (s->method == SC_SHOOT_SINGLE && isfinite(s->fd[0]))
       ftol *= fmax(1, fabs(s->fd[0]));
-    if (it > 0) {
-      int small = 1, stagnant = 1;
-      for (int i = 0; i < n; i++) {
-        if (sc_test_delta(s->dx[i], s->x[i], acc->newton_atol,
-                          acc->newton_rtol) != SC_OK)
-          small = 0;
-        if (fabs(s->dx[i]) > STAGNATION_ULPS * DBL_EPSILON * fabs(s->x[i]))
-          stagnant = 0;
-      }
-      /* At the noise floor of an ill-conditioned Jacobian (near a fold
-       * or flip) the residual is within tolerance but the steps, the
-       * rounding of F amplified by the condition number, stop
-       * shrinking: that is convergence too. */
-      int at_floor = fnorm <= ftol && last >= 0.5 * before;
-      if ((small && fnorm <= ftol) || stagnant || at_floor) {
-        res->step = last;
-        return finish(s, res, 0, msg);
-      }
+    if (it > 0 && converged(s, acc, fnorm, ftol, last, before)) {
+      res->step = last;
+      return finish(s, res, 0, msg);
     }
     if (it >= acc->newton_maxiter)
       return sc_fail(msg, SC_ENOCONV,
@@ -335,11 +347,8 @@ int sc_shoot_solve_orbit(sc_shoot *s, const double *d0, sc_shoot_result *res,
      * or that does not decrease the Euclidean norm of the residual
      * (across a jump of f the full step can land on another piece, far
      * away). */
-    int tiny = 1; /* a step within tolerance is taken whatever it does */
-    for (int i = 0; i < n; i++)
-      if (sc_test_delta(s->dx[i], s->x[i], acc->newton_atol,
-                        acc->newton_rtol) != SC_OK)
-        tiny = 0;
+    /* a step within tolerance is taken whatever it does */
+    int tiny = step_within_tol(s, acc);
     double lambda = 1, merit = norm2(s->F, n);
     for (int h = 0;; h++) {
       for (int i = 0; i < n; i++) s->xtry[i] = s->x[i] + lambda * s->dx[i];
