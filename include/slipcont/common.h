@@ -87,6 +87,17 @@ SC_API int sc_fail(sc_msg *msg, int status, const char *fmt, ...)
     ;
 
 /**
+ * @brief The "what" of a message written as `function: what`: @p text
+ * past its leading function names (`sc_shoot_solve: `, possibly several),
+ * for a message embedded in another one or shown to a user, who is told
+ * what and where, not which function.  A function name is `sc_` followed
+ * by lower-case letters, digits and '_', then ": ".
+ * @return a pointer into @p text (@p text itself when it starts with no
+ *         function name).
+ */
+SC_API const char *sc_msg_what(const char *text);
+
+/**
  * The accuracy object threaded through every computation.  Every field
  * can be set from a scene's `[accuracy]` section; see docs/guide.md.
  * Tolerances are absolute/relative pairs tested as

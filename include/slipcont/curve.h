@@ -90,7 +90,7 @@ typedef struct {
   double coefficient; /**< the normal-form coefficient there */
   double residual; /**< sc_curve_cert.residual; NaN for EP; for a
                         border point, the largest of |F| and |m_k| */
-  char note[128];  /**< "beta min", "supercritical to subcritical",
+  char note[256];  /**< "beta min", "supercritical to subcritical",
                         why the curve ended, ... */
 } sc_curve_special;
 

@@ -389,6 +389,11 @@ void sc_orbit_branch_start_counts(const sc_orbit_branch *b, size_t *started,
   *no_room = b->nstart_noroom;
 }
 
+/* What a user can do about a start that is on no orbit (a row's note). */
+#define START_HINT                                                         \
+  "; the fixed-point task at this parameter value finds the orbits there " \
+  "(or use starts = auto)"
+
 int sc_orbit_branch_run(sc_orbit_branch *b, sc_msg *msg) {
   sc_map *m = b->m;
   double saved = sc_map_get_param(m, b->sp.param);
@@ -417,7 +422,7 @@ int sc_orbit_branch_run(sc_orbit_branch *b, sc_msg *msg) {
       char why[SC_MSG_LEN];
       snprintf(why, sizeof why, "%s", msg ? msg->text : "");
       sc_ob_add_end(b, -1, b->sp.period, b->sp.from, b->sp.d0, NAN,
-                    "start not found: %.300s%s", why, NULL);
+                    "start not found: %.300s%s", why, START_HINT);
     } else {
       sc_ob_push_job(b, b->sp.period, b->sp.from, res.d,
                      b->sp.to > b->sp.from ? 1 : -1, 0, "start");
@@ -438,7 +443,7 @@ int sc_orbit_branch_run(sc_orbit_branch *b, sc_msg *msg) {
       char why[SC_MSG_LEN];
       snprintf(why, sizeof why, "%s", msg ? msg->text : "");
       sc_ob_add_end(b, -1, a->period, a->p, a->d, NAN,
-                    "added start not found: %.300s%s", why, NULL);
+                    "added start not found: %.300s%s", why, START_HINT);
       b->nstart_notfound++;
       continue;
     }

@@ -223,7 +223,7 @@ static int locate(trace *T, size_t k, const double *a, const double *b,
   char rej[8];
   snprintf(rej, sizeof rej, "%s?", label);
   if (st) {
-    snprintf(note, sizeof note, "not located: %.100s", msg.text);
+    snprintf(note, sizeof note, "not located: %.100s", sc_msg_what(msg.text));
     return emit_special(T, rej, mid, NAN, cert.residual, note);
   }
   /* A sign change across a pole or a jump of psi (near d* or a grazing,
@@ -306,7 +306,7 @@ static int correct_start(trace *T, double *u, double *floor_out, sc_msg *msg) {
   if (sc_curve_correct_fixed(&T->ss.pb, u, 2, T->acc, floor_out))
     return sc_fail(msg, SC_ENOCONV,
                    "curve: the map fails at the start (%.200s)",
-                   T->mc.emsg.text);
+                   sc_msg_what(T->mc.emsg.text));
   return SC_OK; /* the branch corrector decides */
 }
 
@@ -396,7 +396,7 @@ static int locate_border_pt(trace *T, size_t j, double *w, double pa,
     } else if (bs == SC_EUNDEF) {
       if (jump) *jump = 1;
       char nt[SC_MSG_LEN];
-      snprintf(nt, sizeof nt, "%.60s", lm.text);
+      snprintf(nt, sizeof nt, "%.60s", sc_msg_what(lm.text));
       snprintf(lm.text, sizeof lm.text,
                "the border jumps (not a zero); Newton: %.60s", nt);
     }
@@ -409,13 +409,13 @@ static int locate_border_pt(trace *T, size_t j, double *w, double pa,
        * frozen: |d - d*|^(-1/2)), so (f^m)' = +-1 cannot hold there */
       snprintf(note, sizeof note,
                "%s ends next to %s: not located (the multiplier is singular "
-               "on this border: %.40s); %.40s",
-               tn, kl, lm.text, bw->name);
+               "on this border: %.80s); %.60s",
+               tn, kl, sc_msg_what(lm.text), bw->name);
     else
       snprintf(note, sizeof note, "%s meets %s%s: not located: %.90s; %.40s",
                tn, kl,
                fallback ? " (the nearest when the corrector stopped)" : "",
-               lm.text, bw->name);
+               sc_msg_what(lm.text), bw->name);
     return emit_special(T, rej, u, NAN, cert.residual, note);
   }
   *found = 1;
@@ -427,7 +427,7 @@ static int locate_border_pt(trace *T, size_t j, double *w, double pa,
   char old[SC_ITIN_LEN];
   snprintf(old, sizeof old, "%s", T->itin0);
   char how[SC_MSG_LEN];
-  snprintf(how, sizeof how, "%s", lm.text);
+  snprintf(how, sizeof how, "%s", sc_msg_what(lm.text));
   if (dir3 && (st = cross_border(T, w, dir3, next, crossed, &lm))) return st;
   if (*crossed)
     snprintf(note, sizeof note,
@@ -644,7 +644,7 @@ static int walk_cross(trace *T, walk *W, const double *dir3,
   if (sc_branch_set(W->b, u, &bm)) {
     char why[128];
     snprintf(why, sizeof why, "across the border the start fails: %.90s",
-             bm.text);
+             sc_msg_what(bm.text));
     *st = end_point(T, u, why);
     return WALK_STOP;
   }
@@ -800,7 +800,7 @@ static int run(trace *T, int dir, int branch, sc_msg *msg) {
     }
     if (bs < 0) {
       char why[128];
-      snprintf(why, sizeof why, "stopped: %.110s", bm.text);
+      snprintf(why, sizeof why, "stopped: %.110s", sc_msg_what(bm.text));
       st = end_point(T, T->prev, why);
       break;
     }
@@ -896,7 +896,7 @@ int sc_curve_trace(sc_map *m, const sc_curve_settings *set, double d0,
         st = sc_fail(msg, SC_ENOCONV,
                      "curve: the map fails along the start "
                      "orbit (%.200s)",
-                     T.mc1.emsg.text);
+                     sc_msg_what(T.mc1.emsg.text));
       T.u0[k] = j.g;
     }
   }

@@ -268,7 +268,7 @@ static int bemit(btrace *B, const char *label, const double *u, double res,
   double F[2];
   s.coefficient = f_cb(u, F, &B->fs) ? NAN : F[1];
   s.residual = res;
-  snprintf(s.note, sizeof s.note, "%.127s", note);
+  snprintf(s.note, sizeof s.note, "%.255s", note);
   if (strcmp(label, "EP") && strcmp(label, "UZ") && !strchr(label, '?'))
     B->stats->nspecial++; /* codimension two: not ends, user points */
   if (B->out && B->out->special && B->out->special(B->out->ctx, &s))
@@ -328,13 +328,13 @@ static int blocate(btrace *B, size_t k, const double *a, const double *b,
     /* a border that jumps is no crossing: the curve goes on */
     if (bs == SC_EUNDEF) *ends = 0;
     snprintf(note, sizeof note, "not located: %.50s; bisection: %s",
-             msg.text,
+             sc_msg_what(msg.text),
              bs == SC_EUNDEF ? "the border jumps (not a zero), the curve goes on"
                              : "failed, the curve ends here");
     return bemit(B, rej, mid, cert.residual, note);
   }
   if (st) {
-    snprintf(note, sizeof note, "not located: %.100s", msg.text);
+    snprintf(note, sizeof note, "not located: %.100s", sc_msg_what(msg.text));
     return bemit(B, rej, mid, cert.residual, note);
   }
   if (!(fabs(cert.psi) <= SC_SQRT_EPS * fmax(fabs(pa), fabs(pb))) ||
@@ -510,7 +510,7 @@ static int bfallback(btrace *B, const double *u, int *st) {
     snprintf(note, sizeof note,
              "meets %s (the nearest when the corrector stopped): not "
              "located: %.80s; %.30s",
-             B->cs.labels[k], msg.text, B->fs.watch[j].name);
+             B->cs.labels[k], sc_msg_what(msg.text), B->fs.watch[j].name);
     *st = bemit(B, rej, u, NAN, note);
     return 0;
   }
@@ -572,9 +572,9 @@ static int brun(btrace *B, int dir, int branch, sc_msg *msg) {
       char why[128];
       if (strstr(bm.text, "callback failed") && B->fs.emsg.text[0])
         snprintf(why, sizeof why, "stopped: the forced orbit fails: %.90s",
-                 B->fs.emsg.text);
+                 sc_msg_what(B->fs.emsg.text));
       else
-        snprintf(why, sizeof why, "stopped: %.110s", bm.text);
+        snprintf(why, sizeof why, "stopped: %.110s", sc_msg_what(bm.text));
       st = bemit(B, "EP", prev, NAN, why);
       break;
     }
@@ -719,7 +719,7 @@ static int named_start(btrace *B, const double *u, sc_border *key,
   if (fails == 2 * (2 * NUDGES + 1))
     return sc_fail(msg, SC_ENOCONV,
                    "curve: the map fails at the start (%.200s)",
-                   B->fs.emsg.text);
+                   sc_msg_what(B->fs.emsg.text));
   return sc_fail(msg, SC_EINVAL,
                  "curve: the period-%d orbit through d = %.17g has no %s "
                  "border '%.64s' on either side of d (valid: a start row "
@@ -761,7 +761,7 @@ static int bstart(btrace *B, double d0, double x0, double y0, double *u,
     key = &keyb;
   } else if (sc_forced_eval(&B->fs, u, NULL, B->fs.codes, &v)) {
     st = sc_fail(msg, SC_ENOCONV, "curve: the map fails at the start (%.200s)",
-                 B->fs.emsg.text);
+                 sc_msg_what(B->fs.emsg.text));
     return st;
   }
   for (int k = 0; k < set->period; k++)

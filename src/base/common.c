@@ -32,6 +32,15 @@ int sc_fail(sc_msg *msg, int status, const char *fmt, ...) {
   return status;
 }
 
+const char *sc_msg_what(const char *text) {
+  for (;;) {
+    if (strncmp(text, "sc_", 3) != 0) return text;
+    size_t n = 3 + strspn(text + 3, "abcdefghijklmnopqrstuvwxyz0123456789_");
+    if (n == 3 || text[n] != ':' || text[n + 1] != ' ') return text;
+    text += n + 2;
+  }
+}
+
 /* One row per settable field: its scene name, where it lives, whether it
  * is a count, and its valid range (closed; tolerances must be > 0, which
  * the lower bound DBL_MIN expresses). */

@@ -182,7 +182,7 @@ static int load(const cli_args *a, sc_scene **scene) {
   sc_scene_options o = {a->sets, a->nsets, a->out, types, ntypes};
   sc_msg msg;
   if (sc_scene_load(a->scene, &o, scene, &msg)) {
-    fprintf(stderr, "slipcont: %s\n", msg.text);
+    fprintf(stderr, "slipcont: %s\n", sc_cli_user_text(msg.text));
     return EXIT_INPUT;
   }
   return EXIT_OK;
@@ -248,7 +248,7 @@ static int prepare_output(const sc_scene *s, int create) {
   if (sc_output_prepare(dir, create, &msg) == SC_OK)
     return each_output(task, dir, output_blocked);
   char where[SC_MSG_LEN], buf[160];
-  const char *reason = msg.text;
+  const char *reason = sc_cli_user_text(msg.text);
   size_t n = strlen(dir);
   if (strncmp(reason, dir, n) == 0 && strncmp(reason + n, ": ", 2) == 0)
     reason += n + 2; /* the path is already in the message */
@@ -310,7 +310,13 @@ static int cmd_run(const cli_args *a) {
   int st = sc_cli_task_run(task, &r);
   sc_cli_signals_done();
   if (st) {
-    fprintf(stderr, "slipcont: %s: %s\n", sc_scene_name(s), msg.text);
+    /* a message that names the scene's file (a key's line) already says
+     * where */
+    const char *name = sc_scene_name(s);
+    size_t n = strlen(name);
+    int named = strncmp(msg.text, name, n) == 0 && msg.text[n] == ':';
+    fprintf(stderr, "slipcont: %s%s%s\n", named ? "" : name,
+            named ? "" : ": ", sc_cli_user_text(msg.text));
     rc = EXIT_COMPUTE;
   } else if (sc_cli_interrupted()) {
     /* The task finished its files, but the user asked to stop: no plots. */
@@ -321,7 +327,7 @@ static int cmd_run(const cli_args *a) {
   }
   for (size_t i = 0; plot && !sc_cli_interrupted() && i < r.nplots; i++) {
     if (sc_plot_render(r.dir, r.plot_script[i], r.plot_png[i], &msg)) {
-      fprintf(stderr, "slipcont: %s\n", msg.text);
+      fprintf(stderr, "slipcont: %s\n", sc_cli_user_text(msg.text));
       rc = EXIT_COMPUTE;
       if (!sc_plot_available()) break;
     } else {

@@ -3,6 +3,7 @@
  * the notes, the head of summary.txt, plot scripts, notes, signals. */
 #define _POSIX_C_SOURCE 200809L
 
+#include <ctype.h>
 #include <signal.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -168,7 +169,17 @@ const char *const *sc_cli_step_names(size_t *n) {
 static int summary_step(const sc_cli_task *t, sc_cli_run *r, void *job) {
   sc_file *f = NULL;
   int st = sc_cli_summary_begin(r, &f);
-  if (!st) st = t->summary(r, job, sc_file_stream(f));
+  if (st) return st;
+  /* The findings pass through sc_cli_user_text() as every text shown. */
+  char *text = NULL;
+  size_t len = 0;
+  FILE *mem = open_memstream(&text, &len);
+  if (!mem) return sc_fail(r->msg, SC_ENOMEM, "summary: out of memory");
+  st = t->summary(r, job, mem);
+  if (fclose(mem) && !st)
+    st = sc_fail(r->msg, SC_ENOMEM, "summary: out of memory");
+  if (!st) fputs(sc_cli_user_text(text), sc_file_stream(f));
+  free(text);
   return st ? st : sc_cli_commit(r, "summary.txt", f);
 }
 
@@ -215,17 +226,36 @@ int sc_cli_add_plot(sc_cli_run *r, const char *script, const char *png) {
   return SC_OK;
 }
 
+char *sc_cli_user_text(char *text) {
+  char *w = text;
+  for (const char *p = text; *p;) {
+    /* a name starts a word: not inside a path or another name */
+    int start = p == text || !(isalnum((unsigned char)p[-1]) ||
+                               p[-1] == '_' || p[-1] == '/' || p[-1] == '.' ||
+                               p[-1] == '-');
+    const char *q = start ? sc_msg_what(p) : p;
+    if (q != p) {
+      p = q;
+      continue;
+    }
+    *w++ = *p++;
+  }
+  *w = '\0';
+  return text;
+}
+
 void sc_cli_note(const sc_cli_run *r, const char *fmt, ...) {
   if (r->quiet) return;
+  char text[4096];
   va_list ap;
   va_start(ap, fmt);
-  fputs("slipcont: ", stderr);
-  vfprintf(stderr, fmt, ap);
-  fputc('\n', stderr);
+  vsnprintf(text, sizeof text, fmt, ap);
   va_end(ap);
+  fprintf(stderr, "slipcont: %s\n", sc_cli_user_text(text));
 }
 
 char *sc_cli_csv_text(char *text) {
+  sc_cli_user_text(text);
   for (char *p = text; *p; p++) {
     if (*p == ',') *p = ';';
     else if ((unsigned char)*p < 32 || *p == '"') *p = ' ';

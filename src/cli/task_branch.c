@@ -815,6 +815,27 @@ static double sweep_seed(const branch_job *j) {
   return 0;
 }
 
+/* The message of a d0 start that is on no orbit: the key, the orbit
+ * sought, why not, and how to find starts. */
+static int start_not_found(sc_cli_run *r, const branch_job *j) {
+  const sc_scene *s = r->scene;
+  char why[SC_MSG_LEN], what[SC_MSG_LEN + 64];
+  snprintf(why, sizeof why, "%s", r->msg->text);
+  sc_cli_user_text(why);
+  if (strncmp(why, "no period-", 10) == 0)
+    snprintf(what, sizeof what, "%s", why);
+  else
+    snprintf(what, sizeof what, "no period-%d orbit found from it (%s)",
+             j->sp.period, why);
+  return sc_scene_fail_key(
+      s, "task", "d0", r->msg,
+      "d0 = %s at %s = %s: %s; to find starts, run the fixed-point task "
+      "there (kind = fixed-point, period = 1..%d, [model] %s = %s) or give "
+      "starts = auto",
+      sc_scene_text(s, "d0"), j->pname, sc_scene_text(s, "from"), what,
+      j->sp.period, j->pname, sc_scene_text(s, "from"));
+}
+
 /* The starts, the continuation, then the brute-force sweep. */
 static int branch_compute(sc_cli_run *r, void *job) {
   branch_job *j = job;
@@ -826,7 +847,14 @@ static int branch_compute(sc_cli_run *r, void *job) {
   if (!st) st = parse_starts(r->scene, add_start, j->ob, r->msg);
   if (!st && has_auto(r->scene))
     st = auto_starts(r, j->ob, j->param, &j->nauto, &j->nauto_lost);
-  if (!st) st = sc_orbit_branch_run(j->ob, r->msg);
+  if (!st) {
+    st = sc_orbit_branch_run(j->ob, r->msg);
+    /* The run fails only when its one start, d0 at from, is on no orbit
+     * (errors of a segment are rows): say where, and what to do. */
+    if (st && st != SC_ECALLBACK && st != SC_ENOMEM && isfinite(j->sp.d0) &&
+        sc_orbit_branch_nbranches(j->ob) == 0)
+      st = start_not_found(r, j);
+  }
   j->elapsed = sc_progress_now() - t0;
   j->nev = sc_map_nevals(r->map) - ev0;
   if (st || !sc_scene_flag(r->scene, "sweep")) return st;

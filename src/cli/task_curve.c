@@ -340,6 +340,31 @@ static int curve_prepare(sc_cli_run *r, void *job) {
   return sc_map_set_param(m, (size_t)set->ix, row.value, r->msg);
 }
 
+/* The message of a start that could not be put on the curve: where it
+ * was set, why, and how to get a start that is on it. */
+static int start_failed(sc_cli_run *r, const curve_job *j) {
+  const sc_scene *s = r->scene;
+  const sc_map *m = r->map;
+  char why[SC_MSG_LEN];
+  snprintf(why, sizeof why, "%s", r->msg->text);
+  sc_cli_user_text(why);
+  const char *spec = sc_scene_text(s, "start");
+  char key[600];
+  if (spec)
+    snprintf(key, sizeof key, "start = %.500s", spec);
+  else
+    snprintf(key, sizeof key, "d0 = %.500s", sc_scene_text(s, "d0"));
+  return sc_scene_fail_key(
+      s, "task", spec ? "start" : "d0", r->msg,
+      "%s (period %d at %s = %.12g, %s = %.12g): the start is not on a %s "
+      "curve (%s); start from a row labelled %s, located by the branch "
+      "task in %s (start = FILE:N, a row of its points.csv)",
+      key, j->set.period, j->xn,
+      sc_map_get_param(m, (size_t)j->set.ix), j->yn,
+      sc_map_get_param(m, (size_t)j->set.iy), type_names[j->ti], why,
+      type_labels[j->ti], j->xn);
+}
+
 /* The trace, streamed into curve.csv and points.csv. */
 static int curve_compute(sc_cli_run *r, void *job) {
   curve_job *j = job;
@@ -367,6 +392,8 @@ static int curve_compute(sc_cli_run *r, void *job) {
   j->nev = sc_map_nevals(m) - ev0;
   if (st == SC_ECALLBACK && (c->oom || sc_cli_interrupted()))
     sc_fail(r->msg, st, "curve: %s", c->oom ? "out of memory" : "interrupted");
+  else if (st && st != SC_ENOMEM && j->stats.npoints == 0)
+    st = start_failed(r, j);
   if (!st) st = sc_cli_commit(r, "curve.csv", cf);
   return st ? st : sc_cli_commit(r, "points.csv", pf);
 }

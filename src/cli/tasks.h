@@ -267,8 +267,19 @@ int sc_cli_points_row_read(const char *spec, sc_cli_points_row *row,
 int sc_cli_read_head(const char *path, const char *what, char *line,
                      size_t len, sc_msg *msg);
 
+/**
+ * The one rule for every text the program shows (messages and notes on
+ * stderr, summary.txt, CSV notes): the library's messages start with the
+ * function that failed ("sc_shoot_solve: ...", for programmers); a user
+ * is told what and where in the terms of the scene.  This removes every
+ * such function name ("sc_NAME: ") from @p text in place and returns it.
+ * main, sc_cli_note(), the summary step and sc_cli_csv_text() apply it,
+ * so a task need not.
+ */
+char *sc_cli_user_text(char *text);
+
 /** Replace ',' by ';' and control characters by ' ' so that @p text can
- * be one CSV field; returns @p text. */
+ * be one CSV field (after sc_cli_user_text()); returns @p text. */
 char *sc_cli_csv_text(char *text);
 
 #endif

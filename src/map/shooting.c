@@ -307,14 +307,18 @@ int sc_shoot_solve_orbit(sc_shoot *s, const double *d0, sc_shoot_result *res,
       st = finish(s, res, 1, msg);
       if (st) return st;
       int on = fabs(res->family_gap) <= acc->newton_ftol;
-      return sc_fail(
-          msg, SC_ENEUTRAL,
-          "sc_shoot_solve: the period-%d orbit lies in a continuous family "
-          "(every iterate a single-block slip, multiplier exactly 1, "
-          "f^%d(d) - d = %.17g constant on this piece): d = %.17g %s",
-          s->period, s->period, res->family_gap, s->x[0],
-          on ? "is on the family" : "is not on it: no orbit with this "
-                                    "itinerary");
+      if (on)
+        return sc_fail(msg, SC_ENEUTRAL,
+                       "sc_shoot_solve: d = %.17g is on a continuous family "
+                       "of period-%d orbits (every iterate a single-block "
+                       "slip, multiplier exactly 1, f^%d(d) - d = %.3g): no "
+                       "isolated orbit",
+                       s->x[0], s->period, s->period, res->family_gap);
+      return sc_fail(msg, SC_ENEUTRAL,
+                     "sc_shoot_solve: no period-%d orbit through d = %.17g: "
+                     "every iterate is a single-block slip there, so f^%d(d) "
+                     "- d = %.17g is the same for all d nearby, and not 0",
+                     s->period, s->x[0], s->period, res->family_gap);
     }
     /* Single shooting: f^m(d) - d carries the rounding of f^m, which
      * grows with (f^m)'; its tolerance scales with max(1, |(f^m)'|). */
