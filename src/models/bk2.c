@@ -682,37 +682,25 @@ static int value_phase(const bk2_inst *b, const bk2_vpar *P, int mode,
   return bk2v_stick(P, mode, both ? BK2_EV_BOTH : kind[first], x);
 }
 
-/* sc_bk2_iterate() on values (exact flows, no force, no code, no
- * borders, no phase callback). */
+/* The event loop on values (bk2_loop.h): no force, code, borders or
+ * phase callback. */
+#define BK2_LOOP_NAME value_loop
+#define BK2_LOOP_FULL 0
+#define BK2_LOOP_NUM double
+#define BK2_LOOP_PAR bk2_vpar
+#define BK2_LOOP_STATE bk2_vstate
+#define BK2_LOOP_VAL(a) (a)
+#define BK2_LOOP_ONSET(P, d, mode, x) bk2v_onset_state(P, d, mode, x)
+#define BK2_LOOP_PHASE value_phase(b, P, mode, fresh, gap, x, msg)
+#include "models/bk2_loop.h"
+
+/* sc_bk2_iterate() on values: the flows' `value`. */
 static int value_iterate(const bk2_inst *b, double d, unsigned flags,
                          sc_map_value *out, sc_msg *msg) {
-  const bk2_vpar *P = &b->pv;
   bk2_vstate x;
-  int mode = BK2_ONSET_MODE(d, b->dstar);
-  bk2v_onset_state(P, d, mode, &x);
-  int fresh = bk2_fresh_blocks(SC_BK2_STICK, mode), first_mode = mode;
-  size_t ilen = 0;
-  out->itinerary[0] = '\0';
-  for (int n = 0; n < b->acc.max_events; n++) {
-    if (flags & SC_EVAL_ITINERARY) bk2_itin_add(out->itinerary, &ilen, mode);
-    double gap = n == 0 && mode != SC_BK2_SLIP12
-                     ? (1 + 2 * b->alpha) *
-                           (mode == SC_BK2_SLIP1 ? d - b->dstar : b->dstar - d)
-                     : NAN;
-    int next = value_phase(b, P, mode, fresh, gap, &x, msg);
-    if (next < 0) return next;
-    out->nphases++;
-    if (next == SC_BK2_STICK) {
-      out->f = x.y2 - x.y1;
-      out->neutral = out->nphases == 1 && first_mode != SC_BK2_SLIP12;
-      return SC_OK;
-    }
-    fresh = bk2_fresh_blocks(mode, next);
-    mode = next;
-  }
-  return sc_bk2_slip_cycle(b, msg);
+  return value_loop(b, &b->pv, d, flags, NULL, NULL, NULL, &x, out, NULL,
+                    NULL, msg);
 }
-
 
 /* ---- the flows interface ------------------------------------------------ */
 

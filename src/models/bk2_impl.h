@@ -3,11 +3,12 @@
  *
  * Layout of the model:
  *   bk2_map.c        the model interface (parameters, setup, evaluation),
- *                    the event loop from one GSP to the next, the borders
+ *                    the event loop on duals from one GSP to the next,
+ *                    second derivatives (with bk2_jet.c), the borders
  *                    of a whole iterate and trajectories: flows-agnostic;
- *   bk2_event.c      the rules every flow obeys: the onset of a slip, what
- *                    an event does to the state and its sensitivities, how
- *                    borders are recorded;
+ *   bk2_event.c      what an event does to the state and its
+ *                    sensitivities, and how borders are recorded, for
+ *                    every flow;
  *   bk2.c            the closed-form flows (`flows = exact`), certified
  *                    event search, and their value-only fast path;
  *   bk2_numerical.c  the integrated flows (`flows = numerical`, GSL
@@ -16,7 +17,12 @@
  *                    the event loop found (called by bk2_map.c only);
  *   bk2_quad.c       quad precision, its own arithmetic;
  *   bk2_rules.h      the rules in no number type, which all of them read:
- *                    modes, the event table, the onset, names.
+ *                    modes, the event table, the onset, names;
+ *   bk2_flow.h       the closed-form physics written once for any number
+ *                    type (instances here on duals and doubles, and in
+ *                    bk2_jet.c on jets);
+ *   bk2_loop.h       the event loop written once (instances in
+ *                    bk2_map.c on duals and in bk2.c on doubles).
  * The event loop reaches a flow only through bk2_flows; the two flows
  * never call each other. */
 #ifndef SC_MODELS_BK2_IMPL_H

@@ -180,102 +180,72 @@ static void border_codes(const sc_itin_code *code, size_t border0,
   }
 }
 
+/* The start of an iterate that follows the code `force`: the mode of its
+ * onset state (the code's first byte) and of its first phase, and where
+ * the first phase's bytes are.  Exactly on the switching surface a forced
+ * one-block start whose first phase ends at once at the other block's
+ * threshold is the start of both (the tie rule), and that phase has
+ * length zero. */
+static int loop_force_start(const bk2_inst *b, double d,
+                            const sc_itin_code *force, int *onset, int *mode,
+                            int *fpos, sc_msg *msg) {
+  const unsigned char *fc = force->c;
+  *onset = *mode = fc[0];
+  if (*mode < SC_BK2_SLIP1 || *mode > SC_BK2_SLIP12 || force->n % 2 == 0)
+    return sc_fail(msg, SC_EINVAL, "bk2: malformed itinerary code");
+  if (*mode != SC_BK2_SLIP12 && d == b->dstar && force->n >= 3 &&
+      fc[1] == BK2_EV_THRESHOLD)
+    *mode = SC_BK2_SLIP12, *fpos = 3;
+  return SC_OK;
+}
+
+/* Append a phase's two code bytes; a code too long to force is dropped
+ * (the caller is told by n = 0). */
+static void code_add(sc_itin_code *code, const unsigned char rec[2]) {
+  if (code->n + 2 <= SC_CODE_LEN) {
+    code->c[code->n++] = rec[0];
+    code->c[code->n++] = rec[1];
+  } else {
+    code->n = 0;
+  }
+}
+
+/* The derivatives of f = Y2 - Y1 at the iterate's end x; f' = 1 exactly
+ * where the iterate is neutral (docs/model.md), whatever rounding says. */
+static void loop_derivatives(const bk2_dpar *P, const bk2_state *x,
+                             sc_map_value *out) {
+  int nd = P->nd;
+  if (!nd) return;
+  sc_dual dn = sc_dsub(x->y2, x->y1, nd);
+  out->dfdd = dn.d[0];
+  for (int k = 0; k + 1 < nd; k++) out->dfdp[k] = dn.d[k + 1];
+  if (out->neutral) out->dfdd = 1;
+}
+
+/* The event loop on duals (bk2_loop.h), through the flows' phases. */
+#define BK2_LOOP_NAME dual_loop
+#define BK2_LOOP_FULL 1
+#define BK2_LOOP_NUM sc_dual
+#define BK2_LOOP_PAR bk2_dpar
+#define BK2_LOOP_STATE bk2_state
+#define BK2_LOOP_VAL(a) ((a).v)
+#define BK2_LOOP_ONSET(P, d, mode, x) bk2_onset_state(P, d, mode, x)
+#define BK2_LOOP_PHASE b->flows->phase(b, P, mode, fresh, x, &dur, &ev, msg)
+#include "models/bk2_loop.h"
+
 int sc_bk2_iterate(const bk2_inst *b, const bk2_dpar *P, sc_dual d,
                    unsigned flags, bk2_state *x, sc_map_value *out,
                    bk2_phase_fn fn, void *ctx, sc_msg *msg) {
-  return sc_bk2_iterate_ex(b, P, d, flags, NULL, NULL, NULL, x, out, fn, ctx,
-                           msg);
+  return dual_loop(b, P, d, flags, NULL, NULL, NULL, x, out, fn, ctx, msg);
 }
 
-/* Follow the motion from the GSP of displacement d to the next GSP. */
 int sc_bk2_iterate_ex(const bk2_inst *b, const bk2_dpar *P, sc_dual d,
                       unsigned flags, const sc_itin_code *force,
                       sc_itin_code *code, sc_border_list *borders,
                       bk2_state *x, sc_map_value *out, bk2_phase_fn fn,
                       void *ctx, sc_msg *msg) {
-  int nd = P->nd;
-  const unsigned char *fc = force && force->n > 0 ? force->c : NULL;
-  int mode, fpos = 1;
-  sc_itin_code own; /* borders need the code for their own codes */
-  if (borders && !code) code = &own;
-  if (fc) {
-    mode = fc[0];
-    if (mode < SC_BK2_SLIP1 || mode > SC_BK2_SLIP12 || force->n % 2 == 0)
-      return sc_fail(msg, SC_EINVAL, "bk2: malformed itinerary code");
-    bk2_onset_state(P, d, mode, x);
-    /* Exactly on the switching surface a forced one-block start whose
-     * first phase ends at once at the other block's threshold is the
-     * start of both (the tie rule), and that phase has length zero. */
-    if (mode != SC_BK2_SLIP12 && d.v == b->dstar && force->n >= 3 &&
-        fc[1] == BK2_EV_THRESHOLD)
-      mode = SC_BK2_SLIP12, fpos = 3;
-  } else {
-    mode = BK2_ONSET_MODE(d.v, b->dstar);
-    bk2_onset_state(P, d, mode, x);
-  }
-  int fresh = bk2_fresh_blocks(SC_BK2_STICK, mode);
-  bk2_events ev = {0};
-  ev.want_code = code != NULL;
-  ev.borders = borders;
-  size_t ilen = 0;
-  out->itinerary[0] = '\0';
-  if (code) code->n = 1, code->c[0] = (unsigned char)mode;
-  size_t border0 = borders ? borders->n : 0;
-  if (borders) switch_border(b, P, d, mode, borders);
-  int first_mode = mode;
-  for (int n = 0; n < b->acc.max_events; n++) {
-    bk2_state x0 = *x;
-    double dur;
-    if (flags & SC_EVAL_ITINERARY) bk2_itin_add(out->itinerary, &ilen, mode);
-    if (fc) {
-      if (fpos + 1 >= force->n)
-        return sc_fail(msg, SC_EINVAL,
-                       "bk2: the forced itinerary code ends before a global "
-                       "stick phase");
-      ev.force = fc + fpos;
-      fpos += 2;
-    }
-    ev.phase = n + 1;
-    ev.onset = n == 0 && mode != SC_BK2_SLIP12;
-    if (ev.onset) /* S_j - T_j of the stuck block j at the onset */
-      ev.onset_gap = (1 + 2 * b->alpha) *
-                     (mode == SC_BK2_SLIP1 ? d.v - b->dstar : b->dstar - d.v);
-    int next = b->flows->phase(b, P, mode, fresh, x, &dur, &ev, msg);
-    if (next < 0) return next;
-    out->nphases++;
-    if (code && code->n > 0) {
-      if (code->n + 2 <= SC_CODE_LEN) {
-        code->c[code->n++] = ev.rec[0];
-        code->c[code->n++] = ev.rec[1];
-      } else {
-        code->n = 0; /* too long to force: the caller is told by n = 0 */
-      }
-    }
-    if (borders && mode != SC_BK2_SLIP12 && next == SC_BK2_STICK)
-      gap_border(P, mode, x, n + 1, borders);
-    if (fn) {
-      int st = fn(ctx, mode, &x0, dur);
-      if (st) return st;
-    }
-    if (next == SC_BK2_STICK) {
-      sc_dual dn = sc_dsub(x->y2, x->y1, nd);
-      out->f = dn.v;
-      if (nd) {
-        out->dfdd = dn.d[0];
-        for (int k = 0; k + 1 < nd; k++) out->dfdp[k] = dn.d[k + 1];
-      }
-      /* One block slipping alone from a GSP: f(d) = d + c (docs/model.md),
-       * f' = 1 exactly, whatever rounding says. */
-      out->neutral = out->nphases == 1 && first_mode != SC_BK2_SLIP12;
-      if (out->neutral && nd) out->dfdd = 1;
-      if (borders && code && code->n > 0) border_codes(code, border0, &ev,
-                                                       borders);
-      return SC_OK;
-    }
-    fresh = bk2_fresh_blocks(mode, next);
-    mode = next;
-  }
-  return sc_bk2_slip_cycle(b, msg);
+  return dual_loop(b, P, d, flags, force, code, borders, x, out, fn, ctx,
+                   msg);
 }
 
 
