@@ -245,6 +245,18 @@ SC_API int sc_orbit_branch_add_start(sc_orbit_branch *b, double p, double d,
                               int period, sc_msg *msg);
 
 /**
+ * @brief Make the last @p n added starts one group: the ones found by
+ * shooting are continued all (both ways each) or none, when the
+ * max_branches segments left cannot take them all.  Orbits that must be
+ * treated alike (an orbit and its mirror image in a symmetric model, all
+ * found by one fixed-point search) go in one group.  Without it each
+ * start is a group of its own.
+ * @return SC_OK; SC_EINVAL for n outside [1, starts added].
+ */
+SC_API int sc_orbit_branch_group_starts(sc_orbit_branch *b, int n,
+                                        sc_msg *msg);
+
+/**
  * @brief Continue the branch from (d0, from) towards @p to, then from
  * each added start in both directions.
  *

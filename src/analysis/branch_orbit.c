@@ -206,7 +206,19 @@ int sc_orbit_branch_add_start(sc_orbit_branch *b, double p, double d,
     return sc_fail(msg, SC_ENOMEM,
                    "sc_orbit_branch_add_start: out of memory for %d starts",
                    b->nstarts + 1);
-  b->starts[b->nstarts++] = (job){.period = period, .p = p, .d = d};
+  b->starts[b->nstarts] =
+      (job){.period = period, .p = p, .d = d, .group = b->nstarts};
+  b->nstarts++;
+  return SC_OK;
+}
+
+int sc_orbit_branch_group_starts(sc_orbit_branch *b, int n, sc_msg *msg) {
+  if (n < 1 || n > b->nstarts)
+    return sc_fail(msg, SC_EINVAL,
+                   "branch: a group of %d starts (valid: 1 to the %d added)",
+                   n, b->nstarts);
+  for (int k = b->nstarts - n; k < b->nstarts; k++)
+    b->starts[k].group = b->starts[b->nstarts - n].group;
   return SC_OK;
 }
 
@@ -394,6 +406,61 @@ void sc_orbit_branch_start_counts(const sc_orbit_branch *b, size_t *started,
   "; the fixed-point task at this parameter value finds the orbits there " \
   "(or use starts = auto)"
 
+/* Shoot added start a at its parameter: a->found, a->d_found, or a row
+ * with the reason. */
+static void shoot_start(sc_orbit_branch *b, job *a, sc_msg *msg) {
+  sc_shoot *s = NULL;
+  sc_shoot_result res;
+  int st = sc_map_set_param(b->m, b->sp.param, a->p, msg);
+  if (!st) st = sc_shoot_alloc(b->m, a->period, SC_SHOOT_MULTIPLE, NULL, &s,
+                               msg);
+  if (!st) st = sc_shoot_solve(s, a->d, &res, msg);
+  sc_shoot_free(s);
+  a->found = st == SC_OK;
+  a->d_found = st == SC_OK ? res.d : NAN;
+  if (st) {
+    char why[SC_MSG_LEN];
+    snprintf(why, sizeof why, "%s", msg ? msg->text : "");
+    sc_ob_add_end(b, -1, a->period, a->p, a->d, NAN,
+                  "added start not found: %.300s%s", why, START_HINT);
+    b->nstart_notfound++;
+  }
+}
+
+/* The added starts, group by group (sc_orbit_branch_group_starts()):
+ * each found start is continued both ways, the found ones of a group all
+ * or none: a start continued one way only, or one of a group without the
+ * rest, would be treated unlike its twin (the mirror image of a symmetric
+ * model, found in the same group).  One row for each start not found or
+ * not continued. */
+static void run_starts(sc_orbit_branch *b, sc_msg *msg) {
+  for (int k = 0; k < b->nstarts;) {
+    int end = k + 1, nfound = 0;
+    while (end < b->nstarts && b->starts[end].group == b->starts[k].group)
+      end++;
+    for (int i = k; i < end; i++) {
+      shoot_start(b, &b->starts[i], msg);
+      nfound += b->starts[i].found;
+    }
+    int room = b->njobs + 2 * nfound <= b->sp.max_branches;
+    for (int i = k; i < end; i++) {
+      const job *a = &b->starts[i];
+      if (!a->found) continue;
+      if (!room) {
+        sc_ob_add_end(b, -1, a->period, a->p, a->d_found, NAN,
+                      "added start not continued: max-branches reached%s%s",
+                      NULL, NULL);
+        b->nstart_noroom++;
+        continue;
+      }
+      sc_ob_push_job(b, a->period, a->p, a->d_found, 1, 0, "added start");
+      sc_ob_push_job(b, a->period, a->p, a->d_found, -1, 0, "added start");
+      b->nstart_ok++;
+    }
+    k = end;
+  }
+}
+
 int sc_orbit_branch_run(sc_orbit_branch *b, sc_msg *msg) {
   sc_map *m = b->m;
   double saved = sc_map_get_param(m, b->sp.param);
@@ -432,34 +499,7 @@ int sc_orbit_branch_run(sc_orbit_branch *b, sc_msg *msg) {
     return sc_fail(msg, SC_EINVAL, "sc_orbit_branch_run: no start (d0 is "
                                    "NaN and no start was added)");
   }
-  for (int k = 0; k < b->nstarts; k++) {
-    const job *a = &b->starts[k];
-    if (sc_map_set_param(m, b->sp.param, a->p, msg)) continue;
-    s = NULL;
-    st = sc_shoot_alloc(m, a->period, SC_SHOOT_MULTIPLE, NULL, &s, msg);
-    if (!st) st = sc_shoot_solve(s, a->d, &res, msg);
-    sc_shoot_free(s);
-    if (st) {
-      char why[SC_MSG_LEN];
-      snprintf(why, sizeof why, "%s", msg ? msg->text : "");
-      sc_ob_add_end(b, -1, a->period, a->p, a->d, NAN,
-                    "added start not found: %.300s%s", why, START_HINT);
-      b->nstart_notfound++;
-      continue;
-    }
-    /* both ways or not at all: a start continued one way only would
-     * differ from its twin (the mirror image of a symmetric model) */
-    if (b->njobs + 2 > b->sp.max_branches) {
-      sc_ob_add_end(b, -1, a->period, a->p, res.d, NAN,
-                    "added start not continued: max-branches reached%s%s",
-                    NULL, NULL);
-      b->nstart_noroom++;
-      continue;
-    }
-    sc_ob_push_job(b, a->period, a->p, res.d, 1, 0, "added start");
-    sc_ob_push_job(b, a->period, a->p, res.d, -1, 0, "added start");
-    b->nstart_ok++;
-  }
+  run_starts(b, msg);
   st = SC_OK;
   for (int j = 0; j < b->njobs; j++) {
     job jb = b->jobs[j];

@@ -49,6 +49,9 @@ typedef struct {
   double offset; /* > 0: started this far beyond a located point, which
                     may be moved further if the start fails */
   char origin[96];
+  int group;     /* an added start: its group (continued all or none) */
+  int found;     /* an added start: found by shooting, at d_found */
+  double d_found;
 } job;
 
 /* What the callbacks of the continuation layer read. */

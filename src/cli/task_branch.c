@@ -729,16 +729,20 @@ static int auto_starts(sc_cli_run *r, sc_orbit_branch *ob, size_t param,
         sc_map_set_param(m, param, saved, NULL);
         return st;
       }
+      int added = 0;
       for (size_t i = 0; i < sc_orbit_set_count(set); i++) {
         sc_orbit_info o;
         sc_orbit_set_get(set, i, &o);
         if (o.neutral) continue; /* a family: no isolated orbit to follow */
         if (sc_orbit_branch_add_start(ob, p, o.d[0], per, NULL) == SC_OK)
-          (*n)++;
+          (*n)++, added++;
         else
           (*lost)++;
       }
       sc_orbit_set_free(set);
+      /* one search's orbits alike: an orbit and its mirror image are
+       * continued both or neither */
+      if (added > 0) sc_orbit_branch_group_starts(ob, added, NULL);
     }
   }
   sc_map_set_param(m, param, saved, NULL);
