@@ -8,7 +8,7 @@
 #  - a point located by bisection is labelled by the border it knows
 #    (beyond, or vanishing on its side), or IC when it knows none;
 #  - a curve whose start is corrected says where it landed (summary and
-#    plot title);
+#    plot title), and ends on the box's edge, not at the last point inside;
 #  - every located row of a branch (LP, PD, GR, CS, SW, BR, TT) starts
 #    the curve of its type, on its own border, at the row's point;
 # Usage: sh tests/branch_edges.sh PATH/TO/slipcont SOURCE_DIR
@@ -210,6 +210,25 @@ if "$BIN" run "$SC/curve-fold-moved.ini" --quiet --out "$TMP/moved" \
   esac
 else
   fail "curve-fold-moved ran: $(cat "$TMP/stderr")"
+fi
+
+# --- a curve's end on the box --------------------------------------------
+# The same fold in alpha over [2.5, 3.5]: both ends on the edges exactly,
+# each a point of the curve (its last row in curve.csv).
+if "$BIN" run "$SC/curve-fold-moved.ini" --quiet --out "$TMP/edge" \
+  --set output.plot=no --set task.x-from=2.5 --set task.x-to=3.5 \
+  --set task.max-points=5000 >"$TMP/stdout" 2>"$TMP/stderr"; then
+  ends=$(awk -F, 'NR > 1 && $1 == "EP" { print $2 }' "$TMP/edge/points.csv" |
+    sort -g | tr '\n' ' ')
+  if [ "$ends" = "2.5 3.5 " ] &&
+    [ "$(grep -c "the box's edge in x (located on it)" "$TMP/edge/points.csv")" = 2 ] &&
+    [ "$(awk -F, '$1 == 2.5 || $1 == 3.5' "$TMP/edge/curve.csv" | wc -l)" = 2 ]; then
+    pass "curve ends: on the box's edges alpha = 2.5 and 3.5, each a curve point"
+  else
+    fail "curve ends: EP at alpha = $ends; $(cat "$TMP/edge/points.csv")"
+  fi
+else
+  fail "curve-fold-moved (box [2.5, 3.5]) ran: $(cat "$TMP/stderr")"
 fi
 
 finish

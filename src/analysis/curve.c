@@ -296,6 +296,27 @@ static int end_point(trace *T, const double *u, const char *why) {
   return emit_special(T, "EP", u, coef, NAN, why);
 }
 
+/* A curve leaving the box in x ends on the box's edge: the point where
+ * the step from prev to cur crosses x = edge, interpolated and corrected
+ * onto the system at that x (unknowns d and y), into T->mid.  Single
+ * shooting only (multiple shooting's orbit points would need their own
+ * correction); 0 when located within EDGE_FTOLS residual tolerances, the
+ * step's own acceptance level. */
+#define EDGE_FTOLS 10.0
+static int edge_point(trace *T, const double *prev, const double *cur,
+                      double edge) {
+  if (T->N != 3) return 0;
+  double t = (edge - UX(T, prev)) / (UX(T, cur) - UX(T, prev)), floor;
+  if (!(t >= 0 && t <= 1)) return 0;
+  for (size_t i = 0; i < 3; i++)
+    T->mid[i] = prev[i] + t * (cur[i] - prev[i]);
+  UX(T, T->mid) = edge;
+  return sc_curve_correct_fixed(&T->ss.pb, T->mid, 1, T->acc, &floor) ==
+             SC_OK &&
+         floor <= EDGE_FTOLS * T->acc->newton_ftol &&
+         UY(T, T->mid) >= T->set->ylo && UY(T, T->mid) <= T->set->yhi;
+}
+
 /* Damped Newton for the start at fixed y on the single-shooting system,
  * unknowns (d, x): the orbits of f^m can sit close to d*, where
  * f' ~ |d - d*|^(-1/2) (docs/derivations.md), and a full step from a guess
@@ -752,7 +773,14 @@ static int step_accept(trace *T, walk *W, int bs, int *st) {
     return WALK_STOP;
   }
   if (UX(T, cur) < s->xlo || UX(T, cur) > s->xhi) {
-    *st = end_point(T, prev, "the box's edge in x");
+    double edge = UX(T, cur) < s->xlo ? s->xlo : s->xhi;
+    if (edge_point(T, prev, cur, edge)) {
+      if ((*st = emit_point(T, T->mid, W->branch))) return WALK_STOP;
+      *st = end_point(T, T->mid, "the box's edge in x (located on it)");
+    } else {
+      *st = end_point(T, prev, "the box's edge in x (the last point "
+                               "inside)");
+    }
     return WALK_STOP;
   }
   if ((*st = emit_point(T, cur, W->branch))) return WALK_STOP;

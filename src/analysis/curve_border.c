@@ -618,7 +618,20 @@ static int brun(btrace *B, int dir, int branch, sc_msg *msg) {
       break;
     }
     if (cur[1] < s->xlo || cur[1] > s->xhi) {
-      st = bemit(B, "EP", prev, NAN, "the box's edge in x");
+      /* located on the edge: the step's crossing of it, corrected onto
+       * the system at that x (unknowns d and y) */
+      double edge = cur[1] < s->xlo ? s->xlo : s->xhi, w[3], fl;
+      double t = (edge - prev[1]) / (cur[1] - prev[1]);
+      for (int i = 0; i < 3; i++) w[i] = prev[i] + t * (cur[i] - prev[i]);
+      w[1] = edge;
+      if (sc_curve_correct_fixed(&B->cs.pb, w, 1, &B->acc, &fl) == SC_OK &&
+          fl <= 10 * B->acc.newton_ftol && w[2] >= s->ylo && w[2] <= s->yhi) {
+        if ((st = bpoint(B, w, branch))) goto done;
+        st = bemit(B, "EP", w, NAN, "the box's edge in x (located on it)");
+      } else {
+        st = bemit(B, "EP", prev, NAN,
+                   "the box's edge in x (the last point inside)");
+      }
       break;
     }
     if ((st = bpoint(B, cur, branch))) goto done;
