@@ -666,7 +666,7 @@ static int curve_plots(sc_cli_run *r, void *job) {
     if (j->c.have_start && j->c.start_x != j->x0)
       snprintf(moved, sizeof moved, "; start moved %.3g from %s = %.10g",
                j->c.start_x - j->x0, j->xn, j->x0);
-    snprintf(full, sizeof full, "%s curve, period %d (%s%s)",
+    snprintf(full, sizeof full, "%s curve, period %d (%.440s%s)",
              type_names[j->ti], j->set.period, title, moved);
     st = sc_cli_plot_begin(r, "curve", full, sc_plot_label(m, j->xn),
                            sc_plot_label(m, j->yn), &gp);
