@@ -887,24 +887,15 @@ static __attribute__((noinline)) int refine_both(
   return out[1].t < out[0].t; /* (a tie to guard 0, as the march's loop) */
 }
 
-/* The grid march of one guard (ng = 1: c->g into out[0]) or of a pair
- * (ng = 2: c->g and pr->gb, whose sizes are equal, into out[0], out[1]),
- * from 0 over (0, tmax]; start[i]: guard i starts at a root to skip.  One
- * guard: returns 1 with out[0] filled when a root is found.  A pair: both
- * march until one finds its first root (the earlier one when both do in
- * one step); the other goes on alone up to pr->limit of that root, as the
- * later guard of a phase is searched (bk2's first_event); returns 1. */
-static inline int grid_march_n(const guard_ctx *c, const guard_pair *pr,
-                               int n, int ng, double wmax, double tmax,
-                               int *start, sc_root *out) {
-  const sc_guard *g = c->g;
-  const sc_guard *gg[2] = {g, ng == 2 ? pr->gb : g};
-  double dt = 2 * SC_PI / (GUARD_GRID_PER_PERIOD * wmax);
-  /* rotations through w dt 2^m, all levels at once (a few products a
-   * term; a test on every step cost more): the fastest term's are
-   * constants, the others' from cos and sin of w dt by double angles */
-  double rc[GUARD_GRID_LEVELS][SC_GUARD_MAXFREQ];
-  double rs[GUARD_GRID_LEVELS][SC_GUARD_MAXFREQ];
+/* The steps of grid_march_n(), inlined into it (always: the march's
+ * loop keeps its values in registers). */
+
+/* Rotations through w dt 2^m, all levels at once (a few products a term;
+ * a test on every step cost more): the fastest term's are constants, the
+ * others' from cos and sin of w dt by double angles. */
+static inline __attribute__((always_inline)) void grid_rotations(
+    const sc_guard *g, int n, double wmax, double dt,
+    double (*rc)[SC_GUARD_MAXFREQ], double (*rs)[SC_GUARD_MAXFREQ]) {
   for (int k = 0; k < n; k++) {
     if (g->w[k] == wmax) {
       for (int l = 0; l < GUARD_GRID_LEVELS; l++)
@@ -918,35 +909,132 @@ static inline int grid_march_n(const guard_ctx *c, const guard_pair *pr,
       rs[l][k] = 2 * ss * cc;
     }
   }
-  double cs[SC_GUARD_MAXFREQ] = {0}, sn[SC_GUARD_MAXFREQ] = {0};
+}
+
+/* The march's bounds: the rounding of g, g', g'' at a sample (a
+ * constant, a part growing with t, the arguments w t, and one growing
+ * with the rotations since the last exact values, rerr ulps of cos and
+ * sin), and the Hermite remainders' factors M4, M5. */
+typedef struct {
+  double e00, e01, e10, e11, e20, e21, r0, r1, r2, M4, M5;
+} grid_bounds;
+
+static inline __attribute__((always_inline)) grid_bounds grid_bounds_make(const guard_ctx *c,
+                                                          int n, double wmax) {
+  const sc_guard *g = c->g;
   double M4 = 0, M5 = 0, wamp2 = 0;
   for (int k = 0; k < n; k++) {
     double w = g->w[k];
-    cs[k] = 1, sn[k] = 0;
     M4 += c->m3[k] * w;
     M5 += c->m3[k] * w * w;
     wamp2 += c->amp[k] * w * w;
   }
-  /* The rounding of g, g', g'' at a sample: a constant, a part growing
-   * with t (the arguments w t) and one growing with the rotations since
-   * the last exact values (rerr ulps of cos and sin). */
   const double ue = GUARD_ROUND_ULPS * DBL_EPSILON;
-  double e00 = ue * (c->z.c0 + c->z.amp), e01 = ue * (c->z.c1 + c->z.wamp);
-  double e10 = ue * (c->z.c1 + c->z.wamp), e11 = ue * wmax * c->z.wamp;
-  double e20 = ue * wamp2, e21 = ue * wmax * wamp2;
-  double r0 = DBL_EPSILON * c->z.amp, r1 = DBL_EPSILON * c->z.wamp;
-  double r2 = DBL_EPSILON * wamp2;
-  /* per level: the step, its Hermite remainders, its rotation's ulps */
-  double hl[GUARD_GRID_LEVELS], rem0l[GUARD_GRID_LEVELS];
-  double rem1l[GUARD_GRID_LEVELS], ulpl[GUARD_GRID_LEVELS];
-  /* one division: level l scales h by 2^l and the remainders by 16^l,
-   * exactly (powers of two), so these equal the per-level formulas */
+  return (grid_bounds){
+      .e00 = ue * (c->z.c0 + c->z.amp), .e01 = ue * (c->z.c1 + c->z.wamp),
+      .e10 = ue * (c->z.c1 + c->z.wamp), .e11 = ue * wmax * c->z.wamp,
+      .e20 = ue * wamp2, .e21 = ue * wmax * wamp2,
+      .r0 = DBL_EPSILON * c->z.amp, .r1 = DBL_EPSILON * c->z.wamp,
+      .r2 = DBL_EPSILON * wamp2, .M4 = M4, .M5 = M5};
+}
+
+/* Per level: the step, its Hermite remainders, its rotation's ulps.  One
+ * division: level l scales h by 2^l and the remainders by 16^l, exactly
+ * (powers of two), so these equal the per-level formulas. */
+static inline __attribute__((always_inline)) void grid_levels(double dt, double M4, double M5,
+                                            double *hl, double *rem0l,
+                                            double *rem1l, double *ulpl) {
   double h40 = dt * dt * dt * dt / 384;
   for (int l = 0; l < GUARD_GRID_LEVELS; l++) {
     double s = (double)(1 << l), s4 = s * s * s * s;
     hl[l] = dt * s, rem0l[l] = M4 * h40 * s4, rem1l[l] = M5 * h40 * s4;
     ulpl[l] = GUARD_ROT_ULPS + 4 * l;
   }
+}
+
+/* The adaptive march, from t to tend, for the guards still undecided at
+ * the shortest grid step; returns 1 if one found a root. */
+static inline __attribute__((always_inline)) int grid_undecided(
+    const guard_ctx *c, const sc_guard *const *gg, int ng, double wmax,
+    double t, double tend, const int *start, int *dec, sc_root *out) {
+  int roots = 0;
+  for (int i = 0; i < ng; i++) {
+    if (dec[i] != STEP_UNDECIDED) continue;
+    guard_ctx ci = *c;
+    ci.g = gg[i];
+    guard_terms ex;
+    eval_terms(gg[i], t, &ex);
+    if (march(&ci, t, tend, &ex, start[i],
+              min2(tend - t, 0.5 * SC_PI / wmax), &out[i]))
+      dec[i] = STEP_ROOT, roots = 1;
+    else
+      dec[i] = STEP_FREE;
+  }
+  return roots;
+}
+
+/* The roots bracketed by [t, tn] refined (the adaptive march's are
+ * found), then the earliest decides; both guards of a pair with a root
+ * in this grid step: refine_both().  Returns 1 when the march is done;
+ * 0 when the later guard of a pair goes on alone up to *tmax. */
+static inline __attribute__((always_inline)) int grid_roots(
+    const guard_ctx *c, const guard_pair *pr, const sc_guard *const *gg,
+    int n, int ng, int marched, double t, double tn, double (*ve)[3],
+    double (*vf)[3], const int *dec, const int *start, int *live,
+    int *alone, double *tmax, sc_root *out) {
+  int e = -1;
+  if (ng == 2 && !*alone && !marched && dec[0] == STEP_ROOT &&
+      dec[1] == STEP_ROOT && !start[0] && !start[1]) {
+    live[0] = live[1] = 0;
+    e = refine_both(c, pr, gg, n, t, tn, ve, vf, out);
+    if (e < 0) return 1;
+  }
+  for (int i = 0; i < ng; i++) {
+    if (dec[i] != STEP_ROOT || !live[i]) continue;
+    if (!out[i].found)
+      refine(gg[i], &c->z, c->M3, t, ve[i][0], ve[i][1], tn, vf[i][0],
+             vf[i][1], c->atol, c->rtol, &out[i]);
+    live[i] = 0;
+    if (e < 0 || out[i].t < out[e].t) e = i;
+  }
+  if (ng == 1 || *alone) return 1;
+  int j = 1 - e;
+  double lim = pr->limit(pr->ctx, gg[e], &out[e]);
+  if (dec[j] == STEP_ROOT && out[j].t > lim) {
+    /* beyond the later guard's limit: as if searched up to it */
+    out[j] = (sc_root){.t = lim, .steps = out[j].steps};
+  }
+  if (!live[j] || !(tn < lim)) {
+    if (live[j]) out[j].t = lim;
+    return 1;
+  }
+  *tmax = lim; /* the later guard, alone from tn */
+  *alone = 1;
+  return 0;
+}
+
+/* The grid march of one guard (ng = 1: c->g into out[0]) or of a pair
+ * (ng = 2: c->g and pr->gb, whose sizes are equal, into out[0], out[1]),
+ * from 0 over (0, tmax]; start[i]: guard i starts at a root to skip.  One
+ * guard: returns 1 with out[0] filled when a root is found.  A pair: both
+ * march until one finds its first root (the earlier one when both do in
+ * one step); the other goes on alone up to pr->limit of that root, as the
+ * later guard of a phase is searched (bk2's first_event); returns 1. */
+static inline int grid_march_n(const guard_ctx *c, const guard_pair *pr,
+                               int n, int ng, double wmax, double tmax,
+                               int *start, sc_root *out) {
+  const sc_guard *g = c->g;
+  const sc_guard *gg[2] = {g, ng == 2 ? pr->gb : g};
+  double dt = 2 * SC_PI / (GUARD_GRID_PER_PERIOD * wmax);
+  double rc[GUARD_GRID_LEVELS][SC_GUARD_MAXFREQ];
+  double rs[GUARD_GRID_LEVELS][SC_GUARD_MAXFREQ];
+  grid_rotations(g, n, wmax, dt, rc, rs);
+  double cs[SC_GUARD_MAXFREQ] = {0}, sn[SC_GUARD_MAXFREQ] = {0};
+  for (int k = 0; k < n; k++) cs[k] = 1, sn[k] = 0;
+  const grid_bounds B = grid_bounds_make(c, n, wmax);
+  double hl[GUARD_GRID_LEVELS], rem0l[GUARD_GRID_LEVELS];
+  double rem1l[GUARD_GRID_LEVELS], ulpl[GUARD_GRID_LEVELS];
+  grid_levels(dt, B.M4, B.M5, hl, rem0l, rem1l, ulpl);
   /* g, g', g'' of each guard at the step's start (ve) and end (vf): two
    * buffers that trade places when the march moves on, not copied (a
    * copy compiled to a vector load of numbers just stored one by one
@@ -1002,7 +1090,7 @@ static inline int grid_march_n(const guard_ctx *c, const guard_pair *pr,
       cr = ct, sr = st;
       rot_ulps = GUARD_ROT_ULPS + 4 * GUARD_GRID_LEVELS;
       double h4 = h * h * h * h / 384;
-      rem0 = M4 * h4, rem1 = M5 * h4;
+      rem0 = B.M4 * h4, rem1 = B.M5 * h4;
     } else {
       h = hl[m], rem0 = rem0l[m], rem1 = rem1l[m], rot_ulps = ulpl[m];
       cr = rc[m], sr = rs[m];
@@ -1032,8 +1120,8 @@ static inline int grid_march_n(const guard_ctx *c, const guard_pair *pr,
       if (ng == 1) vals_from(g, n, tn, ncs, nsn, vf[0]);
       else vals_pair(g, pr->sgn, n, tn, ncs, nsn, vf[0], vf[1]);
     }
-    double E = e00 + e01 * tn + r0 * nerr;
-    double E1 = e10 + e11 * tn + r1 * nerr;
+    double E = B.e00 + B.e01 * tn + B.r0 * nerr;
+    double E1 = B.e10 + B.e11 * tn + B.r1 * nerr;
     /* guards proved free by the lanes (bit i: guard i); the others, and
      * any guard that starts at a root, are decided one by one */
     int freed = 0;
@@ -1055,7 +1143,7 @@ static inline int grid_march_n(const guard_ctx *c, const guard_pair *pr,
       if (!live[i]) continue;
       out[i].steps++;
       if (freed >> i & 1) continue; /* dec[i] = STEP_FREE */
-      if (isnan(E2)) E2 = e20 + e21 * tn + r2 * nerr;
+      if (isnan(E2)) E2 = B.e20 + B.e21 * tn + B.r2 * nerr;
       dec[i] = grid_step(ve[i], vf[i], start[i], past, h, E, E1, E2, rem0,
                          rem1);
       undecided |= dec[i] == STEP_UNDECIDED;
@@ -1078,54 +1166,13 @@ static inline int grid_march_n(const guard_ctx *c, const guard_pair *pr,
       }
       /* [t, tn] is [t, tend] here: a step of dt, or the tail */
       double tend = min2((double)(q + 1) * dt, tmax);
-      for (int i = 0; i < ng; i++) {
-        if (dec[i] != STEP_UNDECIDED) continue;
-        guard_ctx ci = *c;
-        ci.g = gg[i];
-        guard_terms ex;
-        eval_terms(gg[i], t, &ex);
-        if (march(&ci, t, tend, &ex, start[i],
-                  min2(tend - t, 0.5 * SC_PI / wmax), &out[i]))
-          dec[i] = STEP_ROOT, roots = 1;
-        else
-          dec[i] = STEP_FREE;
-      }
+      roots |= grid_undecided(c, gg, ng, wmax, t, tend, start, dec, out);
       marched = 1;
       tn = tend;
     }
-    if (roots) {
-      /* refine the roots bracketed by [t, tn] (the adaptive march's are
-       * found), then the earliest decides; both guards of a pair with a
-       * root in this grid step: refine_both() */
-      int e = -1;
-      if (ng == 2 && !alone && !marched && dec[0] == STEP_ROOT &&
-          dec[1] == STEP_ROOT && !start[0] && !start[1]) {
-        live[0] = live[1] = 0;
-        e = refine_both(c, pr, gg, n, t, tn, ve, vf, out);
-        if (e < 0) return 1;
-      }
-      for (int i = 0; i < ng; i++) {
-        if (dec[i] != STEP_ROOT || !live[i]) continue;
-        if (!out[i].found)
-          refine(gg[i], &c->z, c->M3, t, ve[i][0], ve[i][1], tn, vf[i][0],
-                 vf[i][1], c->atol, c->rtol, &out[i]);
-        live[i] = 0;
-        if (e < 0 || out[i].t < out[e].t) e = i;
-      }
-      if (ng == 1 || alone) return 1;
-      int j = 1 - e;
-      double lim = pr->limit(pr->ctx, gg[e], &out[e]);
-      if (dec[j] == STEP_ROOT && out[j].t > lim) {
-        /* beyond the later guard's limit: as if searched up to it */
-        out[j] = (sc_root){.t = lim, .steps = out[j].steps};
-      }
-      if (!live[j] || !(tn < lim)) {
-        if (live[j]) out[j].t = lim;
-        return 1;
-      }
-      tmax = lim; /* the later guard, alone from tn */
-      alone = 1;
-    }
+    if (roots && grid_roots(c, pr, gg, n, ng, marched, t, tn, ve, vf, dec,
+                            start, live, &alone, &tmax, out))
+      return 1;
     /* on to tn */
     for (int i = 0; i < ng; i++) start[i] = 0;
     if (marched) {
