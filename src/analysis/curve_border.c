@@ -407,9 +407,10 @@ int sc_curve_mark(const sc_cont_problem *pb, const sc_accuracy *acc,
   double floor, F[2];
   int st = sc_curve_correct_fixed(pb, u3, 1, &polish, &floor);
   *res = pb->f(u3, F, pb->user) ? NAN : norm2inf(F);
-  /* located: the corrector's own acceptance, 10 residual tolerances (as
-   * the trace's points) */
-  int ok = st == SC_OK && u3[1] == c && *res <= 10 * acc->newton_ftol;
+  /* located: the corrector's own acceptance, SC_CURVE_FLOOR_FTOLS
+   * residual tolerances (as the trace's points) */
+  int ok = st == SC_OK && u3[1] == c &&
+           *res <= SC_CURVE_FLOOR_FTOLS * acc->newton_ftol;
   if (ok)
     snprintf(note, len, "user point: %s = %.17g, located by Newton with %s "
                         "fixed",
