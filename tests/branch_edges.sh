@@ -10,7 +10,8 @@
 #  - a curve whose start is corrected says where it landed (summary and
 #    plot title), and ends on the box's edge, not at the last point inside;
 #  - every located row of a branch (LP, PD, GR, CS, SW, BR, TT) starts
-#    the curve of its type, on its own border, at the row's point;
+#    the curve of its type, on its own border, at the row's point, and
+#    explains a largest residual above its tolerance;
 # Usage: sh tests/branch_edges.sh PATH/TO/slipcont SOURCE_DIR
 . "$(dirname "$0")/cli_common.sh"
 SC=$SRC/tests/scenes
@@ -72,6 +73,15 @@ curves_from() {
       ! grep -qF "border followed: ${line%%,*}, $border, iterate 1 of" \
         "$TMP/$out-c$n/summary.txt"; then
       bad="$bad; row $n ($t): $(grep 'border followed' "$TMP/$out-c$n/summary.txt")"
+      continue
+    fi
+    # a largest residual above the tolerance is explained
+    if awk '/largest residual of the defining system/ { r = $NF }
+        /residual tolerance used/ { t = $NF }
+        END { exit !(r + 0 > t + 0) }' "$TMP/$out-c$n/summary.txt" &&
+      ! grep -q "the largest residual is above the tolerance" \
+        "$TMP/$out-c$n/summary.txt"; then
+      bad="$bad; row $n ($t): residual above the tolerance, not explained"
       continue
     fi
     ok=$((ok + 1))

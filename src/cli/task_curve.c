@@ -409,6 +409,15 @@ static int curve_summary(sc_cli_run *r, void *job, FILE *f) {
           "%.3g\n",
           stats->max_residual);
   fprintf(f, "  residual tolerance used: %.3g\n", stats->ftol);
+  /* the corrector keeps a point whose residual stays at its rounding
+   * floor, up to 10 tolerances (docs/curves.md): say so when it did */
+  if (stats->max_residual > stats->ftol)
+    fprintf(f,
+            "  the largest residual is above the tolerance: a point whose "
+            "residual stays at its rounding floor (f^m's rounding times "
+            "|f'| along the orbit, large next to d*) is kept up to 10 "
+            "tolerances, and the curve ends where the floor rises beyond "
+            "(EP)\n");
   /* the start is corrected onto the curve at fixed y: where it landed */
   if (j->c.have_start && j->c.start_x != j->x0)
     fprintf(f,
