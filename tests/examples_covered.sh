@@ -1,5 +1,5 @@
 # Every scene and program in examples/ is run by a test that holds it to
-# the known answer of its opening comment (STYLE.md, Tests): each one's
+# the known answer of its opening comment (docs/contributing.md): each one's
 # name appears in a test of tests/ that runs it.  A new example without a
 # test fails here, with its name.
 . "$(dirname "$0")/cli_common.sh"

@@ -4,7 +4,7 @@
  * other, or just after the other has re-stuck.  The map's numerical flows
  * (precise preset) against an integration of this file's own: a
  * long-double Taylor series of order TAYLOR_ORDER with the physics of
- * MODEL.md written out, events found on the series itself (sign changes
+ * docs/model.md written out, events found on the series itself (sign changes
  * on a fine sampling of each step, then bisection), and the re-stick rule
  * stated as the motion gives it: a block that has started to slip moves
  * slower than the surface, U_i - Vs < 0, until U_i climbs back to Vs; its

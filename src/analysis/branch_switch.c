@@ -91,7 +91,7 @@ static void first_change(const char *a, const char *c, char *out,
  * both sides start from the same positions and velocities, and where two
  * ending events coincide (CS, BR) the motion after them depends
  * continuously on the state; a grazing (GR) or a touching threshold (TT)
- * adds or removes a whole slip, so f jumps there (MODEL.md). */
+ * adds or removes a whole slip, so f jumps there (docs/model.md). */
 static int continuous_at(sc_point_label l) {
   return l == SC_PT_SW || l == SC_PT_CS || l == SC_PT_BR;
 }

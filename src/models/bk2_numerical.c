@@ -558,7 +558,7 @@ static int num_phase_at_max(const bk2_inst *b, const bk2_dpar *P, int mode,
  * rounding of zero at state y, arrives at zero from the slipping side (a
  * re-stick) rather than leaves it.  A block slips slower than the surface,
  * U_i < Vs, from the moment it comes loose until U_i climbs back to Vs
- * (MODEL.md), so a re-stick is U_i returning to Vs after having left it:
+ * (docs/model.md), so a re-stick is U_i returning to Vs after having left it:
  * g' > 0, or g' within rounding and g'' > 0.  A block that has just come
  * loose leaves: U_i' = K_i - S_i is K_i - T_i < 0 at its start with
  * Coulomb friction and 0 with velocity weakening (K_i(Vs) = T_i), and then
@@ -694,7 +694,7 @@ static double locate_event(const bk2_inst *b, int w, gsl_odeiv2_system *sys,
 }
 
 /* The tie rules at an event of guard kinds[*which] at time te, state yt
- * (MODEL.md): another re-stick within the event's bracket (the event
+ * (docs/model.md): another re-stick within the event's bracket (the event
  * tolerance over its slope, plus rounding) that arrives at zero
  * (restick_arrives(); a block that has only just come loose does not)
  * goes first when the event is a threshold, a re-stick that coincides
