@@ -60,28 +60,30 @@ const sc_model_type sc_model_logistic = {
 /* The cubic map x -> x + mu1 + mu2 x - x^3: its fixed points solve
  * mu1 + mu2 x - x^3 = 0, with folds on mu1 = +-2 (mu2/3)^(3/2) meeting
  * in a cusp at the origin. */
+/* The cubic and the gpd map are both two-parameter normal forms: one
+ * instance type and one setup serve both. */
 typedef struct {
   double mu1, mu2;
-} cubic_inst;
+} mu_inst;
+
+static int mu_setup(void *inst, const double *p, const int *opt,
+                    const sc_accuracy *acc, sc_msg *msg) {
+  (void)opt, (void)acc, (void)msg;
+  mu_inst *c = inst;
+  c->mu1 = p[0];
+  c->mu2 = p[1];
+  return SC_OK;
+}
 
 static const sc_param_info cubic_params[] = {
     {"mu1", 0, -1e6, 1e6, 0, 0, "constant term", NULL, NULL},
     {"mu2", 0.5, -1e6, 1e6, 0, 0, "linear term", NULL, NULL},
 };
 
-static int cubic_setup(void *inst, const double *p, const int *opt,
-                       const sc_accuracy *acc, sc_msg *msg) {
-  (void)opt, (void)acc, (void)msg;
-  cubic_inst *c = inst;
-  c->mu1 = p[0];
-  c->mu2 = p[1];
-  return SC_OK;
-}
-
 static int cubic_eval(void *inst, double x, unsigned flags, sc_map_value *out,
                       sc_msg *msg) {
   (void)msg;
-  const cubic_inst *c = inst;
+  const mu_inst *c = inst;
   out->f = x + c->mu1 + c->mu2 * x - x * x * x;
   if (flags & (SC_EVAL_DERIV | SC_EVAL_DERIV2)) {
     out->dfdd = 1 + c->mu2 - 3 * x * x;
@@ -108,8 +110,8 @@ const sc_model_type sc_model_cubic = {
     .state_name = "x",
     .nparam = 2,
     .params = cubic_params,
-    .inst_size = sizeof(cubic_inst),
-    .setup = cubic_setup,
+    .inst_size = sizeof(mu_inst),
+    .setup = mu_setup,
     .eval = cubic_eval,
 };
 
@@ -119,28 +121,15 @@ const sc_model_type sc_model_cubic = {
  * coefficient is c = mu2 (supercritical for mu2 > 0) and vanishes at the
  * origin: a generalized flip (degenerate period doubling), where the
  * quintic term -x^5 decides. */
-typedef struct {
-  double mu1, mu2;
-} gpd_inst;
-
 static const sc_param_info gpd_params[] = {
     {"mu1", 0, -1e6, 1e6, 0, 0, "multiplier of x = 0 is -(1 + mu1)", NULL, NULL},
     {"mu2", 0.5, -1e6, 1e6, 0, 0, "cubic term", NULL, NULL},
 };
 
-static int gpd_setup(void *inst, const double *p, const int *opt,
-                     const sc_accuracy *acc, sc_msg *msg) {
-  (void)opt, (void)acc, (void)msg;
-  gpd_inst *c = inst;
-  c->mu1 = p[0];
-  c->mu2 = p[1];
-  return SC_OK;
-}
-
 static int gpd_eval(void *inst, double x, unsigned flags, sc_map_value *out,
                     sc_msg *msg) {
   (void)msg;
-  const gpd_inst *c = inst;
+  const mu_inst *c = inst;
   double x2 = x * x;
   out->f = -(1 + c->mu1) * x + c->mu2 * x2 * x - x2 * x2 * x;
   if (flags & (SC_EVAL_DERIV | SC_EVAL_DERIV2)) {
@@ -169,7 +158,7 @@ const sc_model_type sc_model_gpd = {
     .state_name = "x",
     .nparam = 2,
     .params = gpd_params,
-    .inst_size = sizeof(gpd_inst),
-    .setup = gpd_setup,
+    .inst_size = sizeof(mu_inst),
+    .setup = mu_setup,
     .eval = gpd_eval,
 };
