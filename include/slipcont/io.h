@@ -363,19 +363,26 @@ SC_API void sc_plot_axis_format(FILE *f, const char *axis, double lo,
  * pixels before gnuplot draws anything, so that no two labels overlap.
  */
 typedef struct {
-  int width, height;   /**< picture, pixels (sc_plot_head: 1200 x 800) */
-  double left, right;  /**< plot area, fractions of the width */
-  double bottom, top;  /**< plot area, fractions of the height */
-  double xmin, xmax;   /**< x range, data units (xmin < xmax) */
-  double ymin, ymax;   /**< y range, data units (ymin < ymax) */
-  int xlog, ylog;      /**< 1: logarithmic axis (its range > 0) */
+  int width;           /**< picture width, pixels (sc_plot_head: 1200) */
+  int height;          /**< picture height, pixels (sc_plot_head: 800) */
+  double left;         /**< plot area's left edge, fraction of the width */
+  double right;        /**< plot area's right edge, fraction of the width */
+  double bottom;       /**< plot area's bottom, fraction of the height */
+  double top;          /**< plot area's top, fraction of the height */
+  double xmin;         /**< x range's low end, data units (< xmax) */
+  double xmax;         /**< x range's high end, data units */
+  double ymin;         /**< y range's low end, data units (< ymax) */
+  double ymax;         /**< y range's high end, data units */
+  int xlog;            /**< 1: logarithmic x axis (its range > 0) */
+  int ylog;            /**< 1: logarithmic y axis (its range > 0) */
   double font;         /**< labels' font size, points (Sans) */
   double marker;       /**< half the size of a point's marker, pixels */
 } sc_plot_frame;
 
 /** One text label for a point of a figure. */
 typedef struct {
-  double x, y;     /**< in: the point, data units */
+  double x;        /**< in: the point's x, data units */
+  double y;        /**< in: the point's y, data units */
   char text[160];  /**< in: plain text, "" for a marker that only keeps
                         labels off; out: with merged labels' texts */
   int placed;      /**< out: 1 placed; 0 merged into label `into` (-1 for
@@ -383,9 +390,12 @@ typedef struct {
                         drawn) */
   int into;        /**< out: the label that carries this one's text */
   int leader;      /**< out: 1 when set off from its point (draw a line) */
-  double px, py;   /**< out: the point, pixels from the bottom left */
-  double ax, ay;   /**< out: the text's anchor: its left end, vertical
-                        middle, pixels from the bottom left */
+  double px;       /**< out: the point's x, pixels from the left */
+  double py;       /**< out: the point's y, pixels from the bottom */
+  double ax;       /**< out: the text anchor's x (the text's left end),
+                        pixels from the left */
+  double ay;       /**< out: the text anchor's y (the text's vertical
+                        middle), pixels from the bottom */
   double box[4];   /**< out: the text's box x0, y0, x1, y1, pixels */
 } sc_plot_spot;
 
