@@ -1013,6 +1013,161 @@ static inline __attribute__((always_inline)) int grid_roots(
   return 0;
 }
 
+/* g, g', g'' of one guard (ng = 1) or of both of a pair at t, from cos
+ * and sin of each term, into v[0] (and v[1]). */
+static inline __attribute__((always_inline)) void grid_vals(
+    const sc_guard *g, const guard_pair *pr, int n, int ng, double t,
+    const double *cs, const double *sn, double (*v)[3]) {
+  if (ng == 1) vals_from(g, n, t, cs, sn, v[0]);
+  else vals_pair(g, pr->sgn, n, t, cs, sn, v[0], v[1]);
+}
+
+/* The step's rotation of cos and sin (cs, sn into ncs, nsn; one term at
+ * a time), then the values at its end tn into vf. */
+static inline __attribute__((always_inline)) void grid_next(
+    const sc_guard *g, const guard_pair *pr, int n, int ng, double tn,
+    const double *cr, const double *sr, const double *cs, const double *sn,
+    double *ncs, double *nsn, double (*vf)[3]) {
+  for (int k = 0; k < n; k++) {
+    ncs[k] = cs[k] * cr[k] - sn[k] * sr[k];
+    nsn[k] = sn[k] * cr[k] + cs[k] * sr[k];
+  }
+  grid_vals(g, pr, n, ng, tn, ncs, nsn, vf);
+}
+
+/* The march's tables, made once a search: the rotations per level and
+ * term (grid_rotations()), and per level the step, its Hermite
+ * remainders and its rotation's ulps (grid_levels()). */
+typedef struct {
+  double rc[GUARD_GRID_LEVELS][SC_GUARD_MAXFREQ];
+  double rs[GUARD_GRID_LEVELS][SC_GUARD_MAXFREQ];
+  double hl[GUARD_GRID_LEVELS], rem0l[GUARD_GRID_LEVELS];
+  double rem1l[GUARD_GRID_LEVELS], ulpl[GUARD_GRID_LEVELS];
+} grid_tables;
+
+/* A step's end tn, length h, Hermite remainders, rotation (cr, sr) and
+ * the rotation's ulps: level m's from the tables, or, for the tail step
+ * through tmax from t, all computed here (the rotation into ct, st). */
+typedef struct {
+  double h, tn, rem0, rem1, rot_ulps;
+  const double *cr, *sr;
+} grid_span;
+
+static inline __attribute__((always_inline)) grid_span grid_span_make(
+    const sc_guard *g, const grid_tables *T, const grid_bounds *B,
+    int tail, int m, double t, double tn, double tmax, double *ct,
+    double *st) {
+  grid_span s;
+  if (tail) {
+    s.h = tmax - t, s.tn = tmax;
+    rotation(g, s.h, ct, st);
+    s.cr = ct, s.sr = st;
+    s.rot_ulps = GUARD_ROT_ULPS + 4 * GUARD_GRID_LEVELS;
+    double h4 = s.h * s.h * s.h * s.h / 384;
+    s.rem0 = B->M4 * h4, s.rem1 = B->M5 * h4;
+  } else {
+    s.h = T->hl[m], s.tn = tn, s.rem0 = T->rem0l[m], s.rem1 = T->rem1l[m];
+    s.rot_ulps = T->ulpl[m];
+    s.cr = T->rc[m], s.sr = T->rs[m];
+  }
+  return s;
+}
+
+/* A shorter step after an undecided one: level m lowered, down to dt and
+ * below the tail's length (which is not retried); returns 0 where the
+ * step was dt already, or the tail. */
+static inline __attribute__((always_inline)) int grid_shorter(
+    int *m, long q, double dt, double tmax) {
+  if (*m > 0) {
+    --*m;
+    while (*m > 0 && !((double)(q + (1L << *m)) * dt < tmax)) --*m;
+    if ((double)(q + 1) * dt < tmax) return 1;
+  }
+  return 0;
+}
+
+/* The tests of one step for each live guard not proved free by the lanes
+ * (bit i of freed: guard i), from the values ve at its start and vf at
+ * its end, into dec[]; each live guard's step is counted.  Sets
+ * *undecided where a guard is undecided, *roots where one has a root. */
+static inline __attribute__((always_inline)) void grid_decide(
+    const grid_bounds *B, int ng, const int *live, int freed,
+    const int *start, int past, const grid_span *s, double E, double E1,
+    double nerr, double (*ve)[3], double (*vf)[3], int *dec, sc_root *out,
+    int *undecided, int *roots) {
+  double E2 = NAN;
+  for (int i = 0; i < ng; i++) {
+    if (!live[i]) continue;
+    out[i].steps++;
+    if (freed >> i & 1) continue; /* dec[i] = STEP_FREE */
+    if (isnan(E2)) E2 = B->e20 + B->e21 * s->tn + B->r2 * nerr;
+    dec[i] = grid_step(ve[i], vf[i], start[i], past, s->h, E, E1, E2,
+                       s->rem0, s->rem1);
+    *undecided |= dec[i] == STEP_UNDECIDED;
+    *roots |= dec[i] == STEP_ROOT;
+  }
+}
+
+#if GUARD_PAIR_LANES
+/* A pair of two-term guards in two lanes at one end of a step: g, g',
+ * g'' (guard i in lane i) and cos and sin of the terms (term k in lane
+ * k), carried in registers from step to step (cs[], sn[] hold them for
+ * the code one term at a time): a vector load of two numbers just stored
+ * one by one would wait for the stores. */
+typedef struct {
+  __m128d G0, G1, G2, C, S;
+} lane_vals;
+
+/* The lanes' values from the guards' ve and the terms' cs, sn. */
+static inline __attribute__((always_inline)) lane_vals lane_vals_at(
+    double (*ve)[3], const double *cs, const double *sn) {
+  lane_vals v;
+  v.G0 = _mm_set_pd(ve[1][0], ve[0][0]), v.G1 = _mm_set_pd(ve[1][1], ve[0][1]);
+  v.G2 = _mm_set_pd(ve[1][2], ve[0][2]);
+  v.C = pair_load(cs), v.S = pair_load(sn);
+  return v;
+}
+
+/* What the lanes hold from the march's start: the guards' coefficients
+ * (L), the values at the first step's start (LE), the rotations per level
+ * (LRC, LRS: term k in lane k). */
+static inline __attribute__((always_inline)) void lane_start(
+    const sc_guard *g, const double *sgn, const grid_tables *T,
+    double (*ve)[3], const double *cs, const double *sn, pair_lanes *L,
+    lane_vals *LE, __m128d *LRC, __m128d *LRS) {
+  *L = pair_lanes_make(g, sgn), *LE = lane_vals_at(ve, cs, sn);
+  for (int l = 0; l < GUARD_GRID_LEVELS; l++)
+    LRC[l] = pair_load(T->rc[l]), LRS[l] = pair_load(T->rs[l]);
+}
+
+/* The step's end F from its start E: the rotation by RC, RS (term k in
+ * lane k), then both guards' values at tn. */
+static inline __attribute__((always_inline)) void lane_step(
+    const pair_lanes *L, const sc_guard *g, double tn, const lane_vals *E,
+    __m128d RC, __m128d RS, lane_vals *F) {
+  F->C = _mm_sub_pd(_mm_mul_pd(E->C, RC), _mm_mul_pd(E->S, RS));
+  F->S = _mm_add_pd(_mm_mul_pd(E->S, RC), _mm_mul_pd(E->C, RS));
+  pair_vals(L, g, tn, F->C, F->S, &F->G0, &F->G1, &F->G2);
+}
+
+/* Test (A) for both guards where neither starts at a root (bit i of the
+ * result: guard i proved free, pair_free()); the values reach ve, vf
+ * only where a live guard is not so proved, as grid_step() and the
+ * refinement read them there. */
+static inline __attribute__((always_inline)) int lane_free(
+    const lane_vals *E, const lane_vals *F, const int *start,
+    const int *live, double h, double Er, double marg, double (*ve)[3],
+    double (*vf)[3]) {
+  int freed = pair_free(E->G0, E->G1, F->G0, F->G1, h, Er, marg) &
+              ~(start[0] | start[1] << 1);
+  if ((live[0] && !(freed & 1)) || (live[1] && !(freed & 2))) {
+    pair_store(E->G0, E->G1, E->G2, ve);
+    pair_store(F->G0, F->G1, F->G2, vf);
+  }
+  return freed;
+}
+#endif
+
 /* The grid march of one guard (ng = 1: c->g into out[0]) or of a pair
  * (ng = 2: c->g and pr->gb, whose sizes are equal, into out[0], out[1]),
  * from 0 over (0, tmax]; start[i]: guard i starts at a root to skip.  One
@@ -1026,15 +1181,12 @@ static inline int grid_march_n(const guard_ctx *c, const guard_pair *pr,
   const sc_guard *g = c->g;
   const sc_guard *gg[2] = {g, ng == 2 ? pr->gb : g};
   double dt = 2 * SC_PI / (GUARD_GRID_PER_PERIOD * wmax);
-  double rc[GUARD_GRID_LEVELS][SC_GUARD_MAXFREQ];
-  double rs[GUARD_GRID_LEVELS][SC_GUARD_MAXFREQ];
-  grid_rotations(g, n, wmax, dt, rc, rs);
+  grid_tables T;
+  grid_rotations(g, n, wmax, dt, T.rc, T.rs);
   double cs[SC_GUARD_MAXFREQ] = {0}, sn[SC_GUARD_MAXFREQ] = {0};
   for (int k = 0; k < n; k++) cs[k] = 1, sn[k] = 0;
   const grid_bounds B = grid_bounds_make(c, n, wmax);
-  double hl[GUARD_GRID_LEVELS], rem0l[GUARD_GRID_LEVELS];
-  double rem1l[GUARD_GRID_LEVELS], ulpl[GUARD_GRID_LEVELS];
-  grid_levels(dt, B.M4, B.M5, hl, rem0l, rem1l, ulpl);
+  grid_levels(dt, B.M4, B.M5, T.hl, T.rem0l, T.rem1l, T.ulpl);
   /* g, g', g'' of each guard at the step's start (ve) and end (vf): two
    * buffers that trade places when the march moves on, not copied (a
    * copy compiled to a vector load of numbers just stored one by one
@@ -1042,27 +1194,14 @@ static inline int grid_march_n(const guard_ctx *c, const guard_pair *pr,
   double vbuf[2][2][3];
   double(*ve)[3] = vbuf[0], (*vf)[3] = vbuf[1];
   int live[2] = {1, ng == 2}, alone = 0;
-  if (ng == 1) vals_from(g, n, 0, cs, sn, ve[0]);
-  else vals_pair(g, pr->sgn, n, 0, cs, sn, ve[0], ve[1]);
+  grid_vals(g, pr, n, ng, 0, cs, sn, ve);
 #if GUARD_PAIR_LANES
-  /* a pair of two-term guards in two lanes: g, g' at the step's start */
+  /* a pair of two-term guards in two lanes (lane_start()) */
   const int lanes = ng == 2 && n == 2;
   pair_lanes L;
-  __m128d LE0 = _mm_setzero_pd(), LE1 = _mm_setzero_pd();
-  __m128d LE2 = _mm_setzero_pd();
-  /* cos and sin of the two terms, carried in registers from step to step
-   * (cs[], sn[] hold them for the code one term at a time): a vector load
-   * of two numbers just stored one by one would wait for the stores */
-  __m128d LC = _mm_setzero_pd(), LS = _mm_setzero_pd();
-  __m128d LRC[GUARD_GRID_LEVELS], LRS[GUARD_GRID_LEVELS]; /* rc, rs */
-  if (lanes) {
-    L = pair_lanes_make(g, pr->sgn);
-    LE0 = _mm_set_pd(ve[1][0], ve[0][0]), LE1 = _mm_set_pd(ve[1][1], ve[0][1]);
-    LE2 = _mm_set_pd(ve[1][2], ve[0][2]);
-    LC = pair_load(cs), LS = pair_load(sn);
-    for (int l = 0; l < GUARD_GRID_LEVELS; l++)
-      LRC[l] = pair_load(rc[l]), LRS[l] = pair_load(rs[l]);
-  }
+  __m128d LRC[GUARD_GRID_LEVELS], LRS[GUARD_GRID_LEVELS];
+  lane_vals LE = {0};
+  if (lanes) lane_start(g, pr->sgn, &T, ve, cs, sn, &L, &LE, LRC, LRS);
 #endif
   /* t = q dt with one rounding (not a running sum, whose rounding would
    * grow with the steps while the rotations follow the exact sum) */
@@ -1075,95 +1214,46 @@ static inline int grid_march_n(const guard_ctx *c, const guard_pair *pr,
    * threshold search; 4.1 and 1 now). */
   int m = GUARD_GRID_LEVELS - 1, past_tried = 0;
   while (t < tmax) {
-    double h, tn, rem0, rem1, ct[SC_GUARD_MAXFREQ], st[SC_GUARD_MAXFREQ];
-    const double *cr, *sr;
-    double rot_ulps;
-    tn = (double)(q + (1L << m)) * dt;
+    double ct[SC_GUARD_MAXFREQ], st[SC_GUARD_MAXFREQ]; /* a tail's rotation */
+    double ncs[SC_GUARD_MAXFREQ], nsn[SC_GUARD_MAXFREQ]; /* cos, sin at tn */
+    double tn = (double)(q + (1L << m)) * dt;
     /* A step that reaches past tmax is first tried whole (its rotation is
      * in the table): if it proves [t, tn] free of roots, so is [t, tmax].
      * Otherwise the tail step through tmax - t follows, as before. */
     int past = !(tn < tmax) && !past_tried;
     int tail = !(tn < tmax) && !past;
-    if (tail) {
-      h = tmax - t, tn = tmax;
-      rotation(g, h, ct, st);
-      cr = ct, sr = st;
-      rot_ulps = GUARD_ROT_ULPS + 4 * GUARD_GRID_LEVELS;
-      double h4 = h * h * h * h / 384;
-      rem0 = B.M4 * h4, rem1 = B.M5 * h4;
-    } else {
-      h = hl[m], rem0 = rem0l[m], rem1 = rem1l[m], rot_ulps = ulpl[m];
-      cr = rc[m], sr = rs[m];
-    }
-    double ncs[SC_GUARD_MAXFREQ], nsn[SC_GUARD_MAXFREQ];
-    double nerr = rerr + rot_ulps;
-    int dec[2] = {STEP_FREE, STEP_FREE}, undecided = 0, roots = 0;
+    const grid_span s =
+        grid_span_make(g, &T, &B, tail, m, t, tn, tmax, ct, st);
+    tn = s.tn;
+    double nerr = rerr + s.rot_ulps;
+    int dec[2] = {STEP_FREE, STEP_FREE}, undecided = 0, roots = 0, marched = 0;
 #if GUARD_PAIR_LANES
-    __m128d LF0 = LE0, LF1 = LE1, LF2 = LE2, LNC = LC, LNS = LS;
-    if (lanes) {
-      /* the rotation (term k in lane k), both guards' values (guard i in
-       * lane i), and test (A) for both where neither starts at a root;
-       * the values reach ve, vf (and cos and sin cs, sn) only where a
-       * guard is decided one by one below */
-      __m128d RC = tail ? pair_load(cr) : LRC[m];
-      __m128d RS = tail ? pair_load(sr) : LRS[m];
-      LNC = _mm_sub_pd(_mm_mul_pd(LC, RC), _mm_mul_pd(LS, RS));
-      LNS = _mm_add_pd(_mm_mul_pd(LS, RC), _mm_mul_pd(LC, RS));
-      pair_vals(&L, g, tn, LNC, LNS, &LF0, &LF1, &LF2);
-    } else
+    lane_vals LF = LE;
+    if (lanes)
+      lane_step(&L, g, tn, &LE, tail ? pair_load(s.cr) : LRC[m],
+                tail ? pair_load(s.sr) : LRS[m], &LF);
+    else
 #endif
-    {
-      for (int k = 0; k < n; k++) {
-        ncs[k] = cs[k] * cr[k] - sn[k] * sr[k];
-        nsn[k] = sn[k] * cr[k] + cs[k] * sr[k];
-      }
-      if (ng == 1) vals_from(g, n, tn, ncs, nsn, vf[0]);
-      else vals_pair(g, pr->sgn, n, tn, ncs, nsn, vf[0], vf[1]);
-    }
+      grid_next(g, pr, n, ng, tn, s.cr, s.sr, cs, sn, ncs, nsn, vf);
     double E = B.e00 + B.e01 * tn + B.r0 * nerr;
     double E1 = B.e10 + B.e11 * tn + B.r1 * nerr;
-    /* guards proved free by the lanes (bit i: guard i); the others, and
-     * any guard that starts at a root, are decided one by one */
-    int freed = 0;
+    int freed = 0; /* guards proved free by the lanes (bit i: guard i) */
 #if GUARD_PAIR_LANES
     if (lanes)
-      freed = pair_free(LE0, LE1, LF0, LF1, h, E, rem0 + E + h * E1) &
-              ~(start[0] | start[1] << 1);
+      freed = lane_free(&LE, &LF, start, live, s.h, E,
+                        s.rem0 + E + s.h * E1, ve, vf);
 #endif
-#if GUARD_PAIR_LANES
-    if (lanes && ((live[0] && !(freed & 1)) || (live[1] && !(freed & 2)))) {
-      /* a guard not proved free: both ends' values as grid_step() and
-       * the refinement read them */
-      pair_store(LE0, LE1, LE2, ve);
-      pair_store(LF0, LF1, LF2, vf);
-    }
-#endif
-    double E2 = NAN;
-    for (int i = 0; i < ng; i++) {
-      if (!live[i]) continue;
-      out[i].steps++;
-      if (freed >> i & 1) continue; /* dec[i] = STEP_FREE */
-      if (isnan(E2)) E2 = B.e20 + B.e21 * tn + B.r2 * nerr;
-      dec[i] = grid_step(ve[i], vf[i], start[i], past, h, E, E1, E2, rem0,
-                         rem1);
-      undecided |= dec[i] == STEP_UNDECIDED;
-      roots |= dec[i] == STEP_ROOT;
-    }
+    grid_decide(&B, ng, live, freed, start, past, &s, E, E1, nerr, ve, vf,
+                dec, out, &undecided, &roots);
     if (past) {
       if (!undecided) break; /* (a past step brackets no root) */
       past_tried = 1;           /* the tail step from the same state */
       continue;
     }
-    int marched = 0;
     if (undecided) {
-      /* A shorter step, down to dt (below the tail's length, which is
-       * not retried), then the adaptive march for the guards still
-       * undecided. */
-      if (m > 0) {
-        m--;
-        while (m > 0 && !((double)(q + (1L << m)) * dt < tmax)) m--;
-        if ((double)(q + 1) * dt < tmax) continue;
-      }
+      /* a shorter step, then the adaptive march for the guards still
+       * undecided */
+      if (grid_shorter(&m, q, dt, tmax)) continue;
       /* [t, tn] is [t, tend] here: a step of dt, or the tail */
       double tend = min2((double)(q + 1) * dt, tmax);
       roots |= grid_undecided(c, gg, ng, wmax, t, tend, start, dec, out);
@@ -1173,24 +1263,14 @@ static inline int grid_march_n(const guard_ctx *c, const guard_pair *pr,
     if (roots && grid_roots(c, pr, gg, n, ng, marched, t, tn, ve, vf, dec,
                             start, live, &alone, &tmax, out))
       return 1;
-    /* on to tn */
-    for (int i = 0; i < ng; i++) start[i] = 0;
+    for (int i = 0; i < ng; i++) start[i] = 0; /* on to tn */
     if (marched) {
-      t = tn;
-      q++;
-      anchor(g, t, cs, sn);
-      if (ng == 1) vals_from(g, n, t, cs, sn, ve[0]);
-      else vals_pair(g, pr->sgn, n, t, cs, sn, ve[0], ve[1]);
+      t = tn, q++;
+      anchor(g, t, cs, sn), grid_vals(g, pr, n, ng, t, cs, sn, ve);
 #if GUARD_PAIR_LANES
-      if (lanes) {
-        LE0 = _mm_set_pd(ve[1][0], ve[0][0]);
-        LE1 = _mm_set_pd(ve[1][1], ve[0][1]);
-        LE2 = _mm_set_pd(ve[1][2], ve[0][2]);
-        LC = pair_load(cs), LS = pair_load(sn);
-      }
+      if (lanes) LE = lane_vals_at(ve, cs, sn);
 #endif
-      rerr = SC_FAST_TRIG_ULPS;
-      m = 0;
+      rerr = SC_FAST_TRIG_ULPS, m = 0;
       continue;
     }
     past_tried = 0;
@@ -1198,7 +1278,7 @@ static inline int grid_march_n(const guard_ctx *c, const guard_pair *pr,
     if (!tail) q += 1L << m;
 #if GUARD_PAIR_LANES
     if (lanes) {
-      LE0 = LF0, LE1 = LF1, LE2 = LF2, LC = LNC, LS = LNS;
+      LE = LF;
       if (m + 1 < GUARD_GRID_LEVELS) m++;
       continue;
     }
