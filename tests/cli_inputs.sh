@@ -139,23 +139,7 @@ refuse file-control "ctl.ini:6: [task] to: control character 0x01 at position 4 
 
 # A run that fails while computing (the only start is on no orbit) leaves
 # no folder it created.
-cat >"$TMP/noorbit.ini" <<'INI'
-[model]
-name = bk2
-driver = frozen
-alpha = 2.8
-beta = 2.5
-[task]
-kind = branch
-parameter = alpha
-from = 2.8
-to = 3
-period = 2
-d0 = 5
-sweep = no
-[output]
-plot = no
-INI
+cp "$SRC/tests/scenes/branch-no-orbit.ini" "$TMP/noorbit.ini"
 run_lim run "$TMP/noorbit.ini" --out "$TMP/o-noorbit" --quiet
 expect_rc "no orbit at the start" 1
 check "no orbit at the start: no folder left" test ! -e "$TMP/o-noorbit"

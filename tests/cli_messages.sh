@@ -44,27 +44,11 @@ run_lim() {
 # A branch whose one start is on no orbit: the map is a shift there
 # (every iterate a single-block slip), so the message must not speak of
 # a family, must say where (the key d0) and what to do.
-cat >"$TMP/noorbit.ini" <<'INI'
-[model]
-name = bk2
-driver = frozen
-alpha = 2.8
-beta = 2.5
-[task]
-kind = branch
-parameter = alpha
-from = 2.8
-to = 3
-period = 2
-d0 = 5
-sweep = no
-[output]
-plot = no
-INI
+cp "$SRC/tests/scenes/branch-no-orbit.ini" "$TMP/noorbit.ini"
 run_lim run "$TMP/noorbit.ini" --out "$TMP/noorbit"
 expect_rc "start on no orbit" 1
 clean "start on no orbit" "$ERR"
-expect_err "start on no orbit" "noorbit.ini:12: [task] d0 = 5 at alpha = 2.8: no period-2 orbit through d = 5"
+expect_err "start on no orbit" "noorbit.ini:16: [task] d0 = 5 at alpha = 2.8: no period-2 orbit through d = 5"
 expect_err "start on no orbit" "run the fixed-point task there (kind = fixed-point, period = 1..2, [model] alpha = 2.8)"
 case $ERR in
 *family*) fail "start on no orbit: the message speaks of a family ($ERR)" ;;
