@@ -36,7 +36,7 @@ run() { # run OUT [args...]: quiet run into folder OUT
 }
 
 # 1. Threads, both seeds.
-for seed in fixed neighbour; do
+for seed in fixed previous; do
   run t1-$seed --threads 1 --set task.seed=$seed &&
     run t2-$seed --threads 2 --set task.seed=$seed ||
     fail "runs with seed $seed"

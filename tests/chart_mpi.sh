@@ -29,7 +29,7 @@ transient = 600
 plot = no
 INI
 
-for seed in fixed neighbour; do
+for seed in fixed previous; do
   "$BIN" run small.ini --quiet --out serial-$seed --threads 1 \
     --set task.seed=$seed || fail "serial run ($seed)"
   OMP_NUM_THREADS=1 $MPI "$BIN" run small.ini --quiet --out mpi-$seed \

@@ -45,7 +45,7 @@ static const sc_key_info branch_keys[] = {
      "starts = auto: the interval of d scanned, 'LO HI'"},
     {"switch", SC_KEY_BOOL, 0, "no", 0, 0, 0, 0, NULL,
      "yes: at each flip (PD) also continue the period-2m branch"},
-    {"max-points", SC_KEY_INT, 0, "2000", 2, 10000000, 0, 0, NULL,
+    {"max-points", SC_KEY_INT, 0, "5000", 2, 10000000, 0, 0, NULL,
      "accepted points per branch segment"},
     {"max-branches", SC_KEY_INT, 0, "16", 1, 1000, 0, 0, NULL,
      "branch segments at most (period-doubled branches and continuations "

@@ -53,7 +53,7 @@ static const sc_key_info chart_keys[] = {
      "are 'high'"},
     {"confirm", SC_KEY_INT, 0, "4", 1, SC_PERIOD_MAX_CONFIRM, 0, 0, NULL,
      "full cycles a period must repeat before it is accepted"},
-    {"seed", SC_KEY_CHOICE, 0, "fixed", 0, 0, 0, 0, "fixed|neighbour",
+    {"seed", SC_KEY_CHOICE, 0, "fixed", 0, 0, 0, 0, "fixed|previous",
      "start every point from d0, or from the final state of the previous "
      "point of its row (rows are then sequential)"},
 };
@@ -78,7 +78,7 @@ static sc_chart_spec spec_of(const sc_scene *s) {
   c.max_period = (int)sc_scene_int(s, "max-period");
   c.confirm = (int)sc_scene_int(s, "confirm");
   const char *seed = sc_scene_text(s, "seed");
-  c.seed = seed && strcmp(seed, "neighbour") == 0 ? SC_CHART_SEED_NEIGHBOUR
+  c.seed = seed && strcmp(seed, "previous") == 0 ? SC_CHART_SEED_NEIGHBOUR
                                                    : SC_CHART_SEED_FIXED;
   return c;
 }
@@ -141,7 +141,7 @@ static int scene_text(const sc_cli_run *r, const sc_chart_spec *c, char *buf,
   ADD_("task.d0 = %.17g\ntask.transient = %ld\ntask.max-period = %d\n"
        "task.confirm = %d\ntask.seed = %s\n",
        c->d0, c->transient, c->max_period, c->confirm,
-       c->seed == SC_CHART_SEED_NEIGHBOUR ? "neighbour" : "fixed");
+       c->seed == SC_CHART_SEED_NEIGHBOUR ? "previous" : "fixed");
   ADD_("point-bytes = %zu\n", sizeof(sc_chart_point));
 #undef ADD_
   return u < len ? SC_OK : SC_EINTERNAL;
@@ -500,7 +500,7 @@ typedef struct {
 } chart_job;
 
 /* Rows per block: enough points to keep the threads busy (whole rows per
- * thread with seed = neighbour), a multiple of the ranks. */
+ * thread with seed = previous), a multiple of the ranks. */
 static long block_rows(const chart_job *j) {
   long block = (BLOCK_POINTS + j->nx - 1) / j->nx;
   if (j->c.seed == SC_CHART_SEED_NEIGHBOUR && block < 2L * j->threads)

@@ -16,7 +16,7 @@ static const sc_key_info sweep_keys[] = {
      "first grid value (inside the parameter's range)"},
     {"to", SC_KEY_REAL, 1, NULL, -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
      "last grid value (inside the parameter's range; may be below from)"},
-    {"steps", SC_KEY_INT, 0, "200", 1, 10000000, 0, 0, NULL,
+    {"steps", SC_KEY_INT, 0, "1001", 1, 10000000, 0, 0, NULL,
      "grid points, both ends included (1: from only)"},
     {"x-scale", SC_KEY_CHOICE, 0, "linear", 0, 0, 0, 0, "linear|log",
      "grid spacing: equal differences, or equal ratios (log; from and to "
