@@ -20,12 +20,28 @@ check() {
   if "$@"; then pass "$what"; else fail "$what"; fi
 }
 
-# run_sc ARGS...: runs slipcont, leaving $RC, $OUT (stdout), $ERR (stderr).
-run_sc() {
-  "$BIN" "$@" >"$TMP/stdout" 2>"$TMP/stderr"
+# run_cmd COMMAND...: runs a command, leaving $RC, $OUT (stdout), $ERR
+# (stderr).
+run_cmd() {
+  "$@" >"$TMP/stdout" 2>"$TMP/stderr"
   RC=$?
   OUT=$(cat "$TMP/stdout")
   ERR=$(cat "$TMP/stderr")
+}
+
+# run_sc ARGS...: runs slipcont, as run_cmd.
+run_sc() { run_cmd "$BIN" "$@"; }
+
+# run_within SECONDS ARGS...: run_sc under a time limit, so that a hang
+# is a failure (status 124) where `timeout` exists.
+run_within() {
+  secs=$1
+  shift
+  if command -v timeout >/dev/null 2>&1; then
+    run_cmd timeout "$secs" "$BIN" "$@"
+  else
+    run_cmd "$BIN" "$@"
+  fi
 }
 
 # expect_rc WHAT RC

@@ -6,16 +6,6 @@
 # refused.  A hang is a failure: every call has a time limit.
 . "$(dirname "$0")/cli_common.sh"
 
-lim=
-if command -v timeout >/dev/null 2>&1; then lim="timeout 20"; fi
-# run_lim ARGS...: run_sc under the time limit (status 124 if it hung).
-run_lim() {
-  # shellcheck disable=SC2086
-  $lim "$BIN" "$@" >"$TMP/stdout" 2>"$TMP/stderr"
-  RC=$?
-  OUT=$(cat "$TMP/stdout")
-  ERR=$(cat "$TMP/stderr")
-}
 
 # refuse NAME TEXT ARGS...: check and run give status 2 and TEXT, and run
 # creates no output folder.
@@ -24,7 +14,7 @@ refuse() {
   text=$2
   shift 2
   for cmd in check run; do
-    run_lim $cmd "$@" --out "$TMP/o-$name" --quiet
+    run_within 20 $cmd "$@" --out "$TMP/o-$name" --quiet
     expect_rc "$name ($cmd)" 2
     expect_err "$name ($cmd)" "$text"
     check "$name ($cmd): nothing created" test ! -e "$TMP/o-$name"
@@ -48,7 +38,7 @@ sweep = no
 [output]
 plot = no
 INI
-run_lim check "$TMP/branch.ini" --out "$TMP/o-good"
+run_within 20 check "$TMP/branch.ini" --out "$TMP/o-good"
 expect_rc "good branch scene" 0
 
 mkfifo "$TMP/fifo" || fail "mkfifo"
@@ -91,7 +81,7 @@ esac
 
 # The curve task: start, overlay and also.
 sed '/^d0 = /d' "$SRC/examples/curve-fig58-graze4.ini" >"$TMP/graze.ini"
-run_lim check "$TMP/graze.ini" --set "task.start=$TMP/pts.csv:2" --out "$TMP/o-good"
+run_within 20 check "$TMP/graze.ini" --set "task.start=$TMP/pts.csv:2" --out "$TMP/o-good"
 expect_rc "good curve scene" 0
 refuse start-fifo "[task] start: $TMP/fifo: not a regular file: it is a pipe (FIFO)" \
   "$TMP/graze.ini" --set "task.start=$TMP/fifo:1"
@@ -131,7 +121,7 @@ case $ERR in
 *) pass "set-control: the message shows it as '?'" ;;
 esac
 tab=$(printf '\t')
-run_lim check "$TMP/branch.ini" --set "task.auto-at=3.9${tab}3.8" --out "$TMP/o-tab"
+run_within 20 check "$TMP/branch.ini" --set "task.auto-at=3.9${tab}3.8" --out "$TMP/o-tab"
 expect_rc "a tab between values is accepted" 0
 printf '[model]\nname = bk2\n[task]\nkind = map\nfrom = 0\nto = 0.1\001\n' >"$TMP/ctl.ini"
 refuse file-control "ctl.ini:6: [task] to: control character 0x01 at position 4 of the value" \
@@ -140,7 +130,7 @@ refuse file-control "ctl.ini:6: [task] to: control character 0x01 at position 4 
 # A run that fails while computing (the only start is on no orbit) leaves
 # no folder it created.
 cp "$SRC/tests/scenes/branch-no-orbit.ini" "$TMP/noorbit.ini"
-run_lim run "$TMP/noorbit.ini" --out "$TMP/o-noorbit" --quiet
+run_within 20 run "$TMP/noorbit.ini" --out "$TMP/o-noorbit" --quiet
 expect_rc "no orbit at the start" 1
 check "no orbit at the start: no folder left" test ! -e "$TMP/o-noorbit"
 

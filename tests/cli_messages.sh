@@ -32,20 +32,12 @@ clean() {
 # clean_dir WHAT DIR: every file a run wrote, and its stderr.
 clean_dir() { clean "$1" "$ERR$(cat "$2"/*.csv "$2"/*.txt 2>/dev/null)"; }
 
-lim=
-if command -v timeout >/dev/null 2>&1; then lim="timeout 120"; fi
-run_lim() {
-  # shellcheck disable=SC2086
-  $lim "$BIN" "$@" >"$TMP/stdout" 2>"$TMP/stderr"
-  RC=$?
-  ERR=$(cat "$TMP/stderr")
-}
 
 # A branch whose one start is on no orbit: the map is a shift there
 # (every iterate a single-block slip), so the message must not speak of
 # a family, must say where (the key d0) and what to do.
 cp "$SRC/tests/scenes/branch-no-orbit.ini" "$TMP/noorbit.ini"
-run_lim run "$TMP/noorbit.ini" --out "$TMP/noorbit"
+run_within 120 run "$TMP/noorbit.ini" --out "$TMP/noorbit"
 expect_rc "start on no orbit" 1
 clean "start on no orbit" "$ERR"
 expect_err "start on no orbit" "noorbit.ini:16: [task] d0 = 5 at alpha = 2.8: no period-2 orbit through d = 5"
@@ -55,20 +47,20 @@ case $ERR in
 *) pass "start on no orbit: no family where there is no orbit" ;;
 esac
 # Newton that cannot converge from the guess.
-run_lim run "$TMP/noorbit.ini" --out "$TMP/noconv" --set task.d0=0.0001 --set task.period=3
+run_within 120 run "$TMP/noorbit.ini" --out "$TMP/noconv" --set task.d0=0.0001 --set task.period=3
 expect_rc "start that does not converge" 1
 clean "start that does not converge" "$ERR"
 expect_err "start that does not converge" "[task] d0 = 0.0001 at alpha = 2.8: no period-3 orbit found from it (no Newton step decreases"
 # The same start among others (at inside the interval): a row whose note
 # says what and what to do, in points.csv and summary.txt.
-run_lim run "$TMP/noorbit.ini" --out "$TMP/row" --quiet --set task.at=2.9 --set task.d0=3
+run_within 120 run "$TMP/noorbit.ini" --out "$TMP/row" --quiet --set task.at=2.9 --set task.d0=3
 expect_rc "added start on no orbit" 0
 clean_dir "added start on no orbit" "$TMP/row"
 check "added start on no orbit: the row says what to do" \
   grep -q '^EP,alpha,2.8999.*no period-2 orbit through d = 3:.*the fixed-point task at this parameter value finds the orbits there' "$TMP/row/points.csv"
 
 # A curve whose start is not on its curve: where, why, what to do.
-run_lim run "$SRC/examples/curve-fig58-fold1.ini" --out "$TMP/curve-d0" --quiet \
+run_within 120 run "$SRC/examples/curve-fig58-fold1.ini" --out "$TMP/curve-d0" --quiet \
   --set task.d0=0.9 --set output.plot=no
 expect_rc "curve start off the curve" 1
 clean "curve start off the curve" "$ERR"
@@ -78,7 +70,7 @@ check "curve start off the curve: no folder left" test ! -e "$TMP/curve-d0"
 
 # A curve that ends next to d*, where the locating Newton's callback
 # fails: its notes whole ("callback failed (1) at );" before).
-run_lim run "$SRC/examples/curve-fig58-fold4.ini" --out "$TMP/fold4" --quiet \
+run_within 120 run "$SRC/examples/curve-fig58-fold4.ini" --out "$TMP/fold4" --quiet \
   --set output.plot=no
 expect_rc "curve-fig58-fold4" 0
 clean_dir "curve-fig58-fold4" "$TMP/fold4"
@@ -87,15 +79,15 @@ check "curve-fig58-fold4: the SW note whole" grep -q \
   "$TMP/fold4/summary.txt"
 
 # Library messages reached through a scene's values.
-run_lim check "$TMP/noorbit.ini" --set accuracy.newton-ftol=1
+run_within 120 check "$TMP/noorbit.ini" --set accuracy.newton-ftol=1
 expect_rc "accuracy out of range" 2
 clean "accuracy out of range" "$ERR"
-run_lim check "$TMP/noorbit.ini" --set "task.starts=2.9 0.2 0"
+run_within 120 check "$TMP/noorbit.ini" --set "task.starts=2.9 0.2 0"
 expect_rc "a start's period 0" 2
 clean "a start's period 0" "$ERR"
 expect_err "a start's period 0" "'2.9 0.2 0': period 0 (valid: [1, max-period = "
 printf '[model]\nname = bk2\nalpha = 2.9\n[task]\nkind = map\nfrom = -1e308\nto = 1e308\nsteps = 5\n[output]\nplot = no\n' >"$TMP/map.ini"
-run_lim run "$TMP/map.ini" --out "$TMP/map" --quiet
+run_within 120 run "$TMP/map.ini" --out "$TMP/map" --quiet
 expect_rc "map over -1e308..1e308" 0
 clean_dir "map over -1e308..1e308" "$TMP/map"
 
