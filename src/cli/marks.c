@@ -1,10 +1,21 @@
 /* The `marks` key of the branch and curve tasks: parameter values at
- * which every branch (or curve) records a user point (UZ). */
+ * which every branch (or curve) records a user point (UZ); and the word
+ * reader that every key holding a list (marks, auto-d, auto-at, also)
+ * shares. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "cli/tasks.h"
+
+size_t sc_cli_next_word(const char **q, char *buf, size_t len) {
+  const char *w = *q + strspn(*q, " \t");
+  size_t n = strcspn(w, " \t");
+  if (n == 0) return 0;
+  snprintf(buf, len, "%.*s", (int)(n < len ? n : len - 1), w);
+  *q = w + n;
+  return n;
+}
 
 int sc_cli_marks(const sc_scene *s, const char *pname, double lo, double hi,
                  double *out, size_t *n, sc_msg *msg) {
@@ -17,13 +28,8 @@ int sc_cli_marks(const sc_scene *s, const char *pname, double lo, double hi,
                        pi->lo_open, pi->hi_open, NULL, NULL};
   char rtext[128], w[80];
   sc_key_range_text(&range, rtext, sizeof rtext);
-  for (int k = 1;; k++) {
-    q += strspn(q, " \t");
-    size_t len = strcspn(q, " \t");
-    if (len == 0) break;
-    snprintf(w, sizeof w, "%.*s", (int)(len < sizeof w ? len : sizeof w - 1),
-             q);
-    q += len;
+  size_t len;
+  for (int k = 1; (len = sc_cli_next_word(&q, w, sizeof w)) > 0; k++) {
     double v;
     if (len >= sizeof w || sc_parse_double(w, &v) || !isfinite(v))
       return sc_scene_fail_key(s, "task", "marks", msg,

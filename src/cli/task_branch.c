@@ -176,22 +176,12 @@ static int has_auto(const sc_scene *s) {
   return 0;
 }
 
-/* The next word of *q (separated by blanks) into buf; 0 at the end. */
-static int next_word(const char **q, char *buf, size_t len) {
-  const char *w = *q + strspn(*q, " \t");
-  size_t n = strcspn(w, " \t");
-  if (n == 0) return 0;
-  snprintf(buf, len, "%.*s", (int)(n < len ? n : len - 1), w);
-  *q = w + n;
-  return 1;
-}
-
 /* auto-d: 'LO HI', two numbers with LO < HI. */
 static int auto_d(const sc_scene *s, double *lo, double *hi, sc_msg *msg) {
   const char *q = sc_scene_text(s, "auto-d");
   char w[3][64];
   int n = 0;
-  while (n < 3 && next_word(&q, w[n], sizeof w[n])) n++;
+  while (n < 3 && sc_cli_next_word(&q, w[n], sizeof w[n])) n++;
   if (n != 2 || sc_parse_double(w[0], lo) || sc_parse_double(w[1], hi) ||
       !(*lo < *hi))
     return sc_scene_fail_key(s, "task", "auto-d", msg,
@@ -213,7 +203,7 @@ static int auto_at_next(const sc_scene *s, const char **q, double *p) {
     return 1;
   }
   if (!*q) *q = sc_scene_text(s, "auto-at");
-  return next_word(q, w, sizeof w) && sc_parse_double(w, p) == SC_OK;
+  return sc_cli_next_word(q, w, sizeof w) && sc_parse_double(w, p) == SC_OK;
 }
 
 /* auto-at: numbers separated by blanks, each inside [from, to]. */
@@ -221,7 +211,7 @@ static int check_auto_at(const sc_scene *s, sc_msg *msg) {
   const char *q = sc_scene_text(s, "auto-at");
   double a = sc_scene_real(s, "from"), b = sc_scene_real(s, "to"), p;
   char w[64];
-  for (int k = 1; q && next_word(&q, w, sizeof w); k++) {
+  for (int k = 1; q && sc_cli_next_word(&q, w, sizeof w); k++) {
     if (strlen(w) >= sizeof w - 1 || sc_parse_double(w, &p))
       return sc_scene_fail_key(s, "task", "auto-at", msg,
                                "auto-at: value %d, '%s', is not a number "

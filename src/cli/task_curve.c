@@ -64,17 +64,6 @@ static const sc_key_info curve_keys[] = {
      "labelled points are drawn in the same plot"},
 };
 
-/* The folders of `also`, one at a time: copies the next word of *p into
- * buf and advances; 0 at the end. */
-static int next_word(const char **p, char *buf, size_t len) {
-  const char *s = *p + strspn(*p, " \t");
-  size_t n = strcspn(s, " \t");
-  if (n == 0) return 0;
-  snprintf(buf, len, "%.*s", (int)n, s);
-  *p = s + n;
-  return 1;
-}
-
 /* The curve types in key order; border kinds of the border types. */
 static const char *const type_names[] = {"fold",  "flip", "graze", "cross",
                                          "switch", "both", "touch"};
@@ -116,7 +105,7 @@ static int also_check(const sc_scene *s, const char *xn, const char *yn,
                       sc_msg *msg) {
   const char *also = sc_scene_text(s, "also");
   char dir[2048], path[2100];
-  for (const char *p = also; p && next_word(&p, dir, sizeof dir);) {
+  for (const char *p = also; p && sc_cli_next_word(&p, dir, sizeof dir);) {
     glob_t g;
     int gr = glob(dir, 0, NULL, &g);
     size_t ng = gr == 0 ? g.gl_pathc : 0;
@@ -614,7 +603,7 @@ static int plot_also(FILE *f, const char *also, int *present, char *names,
   int period;
   int ia = 0;
   names[0] = '\0';
-  for (const char *p = also; p && next_word(&p, dir, sizeof dir);) {
+  for (const char *p = also; p && sc_cli_next_word(&p, dir, sizeof dir);) {
     glob_t g;
     if (glob(dir, 0, NULL, &g) != 0) continue; /* checked before the run */
     for (size_t gi = 0; gi < g.gl_pathc; gi++) {

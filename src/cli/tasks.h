@@ -148,6 +148,12 @@ int sc_cli_check_param_ends(const sc_scene *s, sc_msg *msg);
 int sc_cli_check_param_keys(const sc_scene *s, const char *param,
                             const char *const *ends, int n, sc_msg *msg);
 
+/** The next blank-separated word of a key's list at *q, copied into
+ * buf[0..len) (cut to fit) with *q moved past it.  Returns the word's
+ * full length, so that a caller can refuse one that did not fit; 0 at
+ * the end of the list. */
+size_t sc_cli_next_word(const char **q, char *buf, size_t len);
+
 /** The most values `marks` may list. */
 #define SC_CLI_MAXMARKS 100
 
