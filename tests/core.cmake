@@ -11,6 +11,7 @@ set_tests_properties(example_api PROPERTIES PASS_REGULAR_EXPRESSION
   "d = -0.0153337753869[0-9]* -> f\\(d\\) = 0.0153337753869[0-9]*  f' = 0.634677  itinerary 1-12-2")
 sc_add_test(test_jet)
 # The map with the current root search against the frozen earlier one.
+sc_add_test(test_mapn)
 sc_add_test(test_map_equiv)
 target_sources(test_map_equiv PRIVATE ref/guard_v0.c)
 # bk2's value-only path against its dual path, bit for bit.

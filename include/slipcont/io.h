@@ -44,6 +44,9 @@ typedef enum {
   SC_KEY_BOOL,   /**< yes | no */
   SC_KEY_PARAM,  /**< the name of a parameter of the scene's model */
   SC_KEY_TEXT,   /**< any non-empty text (a folder, ...) */
+  SC_KEY_STATE,  /**< a state of the model: n finite numbers in [lo, hi]
+                      separated by spaces, n the model's dimension (one
+                      number for a one-dimensional model, read as REAL) */
 } sc_key_type;
 
 /**
@@ -201,6 +204,14 @@ SC_API const char *sc_scene_value(const sc_scene *s, const char *section,
 SC_API double sc_scene_real(const sc_scene *s, const char *key);
 /** `[task]` key as an integer (INT keys); 0 if absent. */
 SC_API long sc_scene_int(const sc_scene *s, const char *key);
+/**
+ * @brief The state held by [task] key @p key (an SC_KEY_STATE key, or a
+ * REAL one): up to @p n numbers into @p x.
+ * @return how many numbers the value holds (it was checked to be the
+ *         model's dimension), 0 when the key has no value.
+ */
+SC_API size_t sc_scene_state(const sc_scene *s, const char *key, double *x,
+                             size_t n);
 /** `[task]` key as text (CHOICE, PARAM, TEXT); NULL if absent. */
 SC_API const char *sc_scene_text(const sc_scene *s, const char *key);
 /** `[task]` BOOL key: 1 for yes, 0 for no or absent. */

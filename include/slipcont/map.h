@@ -174,6 +174,53 @@ SC_API int sc_map_iterate_ex(sc_map *m, double d, int n, unsigned flags,
                       sc_border_list *borders, sc_map_value *out,
                       sc_msg *msg);
 
+/* ------------------------------------------------------------------ */
+/* Maps in n dimensions                                                */
+
+/** State dimension n >= 1 of @p m's model (1 for bk2, logistic, cubic,
+ * gpd; 2 for henon, ghenon). */
+SC_API size_t sc_map_dim(const sc_map *m);
+
+/** Name of state component @p i of @p m (i < n): the model's name for it
+ * ("x", "y"), "d1", "d2", ... by default, the state name when n = 1. */
+SC_API const char *sc_map_state_component(const sc_map *m, size_t i,
+                                          char *buf, size_t len);
+
+/**
+ * @brief Storage for n-dimensional evaluations of @p m: f always, J and
+ * f_p when @p flags has SC_EVAL_DERIV, the tensors H, Jp, T too with
+ * SC_EVAL_DERIV2 (one block; release with sc_mapn_value_free()).
+ * @return SC_OK; SC_EINVAL for SC_EVAL_DERIV2 when n > SC_DIM_TENSOR;
+ *         SC_ENOMEM.
+ */
+SC_API int sc_mapn_value_alloc(const sc_map *m, unsigned flags,
+                               sc_mapn_value **out, sc_msg *msg);
+/** @brief Release @p v; NULL is accepted. */
+SC_API void sc_mapn_value_free(sc_mapn_value *v);
+
+/**
+ * @brief One iterate of @p m at the state @p x (n values), with the
+ * derivatives @p flags asks for (SC_EVAL_DERIV: J, f_p; SC_EVAL_DERIV2:
+ * also H, Jp, T; SC_EVAL_ITINERARY).  Every model can be evaluated so: a
+ * one-dimensional one through its eval() (then J = f', H = f'', ...).
+ * @param out sized by sc_mapn_value_alloc() for at least @p flags.
+ * @return SC_OK; SC_EINVAL for a non-finite state or storage not sized
+ *         for @p flags; SC_ENONFINITE if f is not finite; the model's
+ *         status (SC_EUNDEF, ...) otherwise.
+ */
+SC_API int sc_map_eval_n(sc_map *m, const double *x, unsigned flags,
+                         sc_mapn_value *out, sc_msg *msg);
+
+/**
+ * @brief The iterate g = f^k at @p x, k >= 1, with the derivatives of g
+ * by the chain rule: J_g = J(x_{k-1}) ... J(x_0), and the second and
+ * third derivatives of the composition (exact: no differences).  The
+ * itineraries of the iterates are joined by '|'.
+ * @return as sc_map_eval_n(); the message names the iterate that failed.
+ */
+SC_API int sc_map_iterate_n(sc_map *m, const double *x, int k, unsigned flags,
+                            sc_mapn_value *out, sc_msg *msg);
+
 /**
  * A continuous trajectory sample: time tau (dimensionless), the model's
  * state (bk2: Y1, Y2, U1, U2) and its mode (the model's own numbering; bk2: 0 stick, 1, 2 one block slips, 3 both).

@@ -3,8 +3,9 @@
  * @brief The model interface and the built-in models.
  *
  * A model is a constant table: its parameters (name, default, valid range,
- * documentation), its string options, and callbacks that evaluate one
- * iterate of its one-dimensional map.  Scenes, the command line and error
+ * documentation), its string options, its state dimension, and callbacks
+ * that evaluate one iterate of its map: eval() for a one-dimensional
+ * map, eval_n() for a map of n > 1 components.  Scenes, the command line and error
  * messages are generated from these tables.
  */
 #ifndef SLIPCONT_MODELS_H
@@ -100,6 +101,45 @@ typedef struct {
   double d3fdd3;              /**< d3f/dd3 (SC_EVAL_DERIV2) */
   double d3fdd2p[SC_MAXPARAM];/**< d3f/dd2 dp_i (SC_EVAL_DERIV2) */
 } sc_map_value;
+
+/* ------------------------------------------------------------------ */
+/* Maps in n dimensions                                                */
+
+/** Most state components a model may declare (sc_model_type.dim). */
+#define SC_MAXDIM 256
+/** Largest dimension for which second and third derivative tensors are
+ * kept (SC_EVAL_DERIV2 on sc_mapn_value): a third-derivative tensor has
+ * n^4 entries, 65536 at n = 16.  Normal forms and the defining systems of
+ * codimension-two points need them; a larger map still gives f, its
+ * Jacobian and its parameter derivatives. */
+#define SC_DIM_TENSOR 16
+
+/**
+ * One evaluation of an n-dimensional map (one iterate, or m iterates),
+ * in storage owned by the caller (sc_mapn_value_alloc() in map.h sizes
+ * it for a map).  Arrays are row-major; i indexes the component of f,
+ * j, k, l the components of the state, q the parameters:
+ *  - f[i];
+ *  - J[i n + j] = d f_i / d x_j                 (SC_EVAL_DERIV);
+ *  - fp[q n + i] = d f_i / d p_q                 (SC_EVAL_DERIV);
+ *  - H[(i n + j) n + k] = d2 f_i / dx_j dx_k     (SC_EVAL_DERIV2);
+ *  - Jp[(q n + i) n + j] = d2 f_i / dx_j dp_q    (SC_EVAL_DERIV2);
+ *  - T[((i n + j) n + k) n + l] = d3 f_i / dx_j dx_k dx_l (SC_EVAL_DERIV2).
+ * For n = 1 these are the scalars of sc_map_value (J = f', H = f'', ...).
+ * An array the storage was not sized for is NULL.
+ */
+typedef struct {
+  size_t n;    /**< state dimension */
+  size_t np;   /**< number of parameters */
+  double *f;   /**< n values */
+  double *J;   /**< n x n Jacobian, or NULL */
+  double *fp;  /**< np x n parameter derivatives, or NULL */
+  double *H;   /**< n^3 second derivatives, or NULL */
+  double *Jp;  /**< np n^2 mixed derivatives, or NULL */
+  double *T;   /**< n^4 third derivatives, or NULL */
+  int nphases; /**< slip phases in the evaluation (0 for smooth maps) */
+  char itinerary[SC_ITIN_LEN]; /**< SC_EVAL_ITINERARY */
+} sc_mapn_value;
 
 /* ------------------------------------------------------------------ */
 /* Borders: where the map's itinerary changes                          */
@@ -236,6 +276,18 @@ typedef struct sc_model_type {
    * report their integration tolerance.  Newton's methods built on the
    * map ask for no more (sc_map_precision()).  May be NULL (0). */
   double (*precision)(const void *inst);
+  /** State dimension n >= 1; 0 reads as 1 (the one-dimensional
+   * models).  A model with n > 1 gives eval_n; eval is then NULL. */
+  size_t dim;
+  /** Names of the state components for n > 1 ("x", "y"), NULL: the
+   * state name with its index ("d1", "d2", ...). */
+  const char *const *state_names;
+  /** One iterate of an n-dimensional map at @p x (n values): f, and by
+   * @p flags its derivatives, into @p out (sized by the map layer for n
+   * and the model's parameters).  NULL for a one-dimensional model: the
+   * map layer reads eval() (sc_map_eval_n()). */
+  int (*eval_n)(void *inst, const double *x, unsigned flags,
+                sc_mapn_value *out, sc_msg *msg);
   /** Continuous motion (see sc_map_trajectory()); NULL if none. */
   int (*trajectory)(void *inst, double d, int iterations, double dtau,
                     int (*fn)(void *, double, const double *, int),
@@ -250,6 +302,11 @@ SC_API extern const sc_model_type sc_model_logistic;
 SC_API extern const sc_model_type sc_model_cubic;
 /** The map x -> -(1 + mu1) x + mu2 x^3 - x^5 (generalized flip). */
 SC_API extern const sc_model_type sc_model_gpd;
+
+/** The Henon map (x, y) -> (1 - a x^2 + y, b x). */
+SC_API extern const sc_model_type sc_model_henon;
+/** The generalized Henon map (x, y) -> (y, alpha - beta x - y^2 + R x y). */
+SC_API extern const sc_model_type sc_model_ghenon;
 
 /** Number of built-in models; sc_model_get(i) lists them. */
 SC_API size_t sc_model_count(void);

@@ -84,15 +84,35 @@ void sc_cli_print_task_keys(FILE *f, const sc_cli_task *t, int md) {
   fputc('\n', f);
 }
 
+/* The state a model's map acts on: "d", or "(x, y)" for n > 1. */
+static char *state_text(const sc_model_type *t, char *buf, size_t len) {
+  if (t->dim <= 1) {
+    snprintf(buf, len, "%s", t->state_name);
+    return buf;
+  }
+  size_t used = (size_t)snprintf(buf, len, "(");
+  for (size_t i = 0; i < t->dim && used < len; i++) {
+    if (t->state_names)
+      used += (size_t)snprintf(buf + used, len - used, "%s%s", i ? ", " : "",
+                               t->state_names[i]);
+    else
+      used += (size_t)snprintf(buf + used, len - used, "%s%s%zu",
+                               i ? ", " : "", t->state_name, i + 1);
+  }
+  if (used < len) snprintf(buf + used, len - used, ")");
+  return buf;
+}
+
 void sc_cli_print_model(FILE *f, const sc_model_type *t, int md) {
-  char range[256], vals[256];
+  char range[256], vals[256], state[256];
+  state_text(t, state, sizeof state);
   if (md) {
     fprintf(f, "#### `name = %s`\n\n", t->name);
     md_cell(f, t->doc);
-    fprintf(f, "; the map acts on `%s`.\n\n", t->state_name);
+    fprintf(f, "; the map acts on `%s`.\n\n", state);
     table_head(f, 1);
   } else {
-    fprintf(f, "%s: %s (state %s)\n", t->name, t->doc, t->state_name);
+    fprintf(f, "%s: %s (state %s)\n", t->name, t->doc, state);
   }
   /* One width for the column of valid values, so that the defaults and
    * docs line up below the longest ("coulomb|velocity-weakening"). */

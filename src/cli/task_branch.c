@@ -25,7 +25,7 @@ static const sc_key_info branch_keys[] = {
      "other end of the parameter interval"},
     {"period", SC_KEY_INT, 0, "1", 1, 4096, 0, 0, NULL,
      "m: period of the starting orbit (fixed point of f^m)"},
-    {"d0", SC_KEY_REAL, 0, NULL, -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
+    {"d0", SC_KEY_STATE, 0, NULL, -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
      "guess of a point of the starting orbit, polished by multiple "
      "shooting at `at` (omit it to start from `starts` only)"},
     {"at", SC_KEY_REAL, 0, NULL, -HUGE_VAL, HUGE_VAL, 1, 1, NULL,

@@ -43,7 +43,7 @@ static const sc_key_info chart_keys[] = {
     {"y-scale", SC_KEY_CHOICE, 0, "linear", 0, 0, 0, 0, "linear|log",
      "y grid spacing: equal differences, or equal ratios (log; ends of one "
      "sign)"},
-    {"d0", SC_KEY_REAL, 0, "0", -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
+    {"d0", SC_KEY_STATE, 0, "0", -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
      "initial state of every point (bk2: d = Y2 - Y1 of the first GSP)"},
     {"transient", SC_KEY_INT, 0, "1000", 1, INT32_MAX, 0, 0, NULL,
      "most map iterates per point; a point stops as soon as its period is "

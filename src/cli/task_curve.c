@@ -34,7 +34,7 @@ static const sc_key_info curve_keys[] = {
      "the box: upper end of y (> y-from)"},
     {"period", SC_KEY_INT, 0, "1", 1, 4096, 0, 0, NULL,
      "m: the orbit is a fixed point of f^m (single shooting)"},
-    {"d0", SC_KEY_REAL, 0, NULL, -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
+    {"d0", SC_KEY_STATE, 0, NULL, -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
      "guess of an orbit point at the start (or give start)"},
     {"start", SC_KEY_TEXT, 0, NULL, 0, 0, 0, 0, NULL,
      "FILE:N, row N (1 = first after the header) of a branch task's "

@@ -9,7 +9,7 @@
 #include "slipcont/analysis.h"
 
 static const sc_key_info orbit_keys[] = {
-    {"d0", SC_KEY_REAL, 1, NULL, -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
+    {"d0", SC_KEY_STATE, 1, NULL, -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
      "initial state (bk2: d = Y2 - Y1 of the first global stick phase)"},
     {"iterations", SC_KEY_INT, 0, "300", 1, 10000000, 0, 0, NULL,
      "map iterates (as the sweep task's iterations)"},

@@ -25,7 +25,7 @@ static const sc_key_info sweep_keys[] = {
      "map iterates at each parameter value"},
     {"keep", SC_KEY_INT, 0, "100", 1, 100000000, 0, 0, NULL,
      "last iterates kept and drawn (<= iterations)"},
-    {"d0", SC_KEY_REAL, 1, NULL, -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
+    {"d0", SC_KEY_STATE, 1, NULL, -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
      "initial state (bk2: d = Y2 - Y1 of the first global stick phase)"},
     {"direction", SC_KEY_CHOICE, 0, NULL, 0, 0, 0, 0, "up|down|both",
      "up: increasing parameter, down: decreasing, both: up then down "

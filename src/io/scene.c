@@ -83,12 +83,13 @@ char *sc_key_range_text(const sc_key_info *k, char *buf, size_t len) {
   char lo[40], hi[40];
   switch (k->type) {
   case SC_KEY_REAL:
+  case SC_KEY_STATE:
   case SC_KEY_INT:
     fmt_bound(lo, sizeof lo, k->lo, k->type == SC_KEY_INT);
     fmt_bound(hi, sizeof hi, k->hi, k->type == SC_KEY_INT);
     snprintf(buf, len, "%c%s, %s%c",
-             k->type == SC_KEY_REAL && k->lo_open ? '(' : '[', lo, hi,
-             k->type == SC_KEY_REAL && k->hi_open ? ')' : ']');
+             k->type != SC_KEY_INT && k->lo_open ? '(' : '[', lo, hi,
+             k->type != SC_KEY_INT && k->hi_open ? ')' : ']');
     break;
   case SC_KEY_CHOICE: snprintf(buf, len, "%s", k->choices); break;
   case SC_KEY_BOOL: snprintf(buf, len, "yes|no"); break;
@@ -128,6 +129,65 @@ static int bad_number(const char *name, const char *value, const char *range,
                  "%s = '%s' is not a number: numbers are decimal, like 0.025, "
                  "-3 or 1e-3 (valid: %s)",
                  name, value, range);
+}
+
+/* Split a state's text into numbers: their count (at most @p cap stored
+ * in @p x), or -1 with the bad word copied to @p bad. */
+static int state_words(const char *value, double *x, size_t cap, char *bad,
+                       size_t badlen) {
+  int n = 0;
+  for (const char *p = value; *p;) {
+    while (*p == ' ' || *p == '\t') p++;
+    if (!*p) break;
+    size_t k = strcspn(p, " \t");
+    char word[128];
+    snprintf(word, sizeof word, "%.*s", (int)(k < 127 ? k : 127), p);
+    double v;
+    if (sc_parse_double(word, &v)) {
+      snprintf(bad, badlen, "%s", word);
+      return -1;
+    }
+    if ((size_t)n < cap) x[n] = v;
+    n++;
+    p += k;
+  }
+  return n;
+}
+
+/* An SC_KEY_STATE value: the model's dimension of numbers, each finite
+ * and in range.  A one-dimensional model reads it as one REAL. */
+static int check_state(const sc_key_info *k, const char *value,
+                       const sc_map *m, const char *range, sc_msg *msg) {
+  size_t n = m ? sc_map_dim(m) : 0;
+  sc_key_info one = *k;
+  one.type = SC_KEY_REAL;
+  if (n == 1) return sc_key_check(&one, value, m, msg);
+  char bad[128] = "";
+  double x[SC_MAXDIM];
+  int got = state_words(value, x, SC_MAXDIM, bad, sizeof bad);
+  if (got < 0) return sc_key_check(&one, bad, m, msg);
+  char names[256] = "";
+  for (size_t i = 0; m && i < n && strlen(names) < 200; i++) {
+    char c[32];
+    if (i) strcat(names, " ");
+    strcat(names, sc_map_state_component(m, i, c, sizeof c));
+  }
+  if (got == 0 && !m)
+    return sc_fail(msg, SC_EINVAL, "%s is empty (valid: numbers %s)", k->name,
+                   range);
+  if (got == 0 || (n && (size_t)got != n))
+    return sc_fail(msg, SC_EINVAL,
+                   "%s = '%s' holds %d number%s; model %s has %zu state "
+                   "components: write %zu numbers (%s) separated by spaces",
+                   k->name, value, got, got == 1 ? "" : "s",
+                   sc_map_type(m)->name, n, n, names);
+  for (int i = 0; i < got && i < SC_MAXDIM; i++)
+    if (!((k->lo_open ? x[i] > k->lo : x[i] >= k->lo) &&
+          (k->hi_open ? x[i] < k->hi : x[i] <= k->hi)))
+      return sc_fail(msg, SC_EINVAL,
+                     "%s = %s: component %d (%.17g) out of range (valid: %s)",
+                     k->name, value, i + 1, x[i], range);
+  return SC_OK;
 }
 
 int sc_key_check(const sc_key_info *k, const char *value, const sc_map *m,
@@ -185,6 +245,8 @@ int sc_key_check(const sc_key_info *k, const char *value, const sc_map *m,
                    "%s = '%s' is not a parameter of model %s (valid: %s)",
                    k->name, value, t->name, list);
   }
+  case SC_KEY_STATE:
+    return check_state(k, value, m, range, msg);
   case SC_KEY_TEXT:
     if (value[0]) return SC_OK;
     return sc_fail(msg, SC_EINVAL, "%s is empty (valid: %s)", k->name, range);
@@ -859,6 +921,14 @@ double sc_scene_real(const sc_scene *s, const char *key) {
   const char *v = sc_scene_value(s, "task", key);
   double x;
   return v && sc_parse_double(v, &x) == SC_OK ? x : NAN;
+}
+
+size_t sc_scene_state(const sc_scene *s, const char *key, double *x,
+                      size_t n) {
+  const char *v = sc_scene_value(s, "task", key);
+  char bad[128];
+  int got = v ? state_words(v, x, n, bad, sizeof bad) : 0;
+  return got > 0 ? (size_t)got : 0;
 }
 
 long sc_scene_int(const sc_scene *s, const char *key) {

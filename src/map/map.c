@@ -8,19 +8,11 @@
 #include <stddef.h>
 #include <string.h>
 
-struct sc_map {
-  const sc_model_type *type;
-  double p[SC_MAXPARAM];
-  int opt[SC_MAXOPTION];
-  sc_accuracy acc;
-  void *inst;             /* type->inst_size bytes, owned */
-  unsigned long nevals;   /* evaluations of one iterate */
-};
+#include "map_impl.h"
 
-static const sc_model_type *const builtin[] = {&sc_model_bk2,
-                                               &sc_model_logistic,
-                                               &sc_model_cubic,
-                                               &sc_model_gpd};
+static const sc_model_type *const builtin[] = {
+    &sc_model_bk2, &sc_model_logistic, &sc_model_cubic, &sc_model_gpd,
+    &sc_model_henon, &sc_model_ghenon};
 
 size_t sc_model_count(void) { return sizeof builtin / sizeof builtin[0]; }
 
@@ -43,7 +35,7 @@ int sc_map_alloc_type(const sc_model_type *type, const sc_accuracy *acc,
                       sc_map **out, sc_msg *msg) {
   *out = NULL;
   if (!type || type->nparam > SC_MAXPARAM || type->noption > SC_MAXOPTION ||
-      !type->eval)
+      type->dim > SC_MAXDIM || (type->dim > 1 ? !type->eval_n : !type->eval))
     return sc_fail(msg, SC_EINVAL, "sc_map_alloc: malformed model table");
   sc_map *m = calloc(1, sizeof *m);
   if (!m) goto fail;
@@ -61,6 +53,7 @@ int sc_map_alloc_type(const sc_model_type *type, const sc_accuracy *acc,
   } else {
     sc_accuracy_preset(&m->acc, "default", NULL);
   }
+  if (sc_mapn_work_alloc(m)) goto fail;
   int st = setup(m, msg);
   if (st) {
     sc_map_free(m);
@@ -110,6 +103,7 @@ int sc_map_clone(const sc_map *m, sc_map **out, sc_msg *msg) {
 void sc_map_free(sc_map *m) {
   if (!m) return;
   if (m->inst && m->type->release) m->type->release(m->inst);
+  sc_mapn_work_free(m);
   free(m->inst);
   free(m);
 }
@@ -290,6 +284,10 @@ int sc_map_eval_ex(sc_map *m, double d, unsigned flags,
   if (!isfinite(d))
     return sc_fail(msg, SC_EINVAL, "sc_map_eval: %s = %g is not finite",
                    m->type->state_name, d);
+  if (!m->type->eval)
+    return sc_fail(msg, SC_EINVAL,
+                   "model %s has %zu state components: its map is evaluated "
+                   "with sc_map_eval_n()", m->type->name, m->type->dim);
   clear_value(out);
   if (code) code->n = 0;
   if (flags & SC_EVAL_DERIV2) flags |= SC_EVAL_DERIV;
@@ -311,8 +309,7 @@ int sc_map_eval(sc_map *m, double d, unsigned flags, sc_map_value *out,
   return sc_map_eval_ex(m, d, flags, NULL, NULL, NULL, out, msg);
 }
 
-/* Append @p s to the itinerary text, cutting with "..." when full. */
-static void itin_append(char *dst, const char *s) {
+void sc_map_itin_append(char *dst, const char *s) {
   size_t n = strlen(dst), k = strlen(s);
   if (n + k + 1 <= SC_ITIN_LEN) {
     memcpy(dst + n, s, k + 1);
@@ -394,8 +391,8 @@ int sc_map_iterate_ex(sc_map *m, double d, int n, unsigned flags,
       out->dfdd *= one.dfdd;
     }
     if (flags & SC_EVAL_ITINERARY) {
-      if (k) itin_append(out->itinerary, "|");
-      itin_append(out->itinerary, one.itinerary);
+      if (k) sc_map_itin_append(out->itinerary, "|");
+      sc_map_itin_append(out->itinerary, one.itinerary);
     }
     out->neutral = out->neutral && one.neutral;
     out->nphases += one.nphases;

@@ -1,2 +1,3 @@
 list(APPEND SC_SOURCES src/map/map.c)
 list(APPEND SC_SOURCES src/map/shooting.c)
+list(APPEND SC_SOURCES src/map/mapn.c)

@@ -1,0 +1,30 @@
+/* The model instance, shared by the one- and n-dimensional evaluations
+ * of the map layer (map.c, mapn.c). */
+#ifndef SC_MAP_IMPL_H
+#define SC_MAP_IMPL_H
+
+#include "slipcont/map.h"
+
+struct sc_map {
+  const sc_model_type *type;
+  double p[SC_MAXPARAM];
+  int opt[SC_MAXOPTION];
+  sc_accuracy acc;
+  void *inst;             /* type->inst_size bytes, owned */
+  unsigned long nevals;   /* evaluations of one iterate */
+  /* n-dimensional iterates (mapn.c): one step's value and the scratch of
+   * the chain rule, sized at allocation so evaluation never allocates */
+  sc_mapn_value *step;    /* f and its derivatives at one point */
+  double *scratch;        /* the chain rule's intermediate products */
+};
+
+/* Take / release the n-dimensional workspace of @p m (its type set);
+ * return 0 or -1 when out of memory. */
+int sc_mapn_work_alloc(sc_map *m);
+void sc_mapn_work_free(sc_map *m);
+
+/* Append @p s to the itinerary text @p dst (SC_ITIN_LEN bytes), cutting
+ * with "..." when full. */
+void sc_map_itin_append(char *dst, const char *s);
+
+#endif
