@@ -2,6 +2,7 @@
  * the chain rule of sc_map_iterate_n() against differences and closed
  * forms, the one-dimensional models through the same interface against
  * sc_map_iterate(), and the refusals. */
+#define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -189,7 +190,43 @@ static void check_refusals(void) {
   sc_map_free(m);
 }
 
+/* The CSV form of states, orbit points and multipliers. */
+static void check_csv(void) {
+  sc_map *m;
+  sc_msg msg;
+  char *buf;
+  size_t len;
+  sc_map_alloc("henon", NULL, &m, &msg);
+  FILE *f = open_memstream(&buf, &len);
+  double x[4] = {0.5, -0.25, 1, 2}, re[2] = {-0.5, 0.25}, im[2] = {1.5, -1.5};
+  sc_csv_state_header(f, m, "start_");
+  fputc('|', f);
+  sc_csv_state(f, x, 2);
+  fputc('|', f);
+  sc_csv_points(f, x, 2, 2);
+  fputc('|', f);
+  sc_csv_multipliers(f, re, im, 2);
+  fputc('|', f);
+  sc_csv_multipliers(f, x, NULL, 2);
+  fclose(f);
+  tu_true(strcmp(buf, "start_x1,start_x2|0.5,-0.25|0.5 -0.25;1 2|"
+                      "-0.5+1.5i 0.25-1.5i|0.5 -0.25") == 0,
+          "csv text: %s", buf);
+  free(buf);
+  sc_map_free(m);
+  sc_map_alloc("bk2", NULL, &m, &msg);
+  f = open_memstream(&buf, &len);
+  sc_csv_state_header(f, m, "");
+  fputc('|', f);
+  sc_csv_points(f, x, 3, 1);
+  fclose(f);
+  tu_true(strcmp(buf, "d|0.5;-0.25;1") == 0, "1-d csv text: %s", buf);
+  free(buf);
+  sc_map_free(m);
+}
+
 int main(void) {
+  check_csv();
   sc_map *m;
   sc_msg msg;
   sc_map_alloc("henon", NULL, &m, &msg);

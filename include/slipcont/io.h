@@ -292,6 +292,32 @@ SC_API void sc_file_abort(sc_file *f);
  */
 SC_API void sc_csv_double(FILE *f, double x);
 
+/**
+ * @brief The CSV column names of a state of @p m: its state name for a
+ * one-dimensional model ("d"), the name with the component's index for
+ * n > 1 ("d1,d2,..."), each preceded by @p prefix ("" or "start_").
+ */
+SC_API void sc_csv_state_header(FILE *f, const sc_map *m, const char *prefix);
+
+/** @brief The @p n components of a state as CSV fields (sc_csv_double()
+ * joined by commas): one field per column of sc_csv_state_header(). */
+SC_API void sc_csv_state(FILE *f, const double *x, size_t n);
+
+/**
+ * @brief A list of @p npts states of @p n components as one CSV field:
+ * points joined by ';', components of a point by a space ("0.1 0.2;0.3
+ * 0.4"); a one-dimensional list is "0.1;0.3".
+ */
+SC_API void sc_csv_points(FILE *f, const double *pts, size_t npts, size_t n);
+
+/**
+ * @brief Multipliers as one CSV field: "a" for a real one, "a+bi" or
+ * "a-bi" for a complex one, joined by spaces, in the order given
+ * (callers give them by decreasing modulus).
+ */
+SC_API void sc_csv_multipliers(FILE *f, const double *re, const double *im,
+                               size_t n);
+
 /* ------------------------------------------------------------------ */
 /* Plots                                                               */
 

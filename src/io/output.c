@@ -224,3 +224,42 @@ void sc_csv_double(FILE *f, double x) {
   else if (isinf(x)) fputs(x > 0 ? "inf" : "-inf", f);
   else fprintf(f, "%.17g", x);
 }
+
+void sc_csv_state_header(FILE *f, const sc_map *m, const char *prefix) {
+  size_t n = sc_map_dim(m);
+  const char *name = sc_map_type(m)->state_name;
+  if (n == 1) {
+    fprintf(f, "%s%s", prefix, name);
+    return;
+  }
+  for (size_t i = 0; i < n; i++)
+    fprintf(f, "%s%s%s%zu", i ? "," : "", prefix, name, i + 1);
+}
+
+void sc_csv_state(FILE *f, const double *x, size_t n) {
+  for (size_t i = 0; i < n; i++) {
+    if (i) fputc(',', f);
+    sc_csv_double(f, x[i]);
+  }
+}
+
+void sc_csv_points(FILE *f, const double *pts, size_t npts, size_t n) {
+  for (size_t k = 0; k < npts; k++)
+    for (size_t i = 0; i < n; i++) {
+      if (k || i) fputc(i ? ' ' : ';', f);
+      sc_csv_double(f, pts[k * n + i]);
+    }
+}
+
+void sc_csv_multipliers(FILE *f, const double *re, const double *im,
+                        size_t n) {
+  for (size_t i = 0; i < n; i++) {
+    if (i) fputc(' ', f);
+    sc_csv_double(f, re[i]);
+    if (im && im[i] != 0) {
+      fputc(im[i] > 0 ? '+' : '-', f);
+      sc_csv_double(f, fabs(im[i]));
+      fputc('i', f);
+    }
+  }
+}
