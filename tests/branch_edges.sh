@@ -241,4 +241,28 @@ else
   fail "curve-fold-moved (box [2.5, 3.5]) ran: $(cat "$TMP/stderr")"
 fi
 
+# --- a multiple-shooting curve's end on the box ---------------------------
+# fig 5.8's period-4 fold over alpha in [3.92, 3.95]: with multiple
+# shooting too both ends lie on the edges (its own system corrected there
+# with alpha fixed), at the beta that single shooting finds on its own
+# system (within 1e-10; they ended at the last points inside before, 2e-4
+# from the edges).
+edge_ends() { # SHOOTING -> "alpha beta" of each EP located on the edge
+  "$BIN" run "$SRC/examples/curve-fig58-fold4.ini" --quiet --out "$TMP/e4-$1" \
+    --set output.plot=no --set task.shooting="$1" --set task.x-from=3.92 \
+    --set task.x-to=3.95 >"$TMP/stdout" 2>"$TMP/stderr" || return 1
+  awk -F, 'NR > 1 && $1 == "EP" && $6 ~ /located on it/ { printf "%.17g %.17g\n", $2, $3 }' \
+    "$TMP/e4-$1/points.csv" | sort -g
+}
+if single=$(edge_ends single) && multiple=$(edge_ends multiple); then
+  if [ "$(echo "$multiple" | awk '{ print $1 }' | tr '\n' ' ')" = "3.9199999999999999 3.9500000000000002 " ] &&
+    [ "$(printf '%s\n%s\n' "$single" "$multiple" | awk '{ b[NR] = $2 } END { e1 = b[1] - b[3]; e2 = b[2] - b[4]; if (e1 < 0) e1 = -e1; if (e2 < 0) e2 = -e2; print (NR == 4 && e1 <= 1e-10 && e2 <= 1e-10) }')" = 1 ]; then
+    pass "multiple-shooting curve ends: on the box's edges, at single shooting's beta within 1e-10 ($multiple)"
+  else
+    fail "multiple-shooting curve ends: '$multiple' (single shooting: '$single'); $(cat "$TMP/e4-multiple/points.csv")"
+  fi
+else
+  fail "curve-fig58-fold4 (box [3.92, 3.95]) ran: $(cat "$TMP/stderr")"
+fi
+
 finish

@@ -298,22 +298,23 @@ static int end_point(trace *T, const double *u, const char *why) {
 
 /* A curve leaving the box in x ends on the box's edge: the point where
  * the step from prev to cur crosses x = edge, interpolated and corrected
- * onto the system at that x (unknowns d and y), into T->mid.  Single
- * shooting only (multiple shooting's orbit points would need their own
- * correction); 0 when located within EDGE_FTOLS residual tolerances, the
- * step's own acceptance level. */
+ * onto the system at that x (single shooting: unknowns d and y; multiple
+ * shooting: the orbit points and y, on its own system), into T->mid;
+ * 0 unless located within EDGE_FTOLS residual tolerances, the step's own
+ * acceptance level. */
 #define EDGE_FTOLS 10.0
 static int edge_point(trace *T, const double *prev, const double *cur,
                       double edge) {
-  if (T->N != 3) return 0;
   double t = (edge - UX(T, prev)) / (UX(T, cur) - UX(T, prev)), floor;
   if (!(t >= 0 && t <= 1)) return 0;
-  for (size_t i = 0; i < 3; i++)
+  for (size_t i = 0; i < T->N; i++)
     T->mid[i] = prev[i] + t * (cur[i] - prev[i]);
   UX(T, T->mid) = edge;
-  return sc_curve_correct_fixed(&T->ss.pb, T->mid, 1, T->acc, &floor) ==
-             SC_OK &&
-         floor <= EDGE_FTOLS * T->acc->newton_ftol &&
+  int st = T->N == 3
+               ? sc_curve_correct_fixed(&T->ss.pb, T->mid, 1, T->acc, &floor)
+               : sc_curve_correct_fixed_n(&T->cs.pb, T->mid, T->N - 2, T->acc,
+                                          &floor);
+  return st == SC_OK && floor <= EDGE_FTOLS * T->acc->newton_ftol &&
          UY(T, T->mid) >= T->set->ylo && UY(T, T->mid) <= T->set->yhi;
 }
 

@@ -391,6 +391,67 @@ int sc_curve_correct_fixed(const sc_cont_problem *pb, double *u, int fix,
   return SC_OK;
 }
 
+static double norm_max(const double *F, size_t n) {
+  double r = 0;
+  for (size_t i = 0; i < n; i++) r = fmax(r, fabs(F[i]));
+  return r;
+}
+
+/* One damped Newton step of sc_curve_correct_fixed_n(): the n x n
+ * matrix of pb's Jacobian without column `fix` factored by `ls`, the
+ * step halved until the residual (r at u) decreases; u and F updated.
+ * 1 when a step was taken. */
+static int fixed_n_step(const sc_cont_problem *pb, sc_linsolve *ls, double *u,
+                        double *F, size_t fix, double r, double *work) {
+  size_t n = pb->n, N = n + 1;
+  double *J = work, *A = J + n * N, *dx = A + n * n, *ut = dx + n,
+         *Ft = ut + N;
+  if (pb->jac(u, J, pb->user)) return 0;
+  for (size_t j = 0, c = 0; j < N; j++) {
+    if (j == fix) continue;
+    for (size_t i = 0; i < n; i++) A[i + n * c] = J[i * N + j];
+    c++;
+  }
+  for (size_t i = 0; i < n; i++) dx[i] = -F[i];
+  if (sc_linsolve_factor(ls, A, NULL) || sc_linsolve_solve(ls, dx, NULL))
+    return 0;
+  double lam = 1;
+  for (int h = 0; h < DAMP_HALVINGS; h++, lam *= 0.5) {
+    for (size_t j = 0, c = 0; j < N; j++)
+      ut[j] = j == fix ? u[j] : u[j] + lam * dx[c++];
+    if (pb->f(ut, Ft, pb->user) || !(norm_max(Ft, n) < r)) continue;
+    memcpy(u, ut, N * sizeof *u);
+    memcpy(F, Ft, n * sizeof *F);
+    return 1;
+  }
+  return 0; /* no step decreases the residual: its rounding floor */
+}
+
+int sc_curve_correct_fixed_n(const sc_cont_problem *pb, double *u, size_t fix,
+                             const sc_accuracy *acc, double *floor_out) {
+  size_t n = pb->n, N = n + 1;
+  *floor_out = HUGE_VAL;
+  if (pb->jac_colptr || fix >= N) return SC_EINVAL;
+  double *work = malloc((n * N + n * n + n + N + n + n) * sizeof *work);
+  sc_linsolve *ls = NULL;
+  if (!work || sc_linsolve_alloc_full(sc_linsolve_dense, (int)n, &ls, NULL)) {
+    free(work);
+    return SC_ENOMEM;
+  }
+  double *F = work + n * N + n * n + n + N + n;
+  int st = pb->f(u, F, pb->user) ? SC_ECALLBACK : SC_OK;
+  for (int it = 0; st == SC_OK && it < acc->newton_maxiter; it++) {
+    double r = norm_max(F, n);
+    *floor_out = r;
+    if (r <= acc->newton_ftol || !fixed_n_step(pb, ls, u, F, fix, r, work))
+      break;
+    *floor_out = norm_max(F, n);
+  }
+  sc_linsolve_free(ls);
+  free(work);
+  return st;
+}
+
 int sc_curve_mark(const sc_cont_problem *pb, const sc_accuracy *acc,
                   const char *xname, double c, const double *a,
                   const double *b, int start, double *u3, double *res,

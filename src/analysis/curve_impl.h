@@ -119,6 +119,13 @@ long sc_forced_nearest(sc_forced_sys *s, const double *u, double *dist);
  * residual).  SC_OK, or SC_ECALLBACK if F fails at u. */
 int sc_curve_correct_fixed(const sc_cont_problem *pb, double *u, int fix,
                            const sc_accuracy *acc, double *floor_out);
+/* sc_curve_correct_fixed() on a system of any size with a dense
+ * Jacobian (pb->n equations in n + 1 unknowns, u[fix] held fixed, the
+ * others free): multiple shooting's system.  SC_OK (the residual reached
+ * in *floor_out), SC_ECALLBACK if F fails at u, SC_EINVAL for a sparse
+ * pattern or fix out of range, SC_ENOMEM. */
+int sc_curve_correct_fixed_n(const sc_cont_problem *pb, double *u, size_t fix,
+                             const sc_accuracy *acc, double *floor_out);
 /* A user point: whether the mark x = c is passed on the step from the
  * curve point a to b ((d, x, y) each; reached exactly at b, or at a when
  * `start`): -1 not passed; else the point located by damped Newton on
