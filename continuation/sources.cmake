@@ -2,6 +2,7 @@ list(APPEND SC_SOURCES
   continuation/linsolve.c
   continuation/linsolve_dense.c
   continuation/linsolve_klu.c
+  continuation/product_eigs.c
   continuation/branch.c
   continuation/map1d.c
   continuation/curve.c

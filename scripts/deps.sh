@@ -3,7 +3,7 @@
 # Skips apt when everything is already there, so reruns are quick.
 set -euo pipefail
 pkgs=(build-essential binutils cmake pkg-config libgsl-dev liblapack-dev
-      libblas-dev libsuitesparse-dev libinih-dev gnuplot-nox libopenmpi-dev
+      libblas-dev libsuitesparse-dev libslicot-dev libinih-dev gnuplot-nox libopenmpi-dev
       openmpi-bin)
 missing=()
 for p in "${pkgs[@]}"; do

@@ -19,3 +19,5 @@ add_test(NAME curve_examples
           $<TARGET_FILE:slipcont_cli> ${PROJECT_SOURCE_DIR}
           $<TARGET_FILE:curve_points>)
 set_tests_properties(curve_examples PROPERTIES TIMEOUT 300)
+# Multipliers of a product without forming it (continuation/product_eigs.c).
+sc_add_test(test_product_eigs)

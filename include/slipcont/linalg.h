@@ -18,6 +18,10 @@
  * distinct objects share nothing.  All memory is taken by
  * sc_linsolve_alloc(): factor and solve never allocate beyond what the
  * backend library itself (KLU) does for its factors.
+ *
+ * The second section, multipliers of a product, gives the eigenvalues of
+ * a product of square matrices without forming the product (the periodic
+ * Schur form); docs/maps.md, "Multipliers".
  */
 #ifndef SLIPCONT_LINALG_H
 #define SLIPCONT_LINALG_H
@@ -158,6 +162,84 @@ SC_API int sc_csc_from_triplets(int n, int nt, const int *ti, const int *tj,
  */
 SC_API void sc_csc_scatter(int nt, const int *map, const double *tval, int nnz,
                            double *val);
+
+/* Multipliers of a product -------------------------------------------- */
+
+/**
+ * Workspace of sc_product_eigs_compute() for products of m factors of
+ * order n (opaque): with it, repeated calls allocate nothing.
+ */
+typedef struct sc_product_eigs_work sc_product_eigs_work;
+
+/**
+ * @brief Workspace for products of @p m factors of order @p n: about
+ * 3 m n^2 + 68 n + 2 m doubles.
+ * @param n  order of the factors, n >= 1.
+ * @param m  number of factors (the period of the orbit), m >= 1.
+ * @return SC_OK; SC_EINVAL for n or m out of range (n, m >= 1; n^2 m and
+ *         n + m must fit in an int, the index type of the Fortran library);
+ *         SC_ENOMEM.
+ */
+SC_API int sc_product_eigs_work_alloc(size_t n, size_t m,
+                                      sc_product_eigs_work **out, sc_msg *msg);
+
+/** @brief Release @p w; NULL is accepted. */
+SC_API void sc_product_eigs_work_free(sc_product_eigs_work *w);
+
+/**
+ * @brief Eigenvalues (multipliers) of the product P = A[m-1] ... A[1] A[0]
+ * of the m factors of @p w, computed without forming P.
+ *
+ * First QR cycles, A_k Q_k = Q_{k+1} R_k (one step of subspace iteration
+ * on P per cycle, at most 3 cycles), split the product into clusters of
+ * multipliers of close modulus; each cluster's factors are then reduced
+ * to periodic Hessenberg-triangular form and to periodic real Schur form
+ * by the periodic QR algorithm (SLICOT MB03VD, MB03WD): orthogonal Z_k
+ * with Z_{k+1}^T A[k] Z_k = T_k (Z_m = Z_0), T_k triangular but one
+ * quasi-triangular, so that each multiplier is a product of diagonal
+ * entries (of 2 x 2 blocks for a complex pair).  Every factor is scaled
+ * by a power of two (exact) and the products are accumulated as mantissa
+ * and exponent, so moduli far beyond the range of double (a 1000-factor
+ * product with |mu| = 1e602 beside 1e-301) come out right in @p logabs;
+ * re and im then overflow to +-inf or underflow to 0 as the values they
+ * are.  The computed multipliers are exact for factors A[k] + E[k] with
+ * ||E[k]|| of order n eps ||A[k]||, so a multiplier whose factors'
+ * diagonal entries are not small against their factor's norm has a
+ * relative error of order m n eps, however small it is; forming P first
+ * gives only an absolute error eps ||P|| (docs/maps.md, "Multipliers").
+ *
+ * Order: by decreasing modulus (decreasing logabs); ties by decreasing
+ * real part; a complex pair adjacent, its positive imaginary part first.
+ * n = 1 is the plain product (no periodic QR).
+ *
+ * @param w       workspace from sc_product_eigs_work_alloc() (n, m).
+ * @param A       m pointers; A[k] is the n x n factor applied k-th, row
+ *                major as sc_mapn_value.J: A[k][i n + j] = d f_i / d x_j
+ *                at the k-th point of the orbit.  Not modified.
+ * @param re, im  out: n real and imaginary parts (either may be NULL).
+ * @param logabs  out (may be NULL): n values log |mu| (natural log;
+ *                -HUGE_VAL for a zero multiplier).
+ * @param arg     out (may be NULL): n angles of mu in (-pi, pi] (0 for
+ *                a zero multiplier, pi for a negative real one).
+ * @return SC_OK; SC_EINVAL for a NULL @p w, @p A or factor;
+ *         SC_ENONFINITE for a NaN or infinite entry (the message names the
+ *         factor and the entry); SC_ENOCONV if the periodic QR iteration
+ *         did not converge (30 n sweeps).  Not thread safe on one @p w;
+ *         distinct workspaces share nothing.
+ */
+SC_API int sc_product_eigs_compute(sc_product_eigs_work *w,
+                                   const double *const *A, double *re,
+                                   double *im, double *logabs, double *arg,
+                                   sc_msg *msg);
+
+/**
+ * @brief sc_product_eigs_compute() with a workspace taken and released
+ * for this call: the multipliers of A[m-1] ... A[0] (n x n, row major) as
+ * @p re and @p im (n each), sorted as there.
+ * @return as sc_product_eigs_compute() and sc_product_eigs_work_alloc().
+ */
+SC_API int sc_product_eigs(size_t n, size_t m, const double *const *A,
+                           double *re, double *im, sc_msg *msg);
 
 #ifdef __cplusplus
 }
