@@ -6,4 +6,5 @@ list(APPEND SC_SOURCES
   continuation/branch.c
   continuation/map1d.c
   continuation/curve.c
-  continuation/curve_ms.c)
+  continuation/curve_ms.c
+  continuation/normal_form.c)
