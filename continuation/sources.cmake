@@ -7,4 +7,5 @@ list(APPEND SC_SOURCES
   continuation/map1d.c
   continuation/curve.c
   continuation/curve_ms.c
-  continuation/normal_form.c)
+  continuation/normal_form.c
+  continuation/mapn_system.c)

@@ -4,6 +4,7 @@ sc_add_test(test_continuation)
 sc_add_test(test_curve)
 sc_add_test(test_normal_form)
 sc_add_test(test_curve_border)
+sc_add_test(test_mapn_system)
 add_test(NAME test_curve_cli
   COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/test_curve_cli.sh
           $<TARGET_FILE:slipcont_cli> ${PROJECT_SOURCE_DIR})

@@ -17,6 +17,7 @@
 #include "slipcont/continuation.h"
 #include "slipcont/curve_system.h"
 #include "slipcont/normal_form.h"
+#include "slipcont/mapn_system.h"
 #include "slipcont/hybrid.h"
 #include "slipcont/models.h"
 #include "slipcont/bk2.h"
