@@ -562,6 +562,46 @@ static void test_long(double a, double c, double d) {
   product_free(&p);
 }
 
+/* Strongly hyperbolic factors turning a pair around the unit circle: every
+ * factor is M = diag(a, 1/a) R(theta) conjugated, A_k = Q_{k+1} M Q_k^T,
+ * so the product is Q_0 M^m Q_0^T with multipliers lambda^m, lambda =
+ * e^(+-i phi), cos phi = (a + 1/a) cos(theta) / 2 (det M = 1).  With
+ * a = 100 the factors' triangular parts spread by 1e4 each, 1e4000 over
+ * m = 1000, while the multipliers stay on the unit circle.  phi is known
+ * to a few eps, m phi to about 1000 eps: 1e-11 on the angle; each factor's
+ * backward error n eps ||M|| / |lambda| = 4e-14 times m bounds |log |mu||
+ * by 4e-11 (1e-10 asked). */
+static void test_hyperbolic_pair(void) {
+  int n = 2, m = 1000;
+  double a = 100, th = 1.5707;
+  product p = product_new(n, m);
+  for (int k = 0; k < m; k++) {
+    double *T = factor_T(&p, k);
+    T[0] = a * cos(th);
+    T[1] = -a * sin(th);
+    T[2] = sin(th) / a;
+    T[3] = cos(th) / a;
+  }
+  product_build(&p);
+  double phi = acos((a + 1 / a) * cos(th) / 2);
+  double want = fabs(remainder(m * phi, 2 * PI));
+  double re[2], im[2], la[2], arg[2];
+  sc_msg msg = {{0}};
+  sc_product_eigs_work *w = NULL;
+  int st = sc_product_eigs_work_alloc(2, (size_t)m, &w, &msg);
+  if (st == SC_OK) st = sc_product_eigs_compute(w, p.Ap, re, im, la, arg, &msg);
+  tu_int("hyperbolic pair: status", st, SC_OK);
+  printf("  hyperbolic pair: %d QR cycles, %d clusters\n",
+         sc_product_eigs_ncycles(w), sc_product_eigs_nclusters(w));
+  tu_close("hyperbolic pair: log |mu 1|", la[0], 0, 1e-10);
+  tu_close("hyperbolic pair: log |mu 2|", la[1], 0, 1e-10);
+  tu_close("hyperbolic pair: angle", arg[0], want, 1e-11);
+  tu_true(arg[1] == -arg[0], "hyperbolic pair: conjugate (%g, %g)", arg[0],
+          arg[1]);
+  sc_product_eigs_work_free(w);
+  product_free(&p);
+}
+
 /* Bad input: NULL pointers, sizes, non-finite entries. */
 static void test_errors(void) {
   double a[4] = {1, 2, 3, NAN}, re[2], im[2];
@@ -592,6 +632,7 @@ int main(void) {
   test_rotations();
   test_long(2.2, 2, 1.5);
   test_long(4, 3, 0.5);
+  test_hyperbolic_pair();
   test_errors();
   return tu_finish();
 }

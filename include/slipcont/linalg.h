@@ -191,8 +191,8 @@ SC_API void sc_product_eigs_work_free(sc_product_eigs_work *w);
  * of the m factors of @p w, computed without forming P.
  *
  * First QR cycles, A_k Q_k = Q_{k+1} R_k (one step of subspace iteration
- * on P per cycle, at most 3 cycles), split the product into clusters of
- * multipliers of close modulus; each cluster's factors are then reduced
+ * on P per cycle, at most 8 cycles), split the product into clusters of
+ * multipliers of close modulus (within a factor 1e20); each cluster's factors are then reduced
  * to periodic Hessenberg-triangular form and to periodic real Schur form
  * by the periodic QR algorithm (SLICOT MB03VD, MB03WD): orthogonal Z_k
  * with Z_{k+1}^T A[k] Z_k = T_k (Z_m = Z_0), T_k triangular but one
@@ -231,6 +231,13 @@ SC_API int sc_product_eigs_compute(sc_product_eigs_work *w,
                                    const double *const *A, double *re,
                                    double *im, double *logabs, double *arg,
                                    sc_msg *msg);
+
+/** QR cycles made by the last sc_product_eigs_compute() on @p w (0 for
+ *  n = 1 or a zero factor; at most 8). */
+SC_API int sc_product_eigs_ncycles(const sc_product_eigs_work *w);
+/** Clusters the last call gave to the periodic QR algorithm (1 for
+ *  n = 1, 0 for a zero factor, n when every multiplier split apart). */
+SC_API int sc_product_eigs_nclusters(const sc_product_eigs_work *w);
 
 /**
  * @brief sc_product_eigs_compute() with a workspace taken and released
