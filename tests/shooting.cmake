@@ -1,5 +1,6 @@
 # Shooting, the fixed-point search and branches of periodic orbits.
 sc_add_test(test_shooting)
+sc_add_test(test_shootn)
 sc_add_test(test_fixed_points)
 sc_add_test(test_branch)
 # The fixed-point and branch example scenes through the program.

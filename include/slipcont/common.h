@@ -239,6 +239,23 @@ SC_API int sc_orbit_minimal_period(const double *pts, int m, double tol);
 SC_API int sc_orbit_same(const double *a, const double *b, int m, double tol);
 
 /**
+ * @brief sc_orbit_minimal_period() for an orbit of points with @p n
+ * components: @p pts[i n + c] is component c of point i.  Two points are
+ * equal when every component agrees within @p tol (the max-norm).
+ */
+SC_API int sc_orbit_minimal_period_n(const double *pts, int m, size_t n,
+                                     double tol);
+
+/**
+ * @brief sc_orbit_same() for orbits of points with @p n components (the
+ * layout of sc_orbit_minimal_period_n()): some rotation of @p b agrees
+ * with @p a point by point, every component within @p tol.
+ * @return 1 or 0.
+ */
+SC_API int sc_orbit_same_n(const double *a, const double *b, int m, size_t n,
+                           double tol);
+
+/**
  * @brief The first field where two texts of @p sep-separated fields
  * differ (itineraries joined by '|', scene texts by '\n'): writes
  * "A -> B" into @p out (both fields, "" for a missing one).

@@ -354,6 +354,33 @@ int sc_orbit_same(const double *a, const double *b, int m, double tol) {
   return 0;
 }
 
+/* Whether points a and b (n components each) agree within tol. */
+static int same_point(const double *a, const double *b, size_t n,
+                      double tol) {
+  for (size_t c = 0; c < n; c++)
+    if (!(fabs(a[c] - b[c]) <= tol)) return 0;
+  return 1;
+}
+
+int sc_orbit_minimal_period_n(const double *pts, int m, size_t n,
+                              double tol) {
+  for (int q = 1; q < m; q++)
+    if (m % q == 0 && same_point(pts + (size_t)q * n, pts, n, tol)) return q;
+  return m;
+}
+
+int sc_orbit_same_n(const double *a, const double *b, int m, size_t n,
+                    double tol) {
+  for (int r = 0; r < m; r++) {
+    int same = 1;
+    for (int i = 0; i < m && same; i++)
+      same = same_point(a + (size_t)i * n, b + (size_t)((r + i) % m) * n, n,
+                        tol);
+    if (same) return 1;
+  }
+  return 0;
+}
+
 int sc_first_change(const char *a, const char *b, char sep, char *out,
                     size_t len) {
   const char set[2] = {sep, '\0'};
