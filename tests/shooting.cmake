@@ -2,6 +2,7 @@
 sc_add_test(test_shooting)
 sc_add_test(test_shootn)
 sc_add_test(test_fixed_points)
+sc_add_test(test_fixed_points_n)
 sc_add_test(test_branch)
 # The fixed-point and branch example scenes through the program.
 add_test(NAME branch_examples

@@ -27,6 +27,7 @@
 #include "slipcont/common.h"
 #include "slipcont/linalg.h"
 #include "slipcont/map.h"
+#include "slipcont/shooting.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -102,6 +103,108 @@ SC_API size_t sc_orbit_set_nlower(const sc_orbit_set *s);
 SC_API size_t sc_orbit_set_nundefined(const sc_orbit_set *s);
 /** @brief Release @p s; NULL is accepted. */
 SC_API void sc_orbit_set_free(sc_orbit_set *s);
+
+/* ------------------------------------------------------------------ */
+/* Periodic orbits of maps of n dimensions, without a start guess        */
+
+/** Largest period of sc_fixed_points_n_find(). */
+#define SC_FIXED_POINTS_N_MAX_PERIOD 1000
+
+/** Most starts of one search (grid and attractor points together). */
+#define SC_FIXED_POINTS_N_MAX_STARTS 10000000
+
+/** What sc_fixed_points_n_find() searches. */
+typedef struct {
+  int period_lo;       /**< smallest minimal period, >= 1 */
+  int period_hi;       /**< largest, period_lo <= period_hi <=
+                            SC_FIXED_POINTS_N_MAX_PERIOD */
+  const double *from;  /**< the box: n lower ends (NULL with start) */
+  const double *to;    /**< n upper ends, to[i] > from[i] */
+  size_t steps;        /**< grid points per axis, >= 2, ends included
+                            (steps^n starts) */
+  size_t attractor;    /**< starts on the attractor: iterates of a few
+                            grid points after the transient (0: none) */
+  long transient;      /**< iterates before attractor points are taken */
+  const double *start; /**< NULL, or n values: the one start (no box, no
+                            grid, no attractor) */
+  sc_shoot_method method; /**< single or multiple shooting */
+  const sc_linsolve_type *linsolve; /**< multiple shooting's backend, NULL:
+                                         as sc_shootn_alloc() */
+} sc_fixed_points_n_spec;
+
+/** One orbit found by sc_fixed_points_n_find(). */
+typedef struct {
+  int period;           /**< minimal period m */
+  const double *x;      /**< m points of n components, x[k n + c], from the
+                             lexicographically smallest point, in the order
+                             of the orbit */
+  const double *mult_re; /**< n multipliers by decreasing modulus: real */
+  const double *mult_im; /**< imaginary parts */
+  double multiplier;    /**< the one of largest modulus (its modulus for a
+                             complex pair), sc_shootn_result */
+  int stable;           /**< every multiplier inside the unit circle */
+  double residual;      /**< the shooting certificate */
+  const double *start;  /**< the start (n values) Newton converged from */
+  int in_box;           /**< 1 if a point of the orbit lies in the box
+                             (always 1 with a start) */
+} sc_orbitn_info;
+
+/** What the starts of one searched period gave (sc_orbitn_set_stats()). */
+typedef struct {
+  size_t starts;       /**< Newton runs made */
+  size_t found;        /**< new orbits (of this period or, over a range,
+                            of a lower one in the range) */
+  size_t known;        /**< converged to an orbit already found (deflation
+                            did not keep Newton away) */
+  size_t lower;        /**< converged to an orbit of a smaller minimal
+                            period outside the range searched */
+  size_t outside;      /**< a new orbit with no point in the box */
+  size_t failed[SC_SHOOTN_NREASONS]; /**< failures by reason (index 0,
+                                          converged, stays 0) */
+} sc_orbitn_stats;
+
+/** The result of sc_fixed_points_n_find() (opaque). */
+typedef struct sc_orbitn_set sc_orbitn_set;
+
+/**
+ * @brief Periodic orbits of minimal periods period_lo .. period_hi of an
+ * n-dimensional map, at its current parameters, without a start guess.
+ *
+ * Starts: the grid of the box (steps points per axis, ends included) and
+ * @p attractor points of the attractor (the iterates, after the
+ * transient, of grid points whose orbits stay finite), or the one start
+ * of spec->start.  For each period m in turn (increasing), Newton's method
+ * (sc_shootn) runs from every start on the fixed points of f^m, with
+ * every orbit already found whose period divides m deflated
+ * (sc_shootn_deflate(), scale: the box's largest side), so that a start
+ * drawn to a known orbit is sent on to another one.  A converged orbit
+ * is recorded once, at its minimal period (sc_orbit_minimal_period_n()),
+ * if that period is in the range, it is not a rotation of one recorded
+ * (sc_orbit_same_n() with sc_orbit_tol() of the map's solver accuracy)
+ * and (with a box) one of its points lies in the box.  The search is
+ * complete only as far as its starts reach: the statistics say what
+ * each start gave.
+ * @return SC_OK; SC_EINVAL for a bad spec (the message names the field);
+ *         SC_ENOMEM; an error of the model other than an undefined map.
+ */
+SC_API int sc_fixed_points_n_find(sc_map *m, const sc_fixed_points_n_spec *spec,
+                                  sc_orbitn_set **out, sc_msg *msg);
+
+/** Orbits recorded (in the box), by period then by first point. */
+SC_API size_t sc_orbitn_set_count(const sc_orbitn_set *s);
+/** @brief Orbit @p i; SC_EINVAL for i out of range.  Pointers are owned by
+ * the set. */
+SC_API int sc_orbitn_set_get(const sc_orbitn_set *s, size_t i,
+                             sc_orbitn_info *o);
+/** @brief The statistics of the search of period @p period (zeros for a
+ * period outside the range). */
+SC_API void sc_orbitn_set_stats(const sc_orbitn_set *s, int period,
+                                sc_orbitn_stats *out);
+/** Grid starts, attractor starts (per period searched). */
+SC_API void sc_orbitn_set_starts(const sc_orbitn_set *s, size_t *grid,
+                                 size_t *attractor);
+/** @brief Release @p s; NULL is accepted. */
+SC_API void sc_orbitn_set_free(sc_orbitn_set *s);
 
 /* ------------------------------------------------------------------ */
 /* Branches of periodic orbits in one parameter                          */

@@ -10,3 +10,4 @@ list(APPEND SC_SOURCES src/analysis/branch_orbit.c
 list(APPEND SC_SOURCES src/analysis/curve.c
   src/analysis/curve_border.c
   src/analysis/border_list.c)
+list(APPEND SC_SOURCES src/analysis/fixed_points_n.c)

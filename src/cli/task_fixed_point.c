@@ -8,6 +8,7 @@
 
 #include "cli/progress.h"
 #include "cli/tasks.h"
+#include "cli/task_fixed_point_n.h"
 #include "slipcont/orbits.h"
 
 /* Highest period searched (the library's limit, sc_fixed_points_find). */
@@ -15,17 +16,35 @@
 
 static const sc_key_info fp_keys[] = {
     {"period", SC_KEY_TEXT, 0, "1", 0, 0, 0, 0, NULL,
-     "m, or a range m1..m2 (1 <= m1 <= m2 <= 100000): orbits of minimal "
-     "period m (fixed points of f^m); over a range every orbit once, at its "
-     "minimal period, with a count per period"},
-    {"from", SC_KEY_REAL, 1, NULL, -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
-     "lower end of the d interval searched"},
-    {"to", SC_KEY_REAL, 1, NULL, -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
-     "upper end of the d interval searched (> from)"},
-    {"steps", SC_KEY_INT, 0, "1001", 2, 100000000, 0, 0, NULL,
-     "initial scan grid, both ends included; itinerary changes between "
-     "grid points are located by bisection"},
+     "m, or a range m1..m2 (1 <= m1 <= m2 <= 100000; n > 1: <= 1000): "
+     "orbits of minimal period m (fixed points of f^m); over a range every "
+     "orbit once, at its minimal period, with a count per period"},
+    {"from", SC_KEY_STATE, 0, NULL, -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
+     "lower end of the d interval searched; n > 1: the box's lower corner "
+     "(n numbers).  Required, but for n > 1 with d0"},
+    {"to", SC_KEY_STATE, 0, NULL, -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
+     "upper end of the d interval searched (> from); n > 1: the box's upper "
+     "corner (each component > from's).  Required, but for n > 1 with d0"},
+    {"steps", SC_KEY_INT, 0, NULL, 2, 100000000, 0, 0, NULL,
+     "initial scan grid, both ends included (1001); itinerary changes "
+     "between grid points are located by bisection.  n > 1: grid points per "
+     "axis of the box (21), every one a Newton start"},
+    {"d0", SC_KEY_STATE, 0, NULL, -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
+     "n > 1 only: a start guess; Newton from it alone (no box, grid or "
+     "attractor starts)"},
+    {"attractor", SC_KEY_INT, 0, NULL, 0, 10000000, 0, 0, NULL,
+     "n > 1 only: starts on the attractor, the iterates of a few grid "
+     "points after the transient (1000)"},
+    {"transient", SC_KEY_INT, 0, NULL, 0, 100000000, 0, 0, NULL,
+     "n > 1 only: iterates before the attractor starts are taken (1000)"},
+    {"shooting", SC_KEY_CHOICE, 0, NULL, 0, 0, 0, 0, "single|multiple",
+     "n > 1 only: Newton on f^m(x) - x (single) or on the m orbit points "
+     "(multiple, block-sparse; the default)"},
 };
+
+/* Default of `steps` for a one-dimensional model (the key has no
+ * default of its own since n > 1 reads it per axis). */
+#define FP_STEPS_1D 1001
 
 /* `period`: "m" or "m1..m2" into [*lo, *hi]; SC_OK or SC_EINVAL. */
 static int parse_periods(const char *text, long *lo, long *hi) {
@@ -46,9 +65,34 @@ static int parse_periods(const char *text, long *lo, long *hi) {
   return SC_OK;
 }
 
+/* A required key left out: the message of a missing required key. */
+static int fp_missing(const sc_scene *s, const char *key, sc_msg *msg) {
+  sc_key_info one = {key, SC_KEY_REAL, 1, NULL, -HUGE_VAL, HUGE_VAL,
+                     1, 1, NULL, NULL};
+  char range[128];
+  sc_key_range_text(&one, range, sizeof range);
+  return sc_scene_fail_key(s, "task", key, msg,
+                           "missing required key '%s' (valid: %s)", key,
+                           range);
+}
+
 static int fp_check(const sc_scene *s, sc_msg *msg) {
   long lo, hi;
-  if (parse_periods(sc_scene_text(s, "period"), &lo, &hi))
+  int bad = parse_periods(sc_scene_text(s, "period"), &lo, &hi);
+  if (sc_map_dim(sc_scene_map(s)) > 1)
+    return sc_fpn_check(s, bad ? -1 : lo, bad ? -1 : hi, msg);
+  static const char *const nd_only[] = {"d0", "attractor", "transient",
+                                        "shooting"};
+  for (size_t i = 0; i < sizeof nd_only / sizeof nd_only[0]; i++)
+    if (sc_scene_value(s, "task", nd_only[i]))
+      return sc_scene_fail_key(s, "task", nd_only[i], msg,
+                               "%s is a key of models of n > 1 dimensions; "
+                               "model %s is one-dimensional and searched "
+                               "by pieces of itinerary (valid: leave it out)",
+                               nd_only[i], sc_map_type(sc_scene_map(s))->name);
+  if (!sc_scene_value(s, "task", "from")) return fp_missing(s, "from", msg);
+  if (!sc_scene_value(s, "task", "to")) return fp_missing(s, "to", msg);
+  if (bad)
     return sc_scene_fail_key(s, "task", "period", msg,
                              "period = %s (valid: m in [1, %d], or m1..m2 "
                              "with 1 <= m1 <= m2 <= %d)",
@@ -76,16 +120,20 @@ typedef struct {
   size_t n, nstable, nfam; /* totals */
   unsigned long nev;       /* map evaluations of the search */
   double elapsed;          /* its seconds */
+  sc_fpn_job nd;           /* n > 1: the n-dimensional search */
 } fp_job;
 
 static int fp_prepare(sc_cli_run *r, void *job) {
   fp_job *j = job;
   const sc_scene *s = r->scene;
   parse_periods(sc_scene_text(s, "period"), &j->lo, &j->hi); /* checked */
+  if (sc_map_dim(r->map) > 1) return sc_fpn_prepare(r, j->lo, j->hi, &j->nd);
   j->sp = (sc_fixed_points_spec){.period = (int)j->lo,
                                  .from = sc_scene_real(s, "from"),
                                  .to = sc_scene_real(s, "to"),
-                                 .steps = (size_t)sc_scene_int(s, "steps")};
+                                 .steps = FP_STEPS_1D};
+  if (sc_scene_value(s, "task", "steps"))
+    j->sp.steps = (size_t)sc_scene_int(s, "steps");
   j->per = calloc((size_t)(j->hi - j->lo + 1), sizeof *j->per);
   if (!j->per) return sc_fail(r->msg, SC_ENOMEM, "fixed-point: out of memory");
   return SC_OK;
@@ -96,6 +144,7 @@ static int fp_prepare(sc_cli_run *r, void *job) {
  * any file is opened; between periods the run stops by itself. */
 static int fp_compute(sc_cli_run *r, void *job) {
   fp_job *j = job;
+  if (sc_map_dim(r->map) > 1) return sc_fpn_compute(r, &j->nd);
   unsigned long ev0 = sc_map_nevals(r->map);
   double t0 = sc_progress_now();
   for (long m = j->lo; m <= j->hi; m++) {
@@ -204,6 +253,7 @@ static int write_diagonal(sc_cli_run *r, const fp_job *j) {
 
 static int fp_write(sc_cli_run *r, void *job) {
   const fp_job *j = job;
+  if (sc_map_dim(r->map) > 1) return sc_fpn_write(r, &j->nd);
   const sc_fixed_points_spec *sp = &j->sp;
   int st = write_orbits(r, j);
   if (!st) st = write_counts(r, j);
@@ -220,7 +270,7 @@ static int fp_write(sc_cli_run *r, void *job) {
 
 static int fp_summary(sc_cli_run *r, void *job, FILE *f) {
   const fp_job *j = job;
-  (void)r;
+  if (sc_map_dim(r->map) > 1) return sc_fpn_summary(r, &j->nd, f);
   if (j->lo == j->hi)
     fprintf(f, "  period-%ld orbits in [%.17g, %.17g]: %zu isolated (%zu "
                "stable), %zu neutral families\n",
@@ -290,6 +340,7 @@ static int fp_range_plot(sc_cli_run *r, const fp_job *j) {
 
 static int fp_plots(sc_cli_run *r, void *job) {
   const fp_job *j = job;
+  if (sc_map_dim(r->map) > 1) return sc_fpn_plots(r, &j->nd);
   if (j->lo != j->hi) return fp_range_plot(r, j);
   sc_map *m = r->map;
   int per = j->sp.period;
@@ -324,6 +375,7 @@ static int fp_plots(sc_cli_run *r, void *job) {
 
 static int fp_report(sc_cli_run *r, void *job) {
   const fp_job *j = job;
+  if (sc_map_dim(r->map) > 1) return sc_fpn_report(r, &j->nd);
   if (j->lo == j->hi)
     sc_cli_note(r, "%zu period-%ld orbits (%zu stable, %zu families) in "
                    "%.3f s",
@@ -339,6 +391,7 @@ static int fp_report(sc_cli_run *r, void *job) {
 static void fp_release(sc_cli_run *r, void *job) {
   fp_job *j = job;
   (void)r;
+  sc_fpn_release(&j->nd);
   for (long m = j->lo; j->per && m <= j->hi; m++) {
     sc_orbit_set_free(j->per[m - j->lo].set);
   }
@@ -349,7 +402,9 @@ const sc_cli_task sc_cli_task_fixed_point = {
     .type = {.kind = "fixed-point",
              .doc = "every orbit of period m (or of each period of a range "
                     "m1..m2) in an interval of d, without a start guess: "
-                    "pieces of constant itinerary, brackets, Newton",
+                    "pieces of constant itinerary, brackets, Newton; n > 1: "
+                    "Newton from a grid of a box and from the attractor "
+                    "with the orbits found deflated, or from d0",
              .keys = fp_keys,
              .nkeys = sizeof fp_keys / sizeof fp_keys[0],
              .check = fp_check},
@@ -357,7 +412,12 @@ const sc_cli_task sc_cli_task_fixed_point = {
                "periods.csv (period,orbits,stable,unstable,families,"
                "lower_period_roots), fixed-point-map.csv (one period: the "
                "graph of f^m), fixed-point-orbits.csv, summary.txt, "
-               "fixed-point.gp, fixed-point.png",
+               "fixed-point.gp, fixed-point.png; n > 1: orbits.csv "
+               "(period,multiplier,multipliers,stable,residual,start_*,"
+               "points), periods.csv (period,orbits,stable,unstable,starts,"
+               "known,lower_period,outside_box,failed), "
+               "fixed-point-orbits.csv, summary.txt, fixed-point.gp/png "
+               "(n = 2: the orbit points in the plane)",
     .job_size = sizeof(fp_job),
     .prepare = fp_prepare,
     .compute = fp_compute,
