@@ -260,6 +260,11 @@ static void long_orbit(void) {
     const double *o = sc_shootn_orbit(s);
     tu_int("period 7: minimal", sc_orbit_minimal_period_n(o, 7, 2, 1e-8), 7);
     tu_int("period 7: stable", res.stable, 1);
+    /* det J = -b at every point: the multipliers' product is (-b)^7 */
+    const double *re, *im;
+    sc_shootn_multipliers(s, &re, &im);
+    tu_rel("period 7: mu1 mu2 = (-b)^7",
+           re[0] * re[1] - im[0] * im[1], pow(-0.3, 7), 1e-12);
     if (k == 0) memcpy(first, o, sizeof first);
     else {
       tu_close("period 7: x agrees across methods", o[0], first[0], TOL);
@@ -268,6 +273,45 @@ static void long_orbit(void) {
     sc_shootn_free(s);
   }
   sc_mapn_value_free(v);
+  sc_map_free(m);
+}
+
+/* The period-7 orbit solved as a period-70 one: its multipliers are
+ * those of period 7 to the tenth power, their product (-b)^70 = 2.5e-37
+ * while the larger one is about 1e-3: forming the product of the 70
+ * Jacobians would leave the smaller one at its rounding (DBL_EPSILON
+ * times the larger); the periodic Schur decomposition keeps it to a
+ * relative 1e-12 (70 factors of rounding). */
+static void wide_multipliers(void) {
+  sc_map *m = henon(1.23, 0.3);
+  sc_msg msg;
+  double x[2] = {0.1, 0.1};
+  sc_shootn *s7, *s70;
+  sc_shootn_alloc(m, 7, SC_SHOOT_SINGLE, NULL, &s7, &msg);
+  sc_shootn_alloc(m, 70, SC_SHOOT_MULTIPLE, sc_linsolve_klu, &s70, &msg);
+  sc_mapn_value *v;
+  sc_mapn_value_alloc(m, SC_EVAL_VALUE, &v, &msg);
+  for (int i = 0; i < 5000; i++) {
+    sc_map_eval_n(m, x, SC_EVAL_VALUE, v, &msg);
+    memcpy(x, v->f, sizeof x);
+  }
+  sc_shootn_result r7, r70;
+  if (tu_true(sc_shootn_solve(s7, x, &r7, &msg) == SC_OK, "period 7: %s",
+              msg.text) &&
+      tu_true(sc_shootn_solve(s70, x, &r70, &msg) == SC_OK, "period 70: %s",
+              msg.text)) {
+    const double *re7, *im7, *re70, *im70;
+    sc_shootn_multipliers(s7, &re7, &im7);
+    sc_shootn_multipliers(s70, &re70, &im70);
+    tu_true(im7[0] == 0, "period 7: real multipliers");
+    tu_rel("period 70: mu1 mu2 = (-b)^70", re70[0] * re70[1], pow(0.3, 70),
+           1e-12);
+    tu_rel("period 70: mu2 = mu2(7)^10", re70[1], pow(re7[1], 10), 1e-12);
+    tu_rel("period 70: mu1 = mu1(7)^10", re70[0], pow(re7[0], 10), 1e-12);
+  }
+  sc_mapn_value_free(v);
+  sc_shootn_free(s7);
+  sc_shootn_free(s70);
   sc_map_free(m);
 }
 
@@ -316,6 +360,7 @@ int main(void) {
   deflation();
   logistic_agrees();
   long_orbit();
+  wide_multipliers();
   failures();
   orbit_rules();
   return tu_finish();

@@ -196,6 +196,8 @@ typedef struct sc_shootn sc_shootn;
  *                SC_SHOOT_DENSE_MAX points, KLU above; ignored by single
  *                shooting.
  * @return SC_OK; SC_EINVAL for a bad period or method; SC_ENOMEM.
+ *         Memory: about 4 m n^2 doubles (the Jacobians of the orbit and
+ *         the multipliers' workspace) besides the solver's.
  */
 SC_API int sc_shootn_alloc(sc_map *m, int period, sc_shoot_method method,
                            const sc_linsolve_type *ls, sc_shootn **out,
@@ -223,7 +225,10 @@ SC_API void sc_shootn_free(sc_shootn *s);
  * is halved, at most SC_SHOOT_MAX_HALVINGS times.  With deflated orbits
  * (sc_shootn_deflate()) the residual F is replaced by M(x) F(x), see
  * there.  On SC_OK the multipliers of the orbit are computed: the
- * eigenvalues of J(x_(m-1)) ... J(x_0), by decreasing modulus.
+ * eigenvalues of J(x_(m-1)) ... J(x_0), by decreasing modulus, by the
+ * periodic Schur decomposition (sc_product_eigs_compute(), linalg.h:
+ * the product is not formed, so multipliers far smaller than the
+ * largest keep their relative accuracy).
  * @return SC_OK with @p res filled; SC_ENOCONV (reason MAXITER or
  *         NO_DECREASE), SC_ESING (SINGULAR), SC_EUNDEF or SC_ENONFINITE
  *         (UNDEFINED), with the residual and the point in the message and

@@ -35,7 +35,8 @@ struct sc_shootn {
   double *x, *xtry, *F, *Ftry, *J, *Jtry;
   double *dx, *val, *seed;
   double *orbit, *Jorb;       /* m n points, m n^2 Jacobians at them */
-  double *prod, *tmp, *work;  /* multipliers: n^2, n^2, 4 n */
+  sc_product_eigs_work *eig;  /* multipliers of m factors of order n */
+  const double **factors;     /* m pointers into Jorb */
   double *re, *im;            /* n each */
   /* deflated orbits: their points one after another, their periods */
   double *defl;
@@ -121,17 +122,17 @@ int sc_shootn_alloc(sc_map *m, int period, sc_shoot_method method,
   s->seed = malloc(mp * n * sizeof *s->seed);
   s->orbit = malloc(mp * n * sizeof *s->orbit);
   s->Jorb = malloc(mp * n * n * sizeof *s->Jorb);
-  s->prod = malloc(n * n * sizeof *s->prod);
-  s->tmp = malloc(n * n * sizeof *s->tmp);
-  s->work = malloc(4 * n * sizeof *s->work);
+  s->factors = malloc(mp * sizeof *s->factors);
   s->re = calloc(n, sizeof *s->re);
   s->im = calloc(n, sizeof *s->im);
   if (!s->x || !s->xtry || !s->F || !s->Ftry || !s->dx || !s->J ||
       !s->Jtry || !s->val || !s->seed || !s->orbit || !s->Jorb ||
-      !s->prod || !s->tmp || !s->work || !s->re || !s->im) {
+      !s->factors || !s->re || !s->im) {
     sc_fail(msg, st, "sc_shootn_alloc: out of memory");
     goto fail;
   }
+  st = sc_product_eigs_work_alloc(n, mp, &s->eig, msg);
+  if (st) goto fail;
   if (method == SC_SHOOT_SINGLE) {
     s->lstype = sc_linsolve_dense;
     st = sc_linsolve_alloc_full(s->lstype, (int)n, &s->ls, msg);
@@ -164,9 +165,8 @@ void sc_shootn_free(sc_shootn *s) {
   free(s->seed);
   free(s->orbit);
   free(s->Jorb);
-  free(s->prod);
-  free(s->tmp);
-  free(s->work);
+  sc_product_eigs_work_free(s->eig);
+  free(s->factors);
   free(s->re);
   free(s->im);
   free(s->defl);
@@ -331,67 +331,17 @@ static int newton_step(sc_shootn *s, sc_msg *msg) {
   return sc_linsolve_solve(s->ls, s->dx, msg);
 }
 
-/* LAPACK: eigenvalues of a general matrix. */
-extern void dgeev_(const char *jobvl, const char *jobvr, const int *n,
-                   double *a, const int *lda, double *wr, double *wi,
-                   double *vl, const int *ldvl, double *vr, const int *ldvr,
-                   double *work, const int *lwork, int *info);
-
-/* Order of multipliers: decreasing modulus, then decreasing real part,
- * then decreasing imaginary part (a pair's positive part first). */
-static int before(double ra, double ia, double rb, double ib) {
-  double ma = hypot(ra, ia), mb = hypot(rb, ib);
-  if (ma != mb) return ma > mb;
-  if (ra != rb) return ra > rb;
-  return ia > ib;
-}
-
 /* The multipliers of the orbit: eigenvalues of J(x_(m-1)) ... J(x_0)
- * from s->Jorb into s->re, s->im, sorted.
- * TODO(periodic Schur): replace by sc_product_eigs() (linalg.h) once it
- * lands: forming the product loses the multipliers that are small
- * against the largest one (an absolute error DBL_EPSILON ||P||). */
+ * from s->Jorb into s->re, s->im, by the periodic Schur decomposition
+ * (sc_product_eigs_compute(), linalg.h), which does not form the product
+ * and so keeps multipliers that are tiny against the largest one; its
+ * order is decreasing modulus, ties by decreasing real part, a complex
+ * pair with its positive imaginary part first. */
 static int multipliers(sc_shootn *s, sc_msg *msg) {
   size_t n = s->n, m = (size_t)s->period;
-  double *P = s->prod, *T = s->tmp;
-  memcpy(P, s->Jorb, n * n * sizeof *P);
-  for (size_t k = 1; k < m; k++) {
-    const double *A = s->Jorb + k * n * n;
-    for (size_t i = 0; i < n; i++)
-      for (size_t j = 0; j < n; j++) {
-        double t = 0;
-        for (size_t l = 0; l < n; l++) t += A[i * n + l] * P[l * n + j];
-        T[i * n + j] = t;
-      }
-    memcpy(P, T, n * n * sizeof *P);
-  }
-  for (size_t i = 0; i < n * n; i++)
-    if (!isfinite(P[i]))
-      return sc_fail(msg, SC_ENONFINITE,
-                     "sc_shootn_solve: the product of the orbit's %zu "
-                     "Jacobians is not finite",
-                     m);
-  /* P is row major: LAPACK sees its transpose, with the same eigenvalues */
-  int nn = (int)n, one = 1, lwork = 4 * (int)n, info = 0;
-  dgeev_("N", "N", &nn, P, &nn, s->re, s->im, NULL, &one, NULL, &one,
-         s->work, &lwork, &info);
-  if (info != 0)
-    return sc_fail(msg, SC_ENOCONV,
-                   "sc_shootn_solve: the QR algorithm for the multipliers "
-                   "did not converge (dgeev info %d)",
-                   info);
-  for (size_t i = 1; i < n; i++) /* insertion sort: n is small */
-    for (size_t j = i; j > 0 && before(s->re[j], s->im[j], s->re[j - 1],
-                                       s->im[j - 1]);
-         j--) {
-      double t = s->re[j];
-      s->re[j] = s->re[j - 1];
-      s->re[j - 1] = t;
-      t = s->im[j];
-      s->im[j] = s->im[j - 1];
-      s->im[j - 1] = t;
-    }
-  return SC_OK;
+  for (size_t k = 0; k < m; k++) s->factors[k] = s->Jorb + k * n * n;
+  return sc_product_eigs_compute(s->eig, s->factors, s->re, s->im, NULL,
+                                 NULL, msg);
 }
 
 /* The orbit points and the Jacobians at them, the multipliers, the
