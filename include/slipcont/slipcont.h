@@ -24,6 +24,7 @@
 #include "slipcont/map.h"
 #include "slipcont/shooting.h"
 #include "slipcont/orbits.h"
+#include "slipcont/branchn.h"
 #include "slipcont/analysis.h"
 #include "slipcont/period.h"
 #include "slipcont/chart.h"

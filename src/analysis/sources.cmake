@@ -6,7 +6,9 @@ list(APPEND SC_SOURCES src/analysis/branch_orbit.c
   src/analysis/branch_segment.c
   src/analysis/branch_border.c
   src/analysis/branch_switch.c
-  src/analysis/branch_marks.c)
+  src/analysis/branch_marks.c
+  src/analysis/branchn.c
+  src/analysis/branchn_special.c)
 list(APPEND SC_SOURCES src/analysis/curve.c
   src/analysis/curve_border.c
   src/analysis/border_list.c)
