@@ -98,10 +98,19 @@ static void check_ghenon(void) {
     sc_branchn_point_get(b, i, &pt);
     double sx = pt.x[0], det = be - R * sx, tr = (R - 2) * sx;
     int stab = det < 1 && 1 - tr + det > 0 && 1 + tr + det > 0;
-    ok &= pt.stable == stab;
     /* the multipliers' product and sum are det and tr */
     double pr = pt.re[0] * pt.re[1] - pt.im[0] * pt.im[1];
-    ok &= fabs(pr - det) < 1e-12 && fabs(pt.re[0] + pt.re[1] - tr) < 1e-12;
+    /* on a boundary (the special points are branch points too) the
+     * rounding decides: compared off them only */
+    int edge = fabs(det - 1) < 1e-9 || fabs(1 - tr + det) < 1e-9 ||
+               fabs(1 + tr + det) < 1e-9;
+    int good = (edge || pt.stable == stab) && fabs(pr - det) < 1e-12 &&
+               fabs(pt.re[0] + pt.re[1] - tr) < 1e-12;
+    if (!good && ok)
+      printf("point %zu: s %.17g stable %d (%d) mu %g%+gi %g%+gi det %g tr %g\n",
+             i, sx, pt.stable, stab, pt.re[0], pt.im[0], pt.re[1], pt.im[1],
+             det, tr);
+    ok &= good;
   }
   tu_true(ok, "ghenon: multipliers and stability of every point");
   tu_close("ghenon: parameters restored", sc_map_get_param(m, 0), 0.1, 0);
