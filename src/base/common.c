@@ -338,22 +338,6 @@ double sc_orbit_tol(const sc_accuracy *acc, double x) {
   return SC_ORBIT_SAME_TOLS * (acc->newton_atol + acc->newton_rtol * fabs(x));
 }
 
-int sc_orbit_minimal_period(const double *pts, int m, double tol) {
-  for (int q = 1; q < m; q++)
-    if (m % q == 0 && fabs(pts[q] - pts[0]) <= tol) return q;
-  return m;
-}
-
-int sc_orbit_same(const double *a, const double *b, int m, double tol) {
-  for (int r = 0; r < m; r++) {
-    int same = 1;
-    for (int i = 0; i < m && same; i++)
-      same = fabs(a[i] - b[(r + i) % m]) <= tol;
-    if (same) return 1;
-  }
-  return 0;
-}
-
 /* Whether points a and b (n components each) agree within tol. */
 static int same_point(const double *a, const double *b, size_t n,
                       double tol) {
@@ -379,6 +363,15 @@ int sc_orbit_same_n(const double *a, const double *b, int m, size_t n,
     if (same) return 1;
   }
   return 0;
+}
+
+/* The one-dimensional rules are the n-dimensional ones with n = 1. */
+int sc_orbit_minimal_period(const double *pts, int m, double tol) {
+  return sc_orbit_minimal_period_n(pts, m, 1, tol);
+}
+
+int sc_orbit_same(const double *a, const double *b, int m, double tol) {
+  return sc_orbit_same_n(a, b, m, 1, tol);
 }
 
 int sc_first_change(const char *a, const char *b, char sep, char *out,
