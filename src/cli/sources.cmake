@@ -5,7 +5,8 @@ set(SC_CLI_SOURCES
   src/cli/run.c
   src/cli/inputs.c
   src/cli/marks.c
-  src/cli/tasks.c)
+  src/cli/tasks.c
+  src/cli/show.c)
 list(APPEND SC_CLI_SOURCES src/cli/task_orbit.c)
 list(APPEND SC_CLI_SOURCES src/cli/task_map.c)
 list(APPEND SC_CLI_SOURCES src/cli/task_sweep.c)

@@ -176,6 +176,43 @@ int sc_cli_marks(const sc_scene *s, const char *pname, double lo, double hi,
 int sc_cli_write_map_graph(sc_cli_run *r, const char *name, int n,
                            double from, double to, size_t steps);
 
+/* ------------------------------------------------------------------ */
+/* `show`: which number of an n-component state a plot draws (show.c)   */
+
+/** sc_cli_show()'s value for `show = norm`: the Euclidean norm. */
+#define SC_CLI_SHOW_NORM (-1)
+
+/** The `show` key as a task's key table lists it (sweep, branch): put
+ * SC_CLI_SHOW_KEY in the table, read it with sc_cli_show() in the task's
+ * check (which refuses a bad value naming the key's line) and in
+ * prepare. */
+#define SC_CLI_SHOW_KEY                                                     \
+  {"show", SC_KEY_TEXT, 0, "1", 0, 0, 0, 0, NULL,                           \
+   "what a plot draws of a state of n > 1 components: a component, by "    \
+   "its index 1..n or its name (y), or norm (the Euclidean norm); CSV "     \
+   "files keep every component"}
+
+/** `[task] show` of @p s for the model of @p s: *show = the component's
+ * index from 0, or SC_CLI_SHOW_NORM.  Returns SC_OK, or SC_EINVAL with a
+ * message naming the key's line and the valid values. */
+int sc_cli_show(const sc_scene *s, int *show, sc_msg *msg);
+
+/** The axis label of what @p show draws of a state of @p m: the
+ * component's plot label ("y"), or "|x|" (the state name between bars)
+ * for the norm; a one-dimensional model's state label.  Returns @p buf. */
+const char *sc_cli_show_label(const sc_map *m, int show, char *buf,
+                              size_t len);
+
+/** The gnuplot `using` expression of what @p show draws when the @p n
+ * components of a state are the CSV columns col0 .. col0 + n - 1: the
+ * column's number ("3"), or "(sqrt($2**2 + $3**2))" for the norm; either
+ * goes after "using 1:".  Returns @p buf. */
+const char *sc_cli_show_using(int show, size_t n, int col0, char *buf,
+                              size_t len);
+
+/** The value @p show draws of the state @p x (n values). */
+double sc_cli_show_value(int show, const double *x, size_t n);
+
 /** Number of registered tasks; sc_cli_task_get(i) lists them. */
 size_t sc_cli_task_count(void);
 /** Registered task @p i, or NULL. */
