@@ -262,7 +262,60 @@ static void cancel(void) {
   sc_map_free(m);
 }
 
+/* Charts of two-dimensional maps: the class of known points, and the
+ * same results for 1 and 2 threads and both seeds.  ghenon with R = -1
+ * has its fixed point x = y = s, (1 - R) s^2 + (1 + beta) s = alpha, with
+ * Jacobian determinant beta - R s; at beta = 0.9 the determinant is 1 at
+ * s = 0.1, alpha = 0.21 (a supercritical Neimark-Sacker point: below it
+ * the fixed point attracts, above it an invariant circle does).  henon at
+ * a = 1.4, b = 0.3 is the classic chaotic attractor. */
+static void two_dimensional(void) {
+  sc_map *m;
+  sc_msg msg;
+  sc_map_alloc("ghenon", NULL, &m, &msg);
+  sc_map_set_param_by_name(m, "R", -1, &msg);
+  sc_chart_spec s;
+  sc_chart_spec_default(&s);
+  const double x0[2] = {0.1, 0.1};
+  s.x = "alpha", s.x_from = 0.05, s.x_to = 0.3, s.x_steps = 3;
+  s.y = "beta", s.y_from = 0.9, s.y_to = 0.95, s.y_steps = 2;
+  s.x0 = x0;
+  s.transient = 3000;
+  sc_chart_point a[6], b[6];
+  tu_int("ghenon chart", sc_chart_rows(m, &s, 0, 2, 1, 1, NULL, NULL, a, &msg),
+         SC_OK);
+  tu_int("alpha = 0.05, beta = 0.9: the fixed point", a[0].period, 1);
+  /* 2 s^2 + 1.9 s - 0.05 = 0; the orbit settles to the period rule's
+   * tolerance (period-rtol 1e-6 of its extent, about 0.1) */
+  tu_true(fabs(a[0].d - (-1.9 + sqrt(1.9 * 1.9 + 8 * 0.05)) / 4) < 1e-7,
+          "at x = s = %.12g", a[0].d);
+  tu_int("alpha = 0.3, beta = 0.9: an invariant circle", a[2].period,
+         SC_PERIOD_CIRCLE);
+  for (int seed = 0; seed < 2; seed++) {
+    s.seed = seed ? SC_CHART_SEED_NEIGHBOUR : SC_CHART_SEED_FIXED;
+    sc_chart_rows(m, &s, 0, 2, 1, 1, NULL, NULL, a, &msg);
+    sc_chart_rows(m, &s, 0, 2, 1, 2, NULL, NULL, b, &msg);
+    tu_true(memcmp(a, b, sizeof a) == 0, "seed %d: 1 and 2 threads agree bit "
+            "for bit", seed);
+  }
+  sc_map_free(m);
+  sc_map_alloc("henon", NULL, &m, &msg);
+  sc_chart_spec_default(&s);
+  s.x = "a", s.x_from = 1.4, s.x_to = 1.45, s.x_steps = 2;
+  s.y = "b", s.y_from = 0.3, s.y_to = 0.31, s.y_steps = 2;
+  tu_int("henon chart", sc_chart_rows(m, &s, 0, 1, 1, 1, NULL, NULL, a, &msg),
+         SC_OK);
+  tu_int("henon a = 1.4, b = 0.3: chaos (high)", a[0].period, SC_PERIOD_HIGH);
+  double bad[2] = {0.1, NAN};
+  s.x0 = bad;
+  tu_int("a non-finite component refused", sc_chart_check(m, &s, &msg),
+         SC_EINVAL);
+  tu_true(strstr(msg.text, "d0 component 2") != NULL, "message: %s", msg.text);
+  sc_map_free(m);
+}
+
 int main(void) {
+  two_dimensional();
   grid_and_checks();
   classes_and_threads(SC_CHART_SEED_FIXED);
   classes_and_threads(SC_CHART_SEED_NEIGHBOUR);

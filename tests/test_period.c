@@ -564,7 +564,132 @@ static void waiting_lag(void) {
     }
 }
 
+/* The n-dimensional detector: with n = 1 the same answers at the same
+ * iterates as sc_period on the reference's test orbits (one rule, two
+ * bookkeepings); with n = 2 the max norm: a second component that is
+ * the first times 3 gives the answers of the first alone (differences
+ * and tolerance 3 times as large), with fewer than 3 confirmation cycles
+ * (with more, n > 1 adds its wait near a divisor's orbit); and a second
+ * component of period 3 beside a first of period 2 gives period 6. */
+static void periodn_against_period(void) {
+  const int maxps[] = {1, 3, 16, 40};
+  const int confirms[] = {1, 3, 4};
+  static double x[REF_LEN], xy[2 * REF_LEN];
+  long diff = 0, settle = 0, orbits = 0, found = 0, tdiff = 0;
+  sc_msg msg;
+  for (size_t a = 0; a < 4; a++)
+    for (size_t b = 0; b < 3; b++) {
+      sc_period *pd = NULL;
+      sc_periodn *p1 = NULL, *p2 = NULL;
+      sc_period_alloc(maxps[a], confirms[b], 1e-6, &pd, &msg);
+      sc_periodn_alloc(1, maxps[a], confirms[b], 1e-6, &p1, &msg);
+      sc_periodn_alloc(2, maxps[a], confirms[b], 1e-6, &p2, &msg);
+      for (int o = 0; o < 60; o++, orbits++) {
+        int len = 50 + below(REF_LEN - 50);
+        orbit(o % 6, maxps[a], 1e-6, x, len);
+        for (int k = 0; k < len; k++) xy[2 * k] = x[k], xy[2 * k + 1] = 3 * x[k];
+        sc_period_reset(pd, x[0]);
+        sc_periodn_reset(p1, x);
+        sc_periodn_reset(p2, xy);
+        int p = 0, q = 0, r = 0;
+        for (int k = 1; k < len && !p; k++) {
+          p = sc_period_push(pd, x[k]);
+          q = sc_periodn_push(p1, x + k);
+          r = sc_periodn_push(p2, xy + 2 * k);
+          /* n = 2 waits also near a divisor's orbit (periodn.c,
+           * NEAR_TOLS), a test that needs confirm >= 3 */
+          diff += p != q || (confirms[b] < 3 && p != r);
+          tdiff += sc_period_tol(pd) != sc_periodn_tol(p1);
+        }
+        found += p > 0;
+        if (!p) settle += sc_period_settling(pd) != sc_periodn_settling(p1);
+      }
+      sc_period_free(pd);
+      sc_periodn_free(p1);
+      sc_periodn_free(p2);
+    }
+  tu_int("periodn: pushes that differ from sc_period (n = 1, 2)", diff, 0);
+  tu_int("periodn: tolerances that differ (n = 1)", tdiff, 0);
+  tu_int("periodn: settling answers that differ", settle, 0);
+  tu_true(found > orbits / 4 && found < orbits, "periods found on %ld of %ld",
+          found, orbits);
+  sc_periodn *p2 = NULL;
+  sc_periodn_alloc(2, 16, 4, 1e-9, &p2, &msg);
+  double s[2] = {0.25, -1.5};
+  sc_periodn_reset(p2, s);
+  int got = 0, k;
+  for (k = 1; k < 200 && !got; k++) {
+    s[0] = k % 2 ? 0.75 : 0.25;
+    s[1] = (double)(k % 3) - 1.5;
+    got = sc_periodn_push(p2, s);
+  }
+  tu_int("periods 2 and 3 in two components: period 6", got, 6);
+  /* confirmed when the first cycle and 4 more are there: the 30 states
+   * x_0 .. x_29 */
+  tu_int("confirmed at iterate 29", k - 1, 29);
+  sc_periodn_free(p2);
+}
+
+/* The invariant-circle test on point sets with known answers. */
+static void circle_test(void) {
+  enum { M = 512 };
+  static double pts[2 * M], work[3 * M];
+  double r;
+  const double pi = 3.14159265358979323846, rho = (sqrt(5) - 1) / 2;
+  /* a rotation by the golden mean on an ellipse, off-centre: a circle */
+  for (int k = 0; k < M; k++) {
+    double t = 2 * pi * rho * k;
+    pts[2 * k] = 2.385 + 1.5 * cos(t);
+    pts[2 * k + 1] = -0.7 + 0.4 * sin(t) + 0.1 * cos(t);
+  }
+  tu_int("rotation on an ellipse: a circle",
+         sc_orbit_on_circle(pts, M, 2, 1e-9, work, &r), 1);
+  tu_true(r < 1.001, "its length ratio %.6f is about 1", r);
+  /* the same turned backwards (an orientation-reversing circle map) */
+  for (int k = 0; k < M; k++) pts[2 * k + 1] = -pts[2 * k + 1];
+  tu_int("reflected: a circle too", sc_orbit_on_circle(pts, M, 2, 1e-9, work, &r),
+         1);
+  /* a period-7 orbit on it: periodic, not a circle */
+  for (int k = 0; k < M; k++) {
+    double t = 2 * pi * 3 * k / 7.0;
+    pts[2 * k] = cos(t), pts[2 * k + 1] = sin(t);
+  }
+  tu_int("period 7: not a circle", sc_orbit_on_circle(pts, M, 2, 1e-9, work, &r),
+         0);
+  /* random points in a disk: scattered */
+  for (int k = 0; k < M; k++) {
+    double t = 2 * pi * uniform(), q = sqrt(uniform());
+    pts[2 * k] = q * cos(t), pts[2 * k + 1] = q * sin(t);
+  }
+  tu_int("random points in a disk: not a circle",
+         sc_orbit_on_circle(pts, M, 2, 1e-9, work, &r), 0);
+  tu_true(r > 1.8, "their length ratio %.3f is about 2", r);
+  /* the golden rotation on the circle but the points taken in a random
+   * order: on the curve (length test) but out of order (order test) */
+  for (int k = 0; k < M; k++) {
+    double t = 2 * pi * uniform();
+    pts[2 * k] = cos(t), pts[2 * k + 1] = sin(t);
+  }
+  tu_int("points on a circle visited out of order: not a circle",
+         sc_orbit_on_circle(pts, M, 2, 1e-9, work, &r), 0);
+  tu_true(r < 1.05, "while their length ratio %.4f is about 1", r);
+  /* henon at a = 1.36, b = 0.26: chaotic (Lyapunov exponent about 0.06),
+   * its attractor thin and closed like a curve (length ratio near 1) */
+  double x = 0, y = 0;
+  for (int k = 0; k < 1000 + M; k++) {
+    double xn = 1 - 1.36 * x * x + y;
+    y = 0.26 * x;
+    x = xn;
+    if (k >= 1000) pts[2 * (k - 1000)] = x, pts[2 * (k - 1000) + 1] = y;
+  }
+  tu_int("henon a = 1.36, b = 0.26: not a circle",
+         sc_orbit_on_circle(pts, M, 2, 1e-9, work, &r), 0);
+  tu_true(r < SC_CIRCLE_RATIO, "though its length ratio %.4f passes", r);
+}
+
 int main(void) {
+  periodn_against_period();
+  circle_test();
   exact_sequences();
   logistic();
   divergent();

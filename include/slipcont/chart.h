@@ -56,13 +56,18 @@ typedef struct {
   int max_period;     /**< 1..SC_PERIOD_MAX (default 16) */
   int confirm;        /**< confirmation cycles (default 4) */
   int seed;           /**< SC_CHART_SEED_FIXED or SC_CHART_SEED_NEIGHBOUR */
+  /** A map of n > 1 components: the initial state's n values (owned by
+   * the caller); NULL starts every component at d0.  Unused for n = 1. */
+  const double *x0;
 } sc_chart_spec;
 
 /** One grid point's result (16 bytes). */
 typedef struct {
-  double d;            /**< final state (last defined iterate) */
+  double d;            /**< final state (last defined iterate); of a
+                            map of n > 1 components its first one */
   int32_t period;      /**< 1..max_period, SC_PERIOD_HIGH,
-                            SC_PERIOD_UNSETTLED or SC_PERIOD_UNDEFINED */
+                            SC_PERIOD_UNSETTLED, SC_PERIOD_UNDEFINED or
+                            (n > 1) SC_PERIOD_CIRCLE */
   int32_t iterations;  /**< map iterates made at this point */
 } sc_chart_point;
 
@@ -98,7 +103,9 @@ typedef int (*sc_chart_progress_fn)(void *ctx, long done);
  * @brief Compute rows first, first + stride, ..., (count rows) of a chart.
  *
  * Every thread works on its own clone of @p proto (sc_map_clone()) and its
- * own detector; with SC_CHART_SEED_FIXED the points are shared among
+ * own detector (sc_periodn for a map of n > 1 components, whose orbits
+ * with no period are then tested for an invariant circle on their last
+ * SC_CIRCLE_POINTS points: sc_orbit_on_circle()); with SC_CHART_SEED_FIXED the points are shared among
  * threads, with SC_CHART_SEED_NEIGHBOUR whole rows are (a row is then
  * sequential), both with dynamic scheduling.  The result of a point
  * depends only on its parameters, d0 and (neighbour) its row, so the

@@ -365,7 +365,7 @@ SC_API const char *sc_plot_label(const sc_map *m, const char *name);
  * table for the chart task and for a chart drawn under a curve, so that
  * the reader can relate one to the other.  @p period >= 1 cycles through
  * 16 colours; 0 (higher or chaos) is black, -1 (undefined) light grey,
- * -2 (not settled) white.
+ * -2 (not settled) white, -3 (invariant circle, n-dimensional maps) gold.
  */
 SC_API unsigned sc_plot_period_rgb(int period);
 

@@ -56,6 +56,11 @@ extern "C" {
  * a longer transient would classify it.  Distinct from "high" (chaos,
  * long periods, quasi-periodicity). */
 #define SC_PERIOD_UNSETTLED (-2)
+/** Period class of an n-dimensional map's orbit (n >= 2): no period up
+ * to max_period, not settling, and its last points on a closed curve
+ * (sc_orbit_on_circle()): an invariant circle, quasi-periodic (or of a
+ * period above the tail's half).  One-dimensional maps never get it. */
+#define SC_PERIOD_CIRCLE (-3)
 /** Largest max_period accepted. */
 #define SC_PERIOD_MAX 256
 /** Default max_period of a chart (fig 5.7: periods above 16 in one
@@ -143,6 +148,89 @@ typedef struct {
  */
 SC_API int sc_period_find(sc_period *pd, sc_map *m, double d0, long max_iter,
                           sc_period_result *res, sc_msg *msg);
+
+/* ------------------------------------------------------------------ */
+/* n-dimensional orbits                                                 */
+
+/** A period detector for states of n components (opaque). */
+typedef struct sc_periodn sc_periodn;
+
+/**
+ * @brief Create a detector for states of @p dim components: the period
+ * rule above with |x_j - x_{j-p}| and the extent taken in the max norm,
+ * tol = rtol * max_i (max x_i - min x_i) + SC_PERIOD_FLOOR_ULPS eps
+ * max_{i,k} |x_{k,i}|.  With dim = 1 it gives sc_period's answers at the
+ * same iterates (the same rule, without its lazy bookkeeping).
+ * @param dim 1..SC_MAXDIM; the other arguments as sc_period_alloc().
+ * @return SC_OK, SC_EINVAL (the message names the argument), SC_ENOMEM.
+ *         Reset and push never allocate.
+ */
+SC_API int sc_periodn_alloc(size_t dim, int max_period, int confirm,
+                            double rtol, sc_periodn **out, sc_msg *msg);
+/** @brief Release @p pd; NULL is accepted. */
+SC_API void sc_periodn_free(sc_periodn *pd);
+/** @brief Start a new orbit at the state @p x0 (dim values). */
+SC_API void sc_periodn_reset(sc_periodn *pd, const double *x0);
+/** @brief Feed the next state (dim values); returns as sc_period_push(). */
+SC_API int sc_periodn_push(sc_periodn *pd, const double *x);
+/** @brief As sc_period_settling(), on the max-norm differences. */
+SC_API int sc_periodn_settling(const sc_periodn *pd);
+/** @brief Tolerance in use after the last push. */
+SC_API double sc_periodn_tol(const sc_periodn *pd);
+
+/** Points of an orbit's tail the invariant-circle test looks at by
+ * default (charts): enough that the inscribed polygons of a smooth curve
+ * differ by a fraction of a percent, few enough that sorting them costs
+ * little next to the iterates that led there. */
+#define SC_CIRCLE_POINTS 512
+/** The invariant-circle test's bound on L_m / L_{m/2} (see
+ * sc_orbit_on_circle()): the polygons' lengths of points on a curve
+ * converge (the ratio tends to 1), those of a scattered set grow with the
+ * number of points (the ratio tends to 2); the test splits at sqrt(2),
+ * the geometric middle. */
+#define SC_CIRCLE_RATIO 1.4142135623730951
+
+/** The invariant-circle test's allowance for points out of order: one
+ * in this many (4 of 512) beyond the one wrap, for the pairs of points
+ * whose angles differ by rounding alone; a chaotic attractor folds, and
+ * puts a third of its images or more out of order (docs/charts.md). */
+#define SC_CIRCLE_TIES 128
+
+/**
+ * @brief Whether the states @p pts[0..m-1] (m >= 16, @p dim >= 2
+ * components each, in the order of the orbit) lie on a closed curve.  The
+ * points are seen in the plane of their first two components, by their
+ * angle about their centroid.  Sorted by that angle, points on a closed
+ * curve that is star-shaped about the centroid are in the curve's order,
+ * so the closed polygon through them is inscribed in the curve: its
+ * length stays below the curve's and grows towards it as points are added
+ * (triangle inequality), and the ratio of the lengths through all m
+ * points and through half of them tends to 1, whichever half.  Points
+ * scattered over an area or a fractal (a chaotic attractor) are joined
+ * across its width, and the length grows with their number: the ratio
+ * tends to 2.  The halves are the even and the odd iterates (a chaotic
+ * attractor in bands visited in turn has one band in each) and the older
+ * and the newer half; the orbit is on a circle when the largest of the
+ * four ratios is below SC_CIRCLE_RATIO, the map keeps the points' cyclic
+ * order and the orbit is not periodic.  Order: on an invariant circle the
+ * map is a homeomorphism of the circle, so the images of the points taken
+ * by angle come by angle in the same cyclic order (or the reverse one):
+ * their ranks have one descent, the wrap (or one ascent); a chaotic
+ * attractor folds, and a curve-like one (henon at a = 1.36, b = 0.26)
+ * passes the length test but not this one.  At most 1 + m /
+ * SC_CIRCLE_TIES points may be out of order.  Not periodic: at least half
+ * of the gaps between angle neighbours exceed @p tol (an orbit of at most
+ * m/2 distinct points has gaps 0).  A curve that is not
+ * star-shaped about its centroid reads as scattered (the test is
+ * conservative).  docs/charts.md gives the evidence on ghenon and henon.
+ * @param tol distance (max norm of the two components) under which two
+ *        points are one (the period detector's tolerance).
+ * @param work 3 m doubles of workspace.
+ * @param ratio out (may be NULL): the largest of the four ratios.
+ * @return 1 on a closed curve, 0 not (also for m < 16 or dim < 2).
+ */
+SC_API int sc_orbit_on_circle(const double *pts, size_t m, size_t dim,
+                              double tol, double *work, double *ratio);
 
 #ifdef __cplusplus
 }

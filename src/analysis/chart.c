@@ -4,6 +4,7 @@
 #include <limits.h>
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <omp.h>
 #include <stdint.h>
 #include <string.h>
@@ -103,6 +104,11 @@ int sc_chart_check(const sc_map *m, const sc_chart_spec *s, sc_msg *msg) {
                    npts, bytes / 1048576, SC_CHART_MAX_BYTES / 1048576);
   if (!isfinite(s->d0))
     return sc_fail(msg, SC_EINVAL, "chart: d0 = %g (valid: finite)", s->d0);
+  for (size_t k = 0; s->x0 && sc_map_dim(m) > 1 && k < sc_map_dim(m); k++)
+    if (!isfinite(s->x0[k]))
+      return sc_fail(msg, SC_EINVAL,
+                     "chart: d0 component %zu = %g (valid: finite)", k + 1,
+                     s->x0[k]);
   if (s->transient < 1 || s->transient > INT32_MAX)
     return sc_fail(msg, SC_EINVAL, "chart: transient = %ld (valid: 1..%ld)",
                    s->transient, (long)INT32_MAX);
@@ -199,6 +205,158 @@ static int one_point(shared_state *sh, sc_map *m, sc_period *pd, long k,
   return SC_OK;
 }
 
+/* A thread's workspace for a map of n > 1 components: the detector, the
+ * evaluation, the last SC_CIRCLE_POINTS states (a ring), the circle
+ * test's work, the state and a row's seed. */
+typedef struct {
+  size_t n;
+  sc_periodn *pd;
+  sc_mapn_value *v;
+  double *tail, *chron, *work, *x, *seed;
+} nd_work;
+
+static void nd_free(nd_work *w) {
+  sc_periodn_free(w->pd);
+  sc_mapn_value_free(w->v);
+  free(w->tail);
+  free(w->chron);
+  free(w->work);
+  free(w->x);
+  free(w->seed);
+}
+
+static int nd_alloc(const sc_map *m, const sc_chart_spec *s, double rtol,
+                    nd_work *w, sc_msg *msg) {
+  memset(w, 0, sizeof *w);
+  w->n = sc_map_dim(m);
+  int st = sc_periodn_alloc(w->n, s->max_period, s->confirm, rtol, &w->pd,
+                            msg);
+  if (!st) st = sc_mapn_value_alloc(m, SC_EVAL_VALUE, &w->v, msg);
+  if (st) return st;
+  w->tail = malloc(SC_CIRCLE_POINTS * w->n * sizeof *w->tail);
+  w->chron = malloc(SC_CIRCLE_POINTS * w->n * sizeof *w->chron);
+  w->work = malloc(3 * SC_CIRCLE_POINTS * sizeof *w->work);
+  w->x = malloc(w->n * sizeof *w->x);
+  w->seed = malloc(w->n * sizeof *w->seed);
+  if (!w->tail || !w->chron || !w->work || !w->x || !w->seed)
+    return sc_fail(msg, SC_ENOMEM, "chart: out of memory");
+  return SC_OK;
+}
+
+/* The initial state of a chart of an n-dimensional map into @p x. */
+static void nd_start(const sc_chart_spec *s, size_t n, double *x) {
+  for (size_t k = 0; k < n; k++) x[k] = s->x0 ? s->x0[k] : s->d0;
+}
+
+/* The class of the orbit from w->seed (period.h's rule on states, then
+ * the invariant-circle test on the last SC_CIRCLE_POINTS states, when the
+ * transient made so many); the final state stays in w->seed. */
+static int nd_classify(nd_work *w, sc_map *m, long transient,
+                       sc_chart_point *pt, sc_msg *msg) {
+  const size_t n = w->n;
+  double *x = w->x;
+  memcpy(x, w->seed, n * sizeof *x);
+  memcpy(w->tail, x, n * sizeof *x);
+  sc_periodn_reset(w->pd, x);
+  int period = 0;
+  long k;
+  for (k = 1; k <= transient && !period; k++) {
+    int st = sc_map_eval_n(m, x, SC_EVAL_VALUE, w->v, msg);
+    if (st == SC_EUNDEF || st == SC_ENONFINITE) {
+      pt->period = SC_PERIOD_UNDEFINED;
+      pt->iterations = (int32_t)k;
+      pt->d = x[0];
+      return SC_OK;
+    }
+    if (st) return st;
+    memcpy(x, w->v->f, n * sizeof *x);
+    memcpy(w->tail + (size_t)(k % SC_CIRCLE_POINTS) * n, x, n * sizeof *x);
+    period = sc_periodn_push(w->pd, x);
+  }
+  k--;
+  if (!period && sc_periodn_settling(w->pd)) period = SC_PERIOD_UNSETTLED;
+  if (!period && k + 1 >= SC_CIRCLE_POINTS) {
+    /* the last SC_CIRCLE_POINTS states in their order: x_k is at slot
+     * k % SC_CIRCLE_POINTS of the ring */
+    const size_t M = SC_CIRCLE_POINTS, s0 = (size_t)(k + 1) % M;
+    memcpy(w->chron, w->tail + s0 * n, (M - s0) * n * sizeof *x);
+    memcpy(w->chron + (M - s0) * n, w->tail, s0 * n * sizeof *x);
+    if (sc_orbit_on_circle(w->chron, M, n, sc_periodn_tol(w->pd), w->work,
+                           NULL))
+      period = SC_PERIOD_CIRCLE;
+  }
+  pt->period = period;
+  pt->iterations = (int32_t)k;
+  pt->d = x[0];
+  memcpy(w->seed, x, n * sizeof *x);
+  return SC_OK;
+}
+
+/* Point (row k of this call, column i) of an n-dimensional map from the
+ * state w->seed. */
+static int one_point_n(shared_state *sh, sc_map *m, nd_work *w, long k,
+                       long i, sc_msg *msg) {
+  const sc_chart_spec *s = sh->s;
+  long row = sh->first + k * sh->stride;
+  double x = sc_chart_x(s, i), y = sc_chart_y(s, row);
+  int st = set_param(m, sh->iy, y, msg);
+  if (!st) st = set_param(m, sh->ix, x, msg);
+  if (!st) st = nd_classify(w, m, s->transient, &sh->out[k * sh->nx + i], msg);
+  if (st) {
+    sc_msg inner = *msg;
+    sc_fail(msg, st, "chart: at %s = %.17g, %s = %.17g: %s", s->x, x, s->y,
+            y, inner.text);
+  }
+  return st;
+}
+
+/* The rows of a map of n > 1 components, as sc_chart_rows() does them
+ * for n = 1 (the one-dimensional loop stays as it was). */
+static void rows_n(shared_state *sh, const sc_map *proto, long count,
+                   int nth) {
+  const sc_chart_spec *s = sh->s;
+  const double rtol = sc_map_accuracy(proto)->period_rtol;
+  const long nx = s->x_steps;
+  const int neighbour = s->seed == SC_CHART_SEED_NEIGHBOUR;
+#pragma omp parallel num_threads(nth)
+  {
+    sc_map *m = NULL;
+    nd_work w;
+    sc_msg lmsg;
+    int lst = sc_map_clone(proto, &m, &lmsg);
+    if (!lst) lst = nd_alloc(proto, s, rtol, &w, &lmsg);
+    else memset(&w, 0, sizeof w);
+    if (lst) record_error(sh, -1, lst, &lmsg);
+    if (!neighbour) {
+#pragma omp for schedule(dynamic, 4)
+      for (long p = 0; p < count * nx; p++) {
+        if (lst || stopped(sh)) continue;
+        nd_start(s, w.n, w.seed);
+        int e = one_point_n(sh, m, &w, p / nx, p % nx, &lmsg);
+        if (e) record_error(sh, p, e, &lmsg);
+        else point_done(sh);
+      }
+    } else {
+#pragma omp for schedule(dynamic, 1)
+      for (long k = 0; k < count; k++) {
+        if (!lst) nd_start(s, w.n, w.seed);
+        for (long i = 0; i < nx && !lst && !stopped(sh); i++) {
+          int e = one_point_n(sh, m, &w, k, i, &lmsg);
+          if (e) {
+            record_error(sh, k * nx + i, e, &lmsg);
+            break;
+          }
+          if (sh->out[k * nx + i].period == SC_PERIOD_UNDEFINED)
+            nd_start(s, w.n, w.seed);
+          point_done(sh);
+        }
+      }
+    }
+    nd_free(&w);
+    sc_map_free(m);
+  }
+}
+
 int sc_chart_rows(const sc_map *proto, const sc_chart_spec *s, long first,
                   long count, long stride, int threads,
                   sc_chart_progress_fn progress, void *ctx,
@@ -228,6 +386,8 @@ int sc_chart_rows(const sc_map *proto, const sc_chart_spec *s, long first,
   const int neighbour = s->seed == SC_CHART_SEED_NEIGHBOUR;
   int nth = threads > 0 ? threads : omp_get_max_threads();
 
+  if (sc_map_dim(proto) > 1) rows_n(&sh, proto, count, nth);
+  else
 #pragma omp parallel num_threads(nth)
   {
     sc_map *m = NULL;

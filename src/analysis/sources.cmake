@@ -1,5 +1,6 @@
 # sources of src/analysis
-list(APPEND SC_SOURCES src/analysis/period.c src/analysis/chart.c)
+list(APPEND SC_SOURCES src/analysis/period.c src/analysis/periodn.c
+  src/analysis/chart.c)
 list(APPEND SC_SOURCES src/analysis/sweep.c)
 list(APPEND SC_SOURCES src/analysis/fixed_points.c)
 list(APPEND SC_SOURCES src/analysis/branch_orbit.c

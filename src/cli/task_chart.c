@@ -58,8 +58,9 @@ static const sc_key_info chart_keys[] = {
      "point of its row (rows are then sequential)"},
 };
 
-/* The chart of a scene (its names point into the scene). */
-static sc_chart_spec spec_of(const sc_scene *s) {
+/* The chart of a scene (its names point into the scene; a state of n > 1
+ * components into @p x0, SC_MAXDIM values). */
+static sc_chart_spec spec_of(const sc_scene *s, double *x0) {
   sc_chart_spec c;
   sc_chart_spec_default(&c);
   c.x = sc_scene_text(s, "x");
@@ -73,7 +74,16 @@ static sc_chart_spec spec_of(const sc_scene *s) {
   const char *xs = sc_scene_text(s, "x-scale"), *ys = sc_scene_text(s, "y-scale");
   c.x_scale = xs && strcmp(xs, "log") == 0 ? SC_GRID_LOG : SC_GRID_LINEAR;
   c.y_scale = ys && strcmp(ys, "log") == 0 ? SC_GRID_LOG : SC_GRID_LINEAR;
-  c.d0 = sc_scene_real(s, "d0");
+  if (sc_map_dim(sc_scene_map(s)) > 1) {
+    /* the default "0" is one number: every component */
+    size_t n = sc_map_dim(sc_scene_map(s));
+    if (sc_scene_state(s, "d0", x0, SC_MAXDIM) < n)
+      for (size_t k = 1; k < n; k++) x0[k] = x0[0];
+    c.x0 = x0;
+    c.d0 = x0[0];
+  } else {
+    c.d0 = sc_scene_real(s, "d0");
+  }
   c.transient = sc_scene_int(s, "transient");
   c.max_period = (int)sc_scene_int(s, "max-period");
   c.confirm = (int)sc_scene_int(s, "confirm");
@@ -86,7 +96,8 @@ static sc_chart_spec spec_of(const sc_scene *s) {
 /* Relations between keys: sc_chart_check() says which key is wrong in
  * the first word after "chart: "; name that key's line. */
 static int chart_check(const sc_scene *s, sc_msg *msg) {
-  sc_chart_spec c = spec_of(s);
+  double x0[SC_MAXDIM];
+  sc_chart_spec c = spec_of(s, x0);
   sc_msg m;
   if (sc_chart_check(sc_scene_map(s), &c, &m) == SC_OK) return SC_OK;
   const char *text = strncmp(m.text, "chart: ", 7) == 0 ? m.text + 7 : m.text;
@@ -138,9 +149,16 @@ static int scene_text(const sc_cli_run *r, const sc_chart_spec *c, char *buf,
   if (c->x_scale || c->y_scale) /* absent when linear: old checkpoints hold */
     ADD_("task.x-scale = %s\ntask.y-scale = %s\n",
          c->x_scale ? "log" : "linear", c->y_scale ? "log" : "linear");
-  ADD_("task.d0 = %.17g\ntask.transient = %ld\ntask.max-period = %d\n"
+  if (sc_map_dim(m) > 1) {
+    ADD_("task.d0 =");
+    for (size_t k = 0; k < sc_map_dim(m); k++) ADD_(" %.17g", c->x0[k]);
+    ADD_("\n");
+  } else {
+    ADD_("task.d0 = %.17g\n", c->d0);
+  }
+  ADD_("task.transient = %ld\ntask.max-period = %d\n"
        "task.confirm = %d\ntask.seed = %s\n",
-       c->d0, c->transient, c->max_period, c->confirm,
+       c->transient, c->max_period, c->confirm,
        c->seed == SC_CHART_SEED_NEIGHBOUR ? "previous" : "fixed");
   ADD_("point-bytes = %zu\n", sizeof(sc_chart_point));
 #undef ADD_
@@ -248,7 +266,8 @@ static int ckpt_write(sc_cli_run *r, const char *text, uint64_t hash,
  * iterations within the transient, d finite (or NaN where undefined). */
 static int point_valid(const sc_chart_point *p, const sc_chart_spec *c) {
   if (p->period != SC_PERIOD_UNDEFINED && p->period != SC_PERIOD_HIGH &&
-      p->period != SC_PERIOD_UNSETTLED && (p->period < 1 || p->period > c->max_period))
+      p->period != SC_PERIOD_UNSETTLED && p->period != SC_PERIOD_CIRCLE &&
+      (p->period < 1 || p->period > c->max_period))
     return 0;
   if (p->iterations < 0 || p->iterations > c->transient) return 0;
   if (p->period != SC_PERIOD_UNDEFINED && !isfinite(p->d)) return 0;
@@ -333,10 +352,10 @@ done:
 /* ------------------------------------------------------------------ */
 /* Output files                                                          */
 
-/* Index of a period class in the counts: 0 unsettled, 1 undefined,
- * 2 high, 2 + p period p. */
-#define CLASS(p) ((p) + 2)
-#define NCLASSES(maxp) ((size_t)(maxp) + 3)
+/* Index of a period class in the counts: 0 invariant circle,
+ * 1 unsettled, 2 undefined, 3 high, 3 + p period p. */
+#define CLASS(p) ((p) + 3)
+#define NCLASSES(maxp) ((size_t)(maxp) + 4)
 
 /* Classes present, counted at CLASS(period). */
 static void count_classes(const sc_chart_point *g, long n, int maxp,
@@ -355,8 +374,9 @@ static int write_csv(sc_cli_run *r, const sc_chart_spec *c,
   int st = sc_cli_open(r, "chart.csv", &f);
   if (st) return st;
   FILE *o = sc_file_stream(f);
-  fprintf(o, "%s,%s,period,%s,iterations\n", c->x, c->y,
-          sc_map_type(r->map)->state_name);
+  /* a state of n > 1 components: its first one (sc_chart_point) */
+  fprintf(o, "%s,%s,period,%s%s,iterations\n", c->x, c->y,
+          sc_map_type(r->map)->state_name, sc_map_dim(r->map) > 1 ? "1" : "");
   for (long j = 0; j < c->y_steps; j++) {
     double y = sc_chart_y(c, j);
     for (long i = 0; i < c->x_steps; i++) {
@@ -377,6 +397,7 @@ static int write_csv(sc_cli_run *r, const sc_chart_spec *c,
 #define HIGH_RGB sc_plot_period_rgb(SC_PERIOD_HIGH)
 #define UNDEF_RGB sc_plot_period_rgb(SC_PERIOD_UNDEFINED)
 #define UNSETTLED_RGB sc_plot_period_rgb(SC_PERIOD_UNSETTLED)
+#define CIRCLE_RGB sc_plot_period_rgb(SC_PERIOD_CIRCLE)
 
 static unsigned class_rgb(int period) { return sc_plot_period_rgb(period); }
 
@@ -387,6 +408,18 @@ static void chart_title(const sc_map *m, const sc_chart_spec *c, char *buf,
   const sc_model_type *t = sc_map_type(m);
   sc_plot_title_except(m, c->x, c->y, buf, len);
   size_t u = strlen(buf);
+  if (sc_map_dim(m) > 1) {
+    int k = snprintf(buf + u, u < len ? len - u : 0, "%s%s_0 = (",
+                     u ? ", " : "", t->state_name);
+    u += k > 0 ? (size_t)k : 0;
+    for (size_t i = 0; i < sc_map_dim(m) && u < len; i++) {
+      k = snprintf(buf + u, len - u, "%s%.6g", i ? ", " : "", c->x0[i]);
+      u += k > 0 ? (size_t)k : 0;
+    }
+    if (u < len)
+      snprintf(buf + u, len - u, "), %ld iterates at most", c->transient);
+    return;
+  }
   if (u < len)
     snprintf(buf + u, len - u, "%s%s_0 = %.10g, %ld iterates at most",
              u ? ", " : "", t->state_name, c->d0, c->transient);
@@ -419,16 +452,25 @@ static int write_plot(sc_cli_run *r, const sc_chart_spec *c,
   fputs("set size square\nunset grid\nset tics out\n"
         "set key outside right top title 'period' box\n",
         o);
-  fputs("# colour of a period class (column 3): -2 not settled, -1 "
-        "undefined, 0 high\n", o);
+  if (sc_map_dim(r->map) > 1)
+    fputs("# colour of a period class (column 3): -3 invariant circle, -2 "
+          "not settled, -1 undefined, 0 high\n", o);
+  else
+    fputs("# colour of a period class (column 3): -2 not settled, -1 "
+          "undefined, 0 high\n", o);
   fputs("array C[16] = [", o);
   for (int k = 0; k < 16; k++)
     fprintf(o, "%s0x%06x", k ? ", " : "", sc_plot_period_rgb(k + 1));
   fputs("]\n", o);
-  fprintf(o,
-          "rgb(p) = p == -2 ? 0x%06x : p < 0 ? 0x%06x : p == 0 ? 0x%06x : "
-          "C[int(p - 1) %% 16 + 1]\n",
-          UNSETTLED_RGB, UNDEF_RGB, HIGH_RGB);
+  if (sc_map_dim(r->map) > 1)
+    fprintf(o, "rgb(p) = p == -3 ? 0x%06x : p == -2 ? 0x%06x : p < 0 ? "
+               "0x%06x : p == 0 ? 0x%06x : C[int(p - 1) %% 16 + 1]\n",
+            CIRCLE_RGB, UNSETTLED_RGB, UNDEF_RGB, HIGH_RGB);
+  else
+    fprintf(o,
+            "rgb(p) = p == -2 ? 0x%06x : p < 0 ? 0x%06x : p == 0 ? 0x%06x : "
+            "C[int(p - 1) %% 16 + 1]\n",
+            UNSETTLED_RGB, UNDEF_RGB, HIGH_RGB);
   fprintf(o, "plot 'chart.csv' skip 1 using %s:%s:(int(rgb($3)) >> 16 & "
              "255):",
           c->x_scale ? "(log10(abs($1)))" : "1",
@@ -442,6 +484,10 @@ static int write_plot(sc_cli_run *r, const sc_chart_spec *c,
       fprintf(o, ", \\\n  keyentry with boxes fs solid fc rgb '#%06x' "
               "title '%d'",
               class_rgb(p), p);
+  if (count[CLASS(SC_PERIOD_CIRCLE)])
+    fprintf(o, ", \\\n  keyentry with boxes fs solid fc rgb '#%06x' "
+            "title 'invariant circle'",
+            CIRCLE_RGB);
   if (count[CLASS(SC_PERIOD_HIGH)])
     fprintf(o, ", \\\n  keyentry with boxes fs solid fc rgb '#%06x' "
             "title '> %d or chaos'",
@@ -497,6 +543,7 @@ typedef struct {
   int mpi;           /* sc_mpi_chart_begin() succeeded */
   long *count;       /* points of each class (rank 0, once complete) */
   double iterations; /* map iterates in all */
+  double x0[SC_MAXDIM]; /* the initial state of a map of n > 1 components */
 } chart_job;
 
 /* Rows per block: enough points to keep the threads busy (whole rows per
@@ -526,7 +573,7 @@ static int agree(sc_cli_run *r, int st, const char *who) {
 
 /* This process among the ranks, the spec, the block size. */
 static int chart_setup(sc_cli_run *r, chart_job *j) {
-  j->c = spec_of(r->scene);
+  j->c = spec_of(r->scene, j->x0);
   j->nx = j->c.x_steps;
   j->ny = j->c.y_steps;
   j->size = 1;
@@ -674,7 +721,6 @@ static int chart_summary(sc_cli_run *r, void *job, FILE *o) {
   const chart_job *j = job;
   const sc_chart_spec *c = &j->c;
   const long *count = j->count;
-  (void)r;
   long n = c->x_steps * c->y_steps;
   fprintf(o, "  %ld x %ld = %ld points, %.0f map iterates (%.1f a point)\n",
           c->x_steps, c->y_steps, n, j->iterations,
@@ -690,6 +736,12 @@ static int chart_summary(sc_cli_run *r, void *job, FILE *o) {
   long high = count[CLASS(SC_PERIOD_HIGH)];
   long unset = count[CLASS(SC_PERIOD_UNSETTLED)];
   long undef = count[CLASS(SC_PERIOD_UNDEFINED)];
+  if (sc_map_dim(r->map) > 1) {
+    long circ = count[CLASS(SC_PERIOD_CIRCLE)];
+    fprintf(o, "  invariant circle %4ld points (%.2f%%): no period, the last "
+               "%d points on a closed curve\n",
+            circ, 100.0 * (double)circ / (double)n, SC_CIRCLE_POINTS);
+  }
   fprintf(o, "  high       %10ld points (%.2f%%): period > %d or chaos\n",
           high, 100.0 * (double)high / (double)n, c->max_period);
   fprintf(o, "  not settled %9ld points (%.2f%%): still converging after %ld "
@@ -712,11 +764,15 @@ static int chart_report(sc_cli_run *r, void *job) {
   snprintf(path, sizeof path, "%s/%s", r->dir, CKPT_NAME);
   if (remove(path) != 0 && errno != ENOENT)
     sc_cli_note(r, "could not remove %s: %s", path, strerror(errno));
+  char circ[64] = "";
+  if (sc_map_dim(r->map) > 1)
+    snprintf(circ, sizeof circ, "%ld invariant circle, ",
+             j->count[CLASS(SC_PERIOD_CIRCLE)]);
   sc_cli_note(r,
               "chart: %ld points in %.2f s (%d rank(s) x %d thread(s)); "
-              "%ld high, %ld not settled, %ld undefined",
+              "%s%ld high, %ld not settled, %ld undefined",
               j->nx * j->ny, sc_progress_now() - j->t0, j->size, j->threads,
-              j->count[CLASS(SC_PERIOD_HIGH)],
+              circ, j->count[CLASS(SC_PERIOD_HIGH)],
               j->count[CLASS(SC_PERIOD_UNSETTLED)],
               j->count[CLASS(SC_PERIOD_UNDEFINED)]);
   return SC_OK;

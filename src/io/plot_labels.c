@@ -15,6 +15,7 @@ static const unsigned period_rgb[16] = {
     0x98df8a, 0xff9896, 0xc5b0d5, 0x00ffff};
 
 unsigned sc_plot_period_rgb(int period) {
+  if (period == -3) return 0xffd700u; /* invariant circle: gold */
   if (period == -2) return 0xffffffu; /* not settled: unlike every period */
   if (period == -1) return 0xd9d9d9u; /* undefined */
   if (period <= 0) return 0x000000u;  /* higher than max-period, or chaos */
