@@ -8,4 +8,5 @@ list(APPEND SC_SOURCES
   continuation/curve.c
   continuation/curve_ms.c
   continuation/normal_form.c
-  continuation/mapn_system.c)
+  continuation/mapn_system.c
+  continuation/nf_tests.c)

@@ -416,6 +416,59 @@ static void test_refusals(void) {
   tu_int("refuse: flip without T", sc_nf_flip(&g, &nf, &msg), SC_EINVAL);
 }
 
+
+/* The codimension-two tests: the other multipliers nu enter as
+ * prod (1 - nu), prod (-1 - nu) and prod_{i<j} (nu_i nu_j - 1), whatever
+ * the coordinates. */
+static void test_curve_tests(void) {
+  jet_store s = {0}, t;
+  double M[16], psi[SC_NF_MAXTEST];
+  sc_msg msg;
+  const double n1 = 0.37, n2 = -1.6, th = 0.9, kap = cos(th);
+  /* fold, n = 3: multipliers 1, n1, n2 */
+  s.A[0] = 1, s.A[4] = n1, s.A[8] = n2;
+  s.jet = (sc_nf_jet){3, s.A, s.H, s.T};
+  random_matrix(3, M);
+  transform(&s, M, &t);
+  tu_int("fold tests: status",
+         sc_nf_curve_tests(SC_NF_FOLD, &t.jet, 0, NULL, psi, NULL, &msg), SC_OK);
+  tu_close("fold R1: (1 - n1)(1 - n2)", psi[1], (1 - n1) * (1 - n2), TOL);
+  tu_close("fold LPPD: (-1 - n1)(-1 - n2)", psi[2], (1 + n1) * (1 + n2), TOL);
+  tu_close("fold LPNS: n1 n2 - 1", psi[3], n1 * n2 - 1, TOL);
+  /* flip, n = 3: multipliers -1, n1, n2 */
+  s.A[0] = -1;
+  transform(&s, M, &t);
+  sc_nf_curve_tests(SC_NF_FLIP, &t.jet, 0, NULL, psi, NULL, &msg);
+  tu_close("flip R2: (-1 - n1)(-1 - n2)", psi[1], (1 + n1) * (1 + n2), TOL);
+  tu_close("flip LPPD: (1 - n1)(1 - n2)", psi[2], (1 - n1) * (1 - n2), TOL);
+  tu_close("flip PDNS: n1 n2 - 1", psi[3], n1 * n2 - 1, TOL);
+  /* NS, n = 4: e^(+-i theta), n1, n2 */
+  memset(&s, 0, sizeof s);
+  s.A[0] = s.A[5] = kap, s.A[1] = -sin(th), s.A[4] = sin(th);
+  s.A[10] = n1, s.A[15] = n2;
+  s.jet = (sc_nf_jet){4, s.A, s.H, s.T};
+  random_matrix(4, M);
+  transform(&s, M, &t);
+  sc_nf_curve_tests(SC_NF_NS, &t.jet, kap, NULL, psi, NULL, &msg);
+  double want[8] = {kap - 1, kap + 1, kap + 0.5, kap, 0,
+                    (1 - n1) * (1 - n2), (1 + n1) * (1 + n2), n1 * n2 - 1};
+  const char *nm[8] = {"R1", "R2", "R3", "R4", "CH (no H, T: d = 0)",
+                       "LPNS", "PDNS", "NSNS"};
+  for (int k = 0; k < 8; k++) {
+    char w[64];
+    snprintf(w, sizeof w, "ns %s (label %s)", nm[k],
+             sc_nf_curve_label(SC_NF_NS, (size_t)k, NULL));
+    tu_close(w, psi[k], want[k], TOL);
+  }
+  /* tests that need more dimensions are NaN: never a sign change */
+  memset(&s, 0, sizeof s);
+  s.A[0] = 1, s.A[3] = 0.5;
+  s.jet = (sc_nf_jet){2, s.A, s.H, s.T};
+  sc_nf_curve_tests(SC_NF_FOLD, &s.jet, 0, NULL, psi, NULL, &msg);
+  tu_true(isnan(psi[3]), "fold LPNS at n = 2 is NaN (%g)", psi[3]);
+  tu_close("fold R1 at n = 2: 1 - 0.5", psi[1], 0.5, TOL);
+}
+
 int main(void) {
   test_fold();
   test_flip();
@@ -425,6 +478,7 @@ int main(void) {
   check_ns("with couplings through (I - A)^-1 and (mu^2 I - A)^-1", &b);
   test_ns_planar();
   test_multipliers();
+  test_curve_tests();
   test_refusals();
   return tu_finish();
 }

@@ -125,6 +125,68 @@ SC_API int sc_nf_ns(const sc_nf_jet *g, const double *mu, sc_nf *out,
 SC_API int sc_nf_multipliers(size_t n, const double *A, double *re, double *im,
                              sc_msg *msg);
 
+
+/* ------------------------------------------------------------------ */
+/* Codimension-two tests along fold, flip and NS curves                */
+
+/** The curve a point lies on. */
+typedef enum {
+  SC_NF_FOLD = 0, /**< a multiplier +1 */
+  SC_NF_FLIP = 1, /**< a multiplier -1 */
+  SC_NF_NS = 2    /**< a pair mu, 1/mu with mu + 1/mu = 2 kappa */
+} sc_nf_curve;
+
+/** Most tests of a curve (sc_nf_curve_ntest()). */
+#define SC_NF_MAXTEST 8
+
+/** Number of tests of @p kind: fold 4, flip 4, NS 8 (a test that needs
+ * a larger n than the map's is NaN, so it never changes sign). */
+SC_API size_t sc_nf_curve_ntest(sc_nf_curve kind);
+
+/** Label of test @p k of @p kind ("CP", "R1", ...), NULL past the last;
+ * and the least dimension @p min_n where it can vanish. */
+SC_API const char *sc_nf_curve_label(sc_nf_curve kind, size_t k,
+                                     size_t *min_n);
+
+/**
+ * @brief The codimension-two test functions at a point of a fold, flip
+ * or NS curve, from the jet of g there (docs/maps.md, "Curves and
+ * codimension two").  With p(lambda) = det(lambda I - A) and its
+ * quotient r(lambda) by the curve's critical factor (lambda - 1,
+ * lambda + 1, lambda^2 - 2 kappa lambda + 1; the remainder, zero on the
+ * curve, dropped), whose roots are the other multipliers, and
+ * bialt(r) = prod_{i<j} (nu_i nu_j - 1) over r's roots nu (the
+ * determinant of the bialternate product of r's companion matrix minus
+ * I: a pair with nu_i nu_j = 1):
+ *  - fold: CP a (sc_nf_fold(), q oriented by @p qref); R1 r(1) (a second
+ *    multiplier 1: the fold's p and q orthogonal); LPPD r(-1); LPNS
+ *    bialt(r) (n >= 3);
+ *  - flip: GPD b; R2 r(-1) (a second -1); LPPD r(1); PDNS bialt(r)
+ *    (n >= 3);
+ *  - NS: R1 kappa - 1; R2 kappa + 1; R3 kappa + 1/2; R4 kappa; CH d
+ *    (sc_nf_ns() for the pair kappa +- i sqrt(1 - kappa^2); NaN where
+ *    |kappa| >= 1, the neutral-saddle part of the curve); LPNS r(1)
+ *    (n >= 3); PDNS r(-1) (n >= 3); NSNS bialt(r) (n >= 4).
+ * Each is a smooth function of the point where the critical multipliers
+ * are apart from the others (r's coefficients are polynomials in those
+ * of p), so Newton on {F = 0, psi_k = 0} converges to its zeros.  A zero
+ * of bialt(r) with a real pair nu_i nu_j = 1 is a neutral saddle, not a
+ * Neimark-Sacker point: the caller tells them apart at the located point
+ * (sc_nf_multipliers()).
+ * @param kind the curve.
+ * @param g the jet (T needed for flip and NS; H for every kind).
+ * @param kappa NS: the curve's kappa = cos theta; else unused.
+ * @param qref fold: NULL or n values orienting q (see sc_nf_fold()).
+ * @param psi out: sc_nf_curve_ntest(kind) values (NaN: not applicable,
+ *        or a coefficient that cannot be computed there).
+ * @param qout fold: NULL or n values, the q used (the next call's qref).
+ * @return SC_OK; SC_EINVAL (bad kind or jet); SC_EINTERNAL (the
+ *         eigenvalue solver failed).
+ */
+SC_API int sc_nf_curve_tests(sc_nf_curve kind, const sc_nf_jet *g,
+                             double kappa, const double *qref, double *psi,
+                             double *qout, sc_msg *msg);
+
 #ifdef __cplusplus
 }
 #endif
