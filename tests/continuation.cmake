@@ -3,6 +3,7 @@ sc_add_test(test_linalg)
 sc_add_test(test_continuation)
 sc_add_test(test_curve)
 sc_add_test(test_normal_form)
+sc_add_test(test_curven)
 sc_add_test(test_curve_border)
 sc_add_test(test_mapn_system)
 add_test(NAME test_curve_cli

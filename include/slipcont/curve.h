@@ -151,6 +151,83 @@ SC_API int sc_curve_trace(sc_map *m, const sc_curve_settings *set, double d0,
                    const sc_curve_output *out, sc_curve_stats *stats,
                    sc_msg *msg);
 
+
+/* ------------------------------------------------------------------ */
+/* Curves of n-dimensional maps                                        */
+
+/** One point of a traced curve of an n-dimensional map. */
+typedef struct {
+  double x;            /**< first parameter */
+  double y;            /**< second parameter */
+  size_t n;            /**< state dimension */
+  const double *state; /**< the fixed point of f^m (n values) */
+  /** NS: kappa = cos theta of the pair mu, 1/mu with mu + 1/mu =
+   * 2 kappa: a Neimark-Sacker point for |kappa| < 1, a neutral saddle
+   * (a real pair mu, 1/mu) for |kappa| > 1; fold +1, flip -1 */
+  double kappa;
+  double coefficient; /**< fold a, flip b, NS d (NaN on a neutral
+                           saddle); docs/maps.md, "Normal forms" */
+  int branch;         /**< 0: the first direction, 1: the other */
+  const double *mre;  /**< the n multipliers of f^m there, real parts, by
+                           decreasing modulus (sc_nf_multipliers()) */
+  const double *mim;  /**< their imaginary parts */
+} sc_curven_point;
+
+/** A codimension-two or end point of a curve of an n-dimensional map. */
+typedef struct {
+  char label[8];      /**< "CP", "GPD", "CH", "R1" .. "R4", "LPPD",
+                           "LPNS", "PDNS", "NSNS", "EP" (end); with a '?'
+                           for a sign change that was not located or is
+                           not that point (the note says why: a neutral
+                           saddle, not a Neimark-Sacker pair) */
+  double x;           /**< first parameter */
+  double y;           /**< second parameter */
+  size_t n;           /**< state dimension */
+  double state[SC_DIM_TENSOR]; /**< the fixed point (n values) */
+  double kappa;       /**< as sc_curven_point */
+  double coefficient; /**< the curve's normal-form coefficient there */
+  double residual;    /**< max |F| of the curve's system (the
+                           certificate); NaN for EP */
+  double test;        /**< the located test function's value there */
+  char note[256];     /**< what the point is, why the curve ended */
+} sc_curven_special;
+
+/** Callbacks of sc_curven_trace(); either may be NULL; non-zero stops. */
+typedef struct {
+  int (*point)(void *ctx, const sc_curven_point *p);     /**< each point */
+  int (*special)(void *ctx, const sc_curven_special *s); /**< each special */
+  void *ctx; /**< passed to both */
+} sc_curven_output;
+
+/**
+ * @brief Trace the fold, flip or Neimark-Sacker curve of the period-m
+ * fixed point of an n-dimensional map (2 <= n <= SC_DIM_TENSOR) through
+ * the guess (@p x0, x, y) in two parameters, on the minimally augmented
+ * systems of mapn_system.h (unknowns: the state, kappa for NS, x, y):
+ * correct the start at fixed y, continue both ways by pseudo-arclength
+ * (the bordering vectors updated at each point), locate every
+ * codimension-two point by Newton on the extended system {F = 0,
+ * psi_k = 0} with the tests of sc_nf_curve_tests() (normal_form.h), and
+ * stop at the box, max_points, or where the curve closes.
+ * Settings used: type (SC_CURVE_FOLD, SC_CURVE_FLIP, SC_CURVE_NS),
+ * period, ix, iy, the box, h0, hmax, max_points; the others are ignored.
+ * The map's parameters are changed during the trace and restored.
+ * @param x0 n values: a guess of the fixed point.
+ * @param kappa0 NS: a guess of kappa = cos theta; NaN to take it from
+ *        the multipliers at the guess (the complex pair nearest the unit
+ *        circle).  Unused for fold and flip.
+ * @param stats out: npoints, nspecial, closed, max_residual, ftol.
+ * @return SC_OK; SC_EINVAL for bad settings, a map with n = 1 (use
+ *         sc_curve_trace()) or n > SC_DIM_TENSOR, or NS without a
+ *         complex pair at the guess; SC_ENOCONV if the start could not be
+ *         corrected; SC_ECALLBACK if an output callback stopped;
+ *         SC_ENOMEM.
+ */
+SC_API int sc_curven_trace(sc_map *m, const sc_curve_settings *set,
+                           const double *x0, double kappa0,
+                           const sc_curven_output *out, sc_curve_stats *stats,
+                           sc_msg *msg);
+
 #ifdef __cplusplus
 }
 #endif

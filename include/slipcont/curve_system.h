@@ -88,6 +88,9 @@ typedef enum {
   SC_CURVE_BORDER = 2, /**< g = x, m_k = 0: the orbit on one of its
                             borders (sc_curve_trace() of curve.h only:
                             the borders are a model's) */
+  SC_CURVE_NS = 3, /**< g = x, a pair of multipliers e^(+-i theta): the
+                        Neimark-Sacker curve of an n-dimensional map
+                        (n >= 2; sc_curven_trace() of curve.h only) */
 } sc_curve_type;
 
 /**

@@ -12,5 +12,6 @@ list(APPEND SC_SOURCES src/analysis/branch_orbit.c
   src/analysis/branchn_special.c)
 list(APPEND SC_SOURCES src/analysis/curve.c
   src/analysis/curve_border.c
+  src/analysis/curven.c
   src/analysis/border_list.c)
 list(APPEND SC_SOURCES src/analysis/fixed_points_n.c)
