@@ -9,16 +9,19 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cli/curve_impl.h"
 #include "cli/progress.h"
 #include "cli/tasks.h"
 #include "slipcont/curve.h"
 
 static const sc_key_info curve_keys[] = {
     {"type", SC_KEY_CHOICE, 1, NULL, 0, 0, 0, 0,
-     "fold|flip|graze|cross|switch|both|touch",
+     "fold|flip|ns|graze|cross|switch|both|touch",
      "fold: multiplier +1 (f^m(d) = d, (f^m)' = 1); flip: (f^m)' = -1; "
-     "graze, cross, switch, both, touch: the orbit on its nearest border of "
-     "that kind (GR, CS, SW, BR, TT), f^m(d) = d and m_k = 0"},
+     "ns (n-dimensional models): a pair of multipliers e^(+-i theta), the "
+     "Neimark-Sacker curve; graze, cross, switch, both, touch: the orbit on "
+     "its nearest border of that kind (GR, CS, SW, BR, TT), f^m(d) = d and "
+     "m_k = 0"},
     {"x", SC_KEY_PARAM, 1, NULL, 0, 0, 0, 0, NULL,
      "the parameter the start was located in (horizontal axis)"},
     {"y", SC_KEY_PARAM, 1, NULL, 0, 0, 0, 0, NULL,
@@ -38,7 +41,8 @@ static const sc_key_info curve_keys[] = {
      "guess of an orbit point at the start (or give start)"},
     {"start", SC_KEY_TEXT, 0, NULL, 0, 0, 0, 0, NULL,
      "FILE:N, row N (1 = first after the header) of a branch task's "
-     "points.csv: an LP (type = fold), PD (type = flip) or border point "
+     "points.csv: an LP (type = fold), PD (type = flip), NS (type = ns) or "
+     "border point "
      "(GR for graze, CS cross, SW switch, BR both, TT touch) located in x; "
      "x, d0 and period are taken from it (instead of d0), and from a "
      "border point its border, followed by the curve"},
@@ -65,16 +69,18 @@ static const sc_key_info curve_keys[] = {
 };
 
 /* The curve types in key order; border kinds of the border types. */
-static const char *const type_names[] = {"fold",  "flip", "graze", "cross",
-                                         "switch", "both", "touch"};
+static const char *const type_names[] = {
+    "fold", "flip", "graze", "cross", "switch", "both", "touch", "ns"};
 static const char *const type_labels[] = {"LP", "PD", "GR", "CS",
-                                          "SW", "BR", "TT"};
+                                          "SW", "BR", "TT", "NS"};
 static const sc_border_kind type_kinds[] = {
     0, 0, SC_BORDER_GRAZING, SC_BORDER_CROSSING, SC_BORDER_SWITCHING,
-    SC_BORDER_BOTH, SC_BORDER_TOUCH};
+    SC_BORDER_BOTH, SC_BORDER_TOUCH, 0};
+/* type_names' index of ns: the n-dimensional curve */
+#define TYPE_NS 7
 
 static int type_index(const char *t) {
-  for (int i = 0; i < 7; i++)
+  for (int i = 0; i < 8; i++)
     if (strcmp(t, type_names[i]) == 0) return i;
   return 0; /* the key's choices are checked by the scene */
 }
@@ -150,19 +156,33 @@ static int curve_check(const sc_scene *s, sc_msg *msg) {
                              "y = %s is the same parameter as x (valid: "
                              "another parameter of the model)",
                              yn);
-  if (type_index(sc_scene_text(s, "type")) >= 2 && !sc_map_has_borders(m))
+  int ti = type_index(sc_scene_text(s, "type"));
+  double xstart = NAN;
+  if (sc_map_dim(m) > 1) {
+    int st = sc_cli_curve_n_check(s, sc_scene_text(s, "type"), type_labels[ti],
+                                  &xstart, msg);
+    if (st) return st;
+  } else if (ti == TYPE_NS) {
+    return sc_scene_fail_key(s, "task", "type", msg,
+                             "type = ns: model %s is one-dimensional, with no "
+                             "pair of multipliers (valid: fold, flip or a "
+                             "border's kind)",
+                             sc_map_type(m)->name);
+  }
+  if (ti >= 2 && ti != TYPE_NS && !sc_map_has_borders(m))
     return sc_scene_fail_key(s, "task", "type", msg,
                              "type = %s: model %s declares no borders "
                              "(valid: fold or flip)",
                              sc_scene_text(s, "type"), sc_map_type(m)->name);
   const char *spec = sc_scene_text(s, "start");
-  int has_d0 = !isnan(sc_scene_real(s, "d0"));
+  int has_d0 = sc_map_dim(m) > 1 ? sc_scene_value(s, "task", "d0") != NULL
+                                 : !isnan(sc_scene_real(s, "d0"));
   if (!spec == !has_d0)
     return sc_scene_fail_key(s, "task", spec ? "start" : "d0", msg,
                              "give either d0 or start (valid: exactly one "
                              "of them)");
   sc_cli_points_row row;
-  if (spec) {
+  if (spec && sc_map_dim(m) == 1) {
     char why[512];
     if (sc_cli_points_row_read(spec, &row, why, sizeof why))
       return sc_scene_fail_key(s, "task", "start", msg, "start: %s", why);
@@ -188,7 +208,7 @@ static int curve_check(const sc_scene *s, sc_msg *msg) {
                                hi[k], sc_scene_text(s, hi[k]), lo[k],
                                sc_scene_text(s, lo[k]), lo[k]);
     double v = sc_map_get_param(m, (size_t)sc_map_param_index(m, nm[k]));
-    if (k == 0 && spec) v = row.value;
+    if (k == 0 && spec) v = sc_map_dim(m) > 1 ? xstart : row.value;
     if (v < sc_scene_real(s, lo[k]) || v > sc_scene_real(s, hi[k]))
       return sc_scene_fail_key(
           s, "task", lo[k], msg,
@@ -209,16 +229,6 @@ static int curve_check(const sc_scene *s, sc_msg *msg) {
   return SC_OK;
 }
 
-typedef struct {
-  FILE *curve, *points;
-  int period;
-  int last_branch;
-  sc_curve_special *sp;
-  size_t nsp, cap;
-  int oom;
-  int have_start;          /* the first point: the corrected start */
-  double start_x, start_y;
-} out_ctx;
 
 static int on_point(void *vc, const sc_curve_point *p) {
   out_ctx *c = vc;
@@ -256,6 +266,10 @@ static int on_special(void *vc, const sc_curve_special *s) {
   fputc(',', c->points);
   sc_csv_double(c->points, s->residual);
   fputc('\n', c->points);
+  return sc_cli_curve_keep(c, s);
+}
+
+int sc_cli_curve_keep(out_ctx *c, const sc_curve_special *s) {
   if (c->nsp == c->cap) {
     size_t cap = c->cap ? 2 * c->cap : 16;
     sc_curve_special *n = realloc(c->sp, cap * sizeof *n);
@@ -281,6 +295,7 @@ typedef struct {
   unsigned long nev;
   double elapsed;
   double marks[SC_CLI_MAXMARKS]; /* user points: values of x */
+  sc_cli_curve_n *nd; /* an n-dimensional model's path; NULL for n = 1 */
 } curve_job;
 
 static int curve_prepare(sc_cli_run *r, void *job) {
@@ -292,9 +307,10 @@ static int curve_prepare(sc_cli_run *r, void *job) {
   j->yn = sc_scene_text(s, "y");
   sc_curve_settings_default(set);
   j->ti = type_index(sc_scene_text(s, "type"));
-  set->type = j->ti == 0   ? SC_CURVE_FOLD
-              : j->ti == 1 ? SC_CURVE_FLIP
-                           : SC_CURVE_BORDER;
+  set->type = j->ti == 0        ? SC_CURVE_FOLD
+              : j->ti == 1      ? SC_CURVE_FLIP
+              : j->ti == TYPE_NS ? SC_CURVE_NS
+                                : SC_CURVE_BORDER;
   set->border = type_kinds[j->ti];
   set->period = (int)sc_scene_int(s, "period");
   set->multiple = strcmp(sc_scene_text(s, "shooting"), "multiple") == 0;
@@ -309,6 +325,7 @@ static int curve_prepare(sc_cli_run *r, void *job) {
   if (set->h0 == 0) set->h0 = set->hmax / 10;
   if (set->h0 > set->hmax) set->hmax = set->h0;
   set->max_points = sc_scene_int(s, "max-points");
+  if (sc_map_dim(m) > 1) return sc_cli_curve_n_prepare(r, set, &j->nd);
   int st = sc_cli_marks(s, j->xn, set->xlo, set->xhi, j->marks,
                         &set->nmarks, r->msg);
   if (st) return st;
@@ -360,6 +377,18 @@ static int curve_compute(sc_cli_run *r, void *job) {
   sc_map *m = r->map;
   out_ctx *c = &j->c;
   c->period = j->set.period;
+  if (j->nd) {
+    j->x0 = sc_map_get_param(m, (size_t)j->set.ix);
+    j->y0 = sc_map_get_param(m, (size_t)j->set.iy);
+    unsigned long ev0 = sc_map_nevals(m);
+    double t0 = sc_progress_now();
+    int st = sc_cli_curve_n_compute(r, j->nd, &j->set, c, &j->stats);
+    j->elapsed = sc_progress_now() - t0;
+    j->nev = sc_map_nevals(m) - ev0;
+    if (st && st != SC_ENOMEM && st != SC_ECALLBACK && j->stats.npoints == 0)
+      st = start_failed(r, j);
+    return st;
+  }
   sc_file *cf = NULL, *pf = NULL;
   int st = sc_cli_open(r, "curve.csv", &cf);
   if (!st) st = sc_cli_open(r, "points.csv", &pf);
@@ -400,7 +429,7 @@ static int curve_summary(sc_cli_run *r, void *job, FILE *f) {
   fprintf(f, "  residual tolerance used: %.3g\n", stats->ftol);
   /* the corrector keeps a point whose residual stays at its rounding
    * floor, up to 10 tolerances (docs/curves.md): say so when it did */
-  if (stats->max_residual > stats->ftol)
+  if (stats->max_residual > stats->ftol && !j->nd)
     fprintf(f,
             "  the largest residual is above the tolerance: a point whose "
             "residual stays at its rounding floor (f^m's rounding times "
@@ -423,7 +452,8 @@ static int curve_summary(sc_cli_run *r, void *job, FILE *f) {
             j->set.period);
   fprintf(f, "  shooting: %s\n", j->set.multiple ? "multiple" : "single");
   fprintf(f, "  codimension-two points: %ld\n", stats->nspecial);
-  for (size_t i = 0; i < j->c.nsp; i++) {
+  if (j->nd) sc_cli_curve_n_summary(f, r, j->nd);
+  for (size_t i = 0; !j->nd && i < j->c.nsp; i++) {
     const sc_curve_special *p = &j->c.sp[i];
     fprintf(f,
             "    %-3s %s = %.17g, %s = %.17g, %s = %.17g, coefficient "
@@ -519,9 +549,10 @@ static int plot_overlay(FILE *f, const char *ov) {
 }
 
 /* The kinds of points a curve figure marks, in the key's order. */
-static const char *const point_kinds[] = {"CP", "GPD", "TP", "LP", "PD",
-                                          "GR", "CS",  "SW", "BR", "TT",
-                                          "UZ", "EP"};
+static const char *const point_kinds[] = {
+    "CP", "GPD", "TP",   "LP",   "PD",   "GR",   "CS", "SW", "BR",
+    "TT", "CH",  "R1",   "R2",   "R3",   "R4",   "LPPD", "LPNS", "PDNS",
+    "NSNS", "UZ", "EP"};
 #define NKINDS (sizeof point_kinds / sizeof *point_kinds)
 
 /* The kind of a points.csv label ("BR?" is a BR not located): its index
@@ -774,6 +805,7 @@ static void curve_release(sc_cli_run *r, void *job) {
   curve_job *j = job;
   (void)r;
   free(j->c.sp);
+  sc_cli_curve_n_free(j->nd);
 }
 
 const sc_cli_task sc_cli_task_curve = {
