@@ -16,7 +16,7 @@
 
 static const sc_key_info curve_keys[] = {
     {"type", SC_KEY_CHOICE, 1, NULL, 0, 0, 0, 0,
-     "fold|flip|ns|graze|cross|switch|both|touch",
+     "fold|flip|graze|cross|switch|both|touch|ns",
      "fold: multiplier +1 (f^m(d) = d, (f^m)' = 1); flip: (f^m)' = -1; "
      "ns (n-dimensional models): a pair of multipliers e^(+-i theta), the "
      "Neimark-Sacker curve; graze, cross, switch, both, touch: the orbit on "
