@@ -155,8 +155,11 @@ int sc_ob_iterate_orbit_forced(sc_orbit_branch *b, double d, int q,
                                const sc_itin_code *codes, double *out);
 int sc_ob_iterate_orbit(sc_orbit_branch *b, double d, int q, double *out);
 /* The minimal period of the orbit orb[0..m-1] by the one rule of
- * common.h: sc_orbit_minimal_period() at sc_orbit_tol(&b->acc, orb[0]). */
-int sc_ob_minimal_period(const sc_orbit_branch *b, const double *orb, int m);
+ * common.h: sc_orbit_minimal_period() at sc_orbit_tol(&b->acc, orb[0]);
+ * with the orbit's codes (NULL: not known) a period q whose codes are
+ * not q-periodic is not taken (m is returned). */
+int sc_ob_minimal_period(const sc_orbit_branch *b, const double *orb, int m,
+                         const sc_itin_code *codes);
 /* Whether a[0..m-1] and c[0..m-1] are one orbit by the one rule of
  * common.h: sc_orbit_same() at sc_orbit_tol() of their largest point. */
 int sc_ob_same_orbit(const sc_orbit_branch *b, const double *a,

@@ -186,7 +186,7 @@ static int segment_start(sc_orbit_branch *b, segment *S, sc_cont_problem *pb,
      * old branch twice over. */
     if (sc_ob_shoot_at(b, period, p1, b->seed, &res) != SC_OK ||
         strcmp(res.itinerary, b->ctx.itin) != 0 ||
-        sc_ob_minimal_period(b, b->orbit, period) != period)
+        sc_ob_minimal_period(b, b->orbit, period, NULL) != period)
       continue;
     u0[0] = b->orbit[0];
     u0[1] = p1;
@@ -225,7 +225,7 @@ static int segment_accept(sc_orbit_branch *b, segment *S, const double *u) {
   /* A period-m segment whose orbit has fallen to a divisor of m has
    * left its branch for a lower-period one crossing it (the doubled
    * orbit at a flip): stop rather than follow the old branch again. */
-  int q = have_orbit && period > 1 ? sc_ob_minimal_period(b, b->orb_c, period)
+  int q = have_orbit && period > 1 ? sc_ob_minimal_period(b, b->orb_c, period, b->ctx.force)
                                    : period;
   if (q < period) {
     /* Follow the lower-period branch from here instead, both ways, with

@@ -194,7 +194,7 @@ int sc_ob_hand_over(sc_orbit_branch *b, special_rec *r, int m,
         }
         if (same) continue;
       }
-      if (sc_ob_minimal_period(b, b->orbit, q) != q) continue;
+      if (sc_ob_minimal_period(b, b->orbit, q, NULL) != q) continue;
       double worst;
       int near = near_points(b->orbit, q, orb, m, step, &worst);
       if (near < (q < m ? q : m)) {
@@ -441,7 +441,7 @@ int sc_ob_switch_flip(sc_orbit_branch *b, int m, double p, double d) {
         if (sc_ob_iterate_orbit(b, d + eps, 2 * m, b->seed)) continue;
         sc_shoot_result res;
         if (sc_ob_shoot_at(b, 2 * m, ps, b->seed, &res) != SC_OK) continue;
-        if (sc_ob_minimal_period(b, b->orbit, 2 * m) != 2 * m) continue;
+        if (sc_ob_minimal_period(b, b->orbit, 2 * m, NULL) != 2 * m) continue;
         if (fabs(b->orbit[0] - d) > FLIP_REACH * sqrt(dp) * (1 + fabs(d)))
           continue;
         char origin[96];
