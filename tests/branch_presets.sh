@@ -1,9 +1,13 @@
-# Presets mean accuracy, not luck: the chapter's branch scenes (fig 5.8 up
-# to period 8, fig 5.12) under the fast, default and precise presets find
+# Presets mean accuracy, not luck: the chapter's branch scenes (fig 5.8 to
+# its max-period 16, fig 5.12) under the fast, default and precise presets find
 # the same special points (label, period), each located by Newton, with
 # parameter values that agree with the precise ones within each preset's
 # stated tolerance (docs/guide.md, "Accuracy presets"):
 #   default: 1e-10 (relative to 1 + |p|); fast: 1e-8.
+# fig 5.8 at period 16 includes the switchings of a period-16 orbit that
+# shadows the period-4 one (two of its points next to d* at once):
+# alpha = 3.25235344925 and 3.25532842611, the roots of f^16(d*) = d*
+# found here by bisection on the map alone.
 # Numerical flows (GSL rk8pd at the default tolerances) find the same
 # points of fig 5.12 within 1e-7; a grazing met from the side where its
 # guard fires may be located there by the labelled bisection fallback.
@@ -80,7 +84,7 @@ compare() {
 }
 
 for p in precise default fast; do
-  points branch-fig58 $p --set task.max-period=8
+  points branch-fig58 $p
   points branch-fig512 $p
 done
 points branch-fig512 numerical --set model.flows=numerical
@@ -94,4 +98,61 @@ for s in branch-fig58 branch-fig512; do
   compare $s fast 1e-8
 done
 compare branch-fig512 numerical 1e-7
+# --- fig 5.8's period-16 switchings, independently --------------------------
+# G(alpha) = f^16(d*) - d* along the natural map (no codes, no
+# derivatives) changes sign across each switching; every preset's point
+# lies in the bracket of G's sign change that bisection on the map alone
+# gives: 3.2523534492548891 .. 8896 and 3.2553284261105153 .. 5158
+# (precise; the presets' errors added).
+for p in precise default fast; do
+  tol=1e-12
+  [ $p = default ] && tol=1e-10
+  [ $p = fast ] && tol=1e-8
+  for r in 3.2523534492548891 3.2553284261105153; do
+    got=$(awk -v r="$r" -v t="$tol" '$1 == "SW" && $2 == 16 && $4 == "newton" {
+        e = $3 - r; if (e < 0) e = -e; if (e <= t * (1 + r)) print $3 }' \
+      "$TMP/branch-fig58-$p.txt")
+    if [ -n "$got" ]; then
+      pass "fig 5.8 ($p): period-16 SW at $got by Newton, the map's own root $r within $tol"
+    else
+      fail "fig 5.8 ($p): no period-16 SW by Newton within $tol of $r"
+    fi
+  done
+done
+
+# --- fig 5.8: the period-16 fold and flip near alpha = 3.174326 ------------
+# They exist, on a family of period-16 orbits with one 1-12-2 iterate (two
+# orbits at alpha = 3.1743256 with multipliers 0.0906 and 1.914, none at
+# 3.174325: a fold between), but no branch of the example reaches that
+# family: below the switching at 3.2003870 every period-16 orbit of the
+# example is the flip cascade's (all 2-12-2).  An earlier run reached it
+# only by a hand-over at 3.2553399 to an orbit 0.017 away (more than the
+# corrector's step, 0.01), which hand-overs refuse now; so no preset
+# reports them.
+fp() { # ALPHA -> multipliers of the period-16 orbits near d = 0.108294
+  "$BIN" run "$SRC/examples/fixed-point-fig58.ini" --quiet --out "$TMP/fp" \
+    --set output.plot=no --set model.alpha="$1" --set task.period=16 \
+    --set task.from=0.1082935 --set task.to=0.1082945 --set task.steps=2001 \
+    >"$TMP/stdout" 2>"$TMP/stderr" || return 1
+  awk -F, 'NR > 1 { printf "%.4g ", $2 }' "$TMP/fp/orbits.csv"
+}
+above=$(fp 3.1743256) below=$(fp 3.174325)
+case "$above" in
+"0.09063 1.914 ")
+  if [ -z "$below" ]; then
+    pass "fig 5.8: a period-16 fold between alpha = 3.174325 (no orbit) and 3.1743256 (multipliers $above)"
+  else
+    fail "fig 5.8: period-16 orbits at 3.174325: '$below'"
+  fi ;;
+*) fail "fig 5.8: period-16 orbits at 3.1743256: '$above' ($(cat "$TMP/stderr"))" ;;
+esac
+n1=$(awk -F, 'NR > 1 && $6 == 16 && $1 < 3.2003 && $5 ~ /1-12-2/' \
+  "$TMP/branch-fig58-default/branch.csv" | wc -l)
+n2=$(cat "$TMP"/branch-fig58-*.txt | awk '$2 == 16 && $3 > 3.17 && $3 < 3.18' | wc -l)
+if [ "$n1" -eq 0 ] && [ "$n2" -eq 0 ]; then
+  pass "fig 5.8: no branch reaches that family (no period-16 row with a 1-12-2 iterate below alpha = 3.2003), no preset reports a point of it"
+else
+  fail "fig 5.8: $n1 period-16 rows with a 1-12-2 iterate below alpha = 3.2003, $n2 period-16 points in [3.17, 3.18]"
+fi
+
 finish

@@ -157,11 +157,12 @@ static void newton_2d(sc_orbit_branch *b, int period, const sc_itin_code *codes,
 }
 
 /* G(p) = f^m(d_on(p)) - d_on(p) and G'(p) of a border in the state, the
- * orbit started on it along codes3 (the codes rotated to its iterate);
- * its point d_on(p) into *don. */
+ * orbit started on it along codes3 (the codes rotated to its iterate),
+ * or along its natural codes where `natural`; its point d_on(p) into
+ * *don. */
 static int on_state_G(sc_orbit_branch *b, int period, const sc_border *like,
-                      double p, double *G, double *Gp, double *don,
-                      sc_map_value *v) {
+                      double p, int natural, double *G, double *Gp,
+                      double *don, sc_map_value *v) {
   size_t ip = b->sp.param;
   /* d_on(p): the border of any one iterate at p says where it is */
   sc_border_list *l = &b->bl_tmp;
@@ -174,18 +175,58 @@ static int on_state_G(sc_orbit_branch *b, int period, const sc_border *like,
   for (size_t i = 0; i < l->n && i < l->cap; i++)
     if (l->b[i].on_state) *don = l->b[i].d_on, don_p = l->b[i].d_on_dp[ip];
   if (!isfinite(*don)) return SC_EUNDEF;
-  int st = sc_map_iterate_ex(b->m, *don, period, SC_EVAL_DERIV, b->codes3,
-                             NULL, NULL, v, NULL);
+  int st = sc_map_iterate_ex(b->m, *don, period, SC_EVAL_DERIV,
+                             natural ? NULL : b->codes3, NULL, NULL, v, NULL);
   if (st) return st;
   *G = v->f - *don;
   *Gp = v->dfdp[ip] + (v->dfdd - 1) * don_p;
-  return SC_OK;
+  return isfinite(*G) && isfinite(*Gp) ? SC_OK : SC_ENONFINITE;
+}
+
+/* The certificate of a root p of the on-state system (its last Newton
+ * step dp, point don): the orbit's first point, the noise and whether
+ * the root is degenerate. */
+static void on_state_done(sc_orbit_branch *b, int period, const sc_border *like,
+                          double p, double dp, double don, int it,
+                          border_fix *fx) {
+  const sc_accuracy *acc = &b->acc;
+  int k = like->iterate;
+  sc_map_value v;
+  fx->ok = 1;
+  fx->p = p, fx->dk = don, fx->step = fabs(dp);
+  fx->iterations = it + 1;
+  fx->noise = BORDER_NOISE_ULPS * DBL_EPSILON * (1 + fabs(don)) +
+              sc_map_precision(b->m);
+  /* the orbit's first point: iterate back is not possible; report
+   * the continued point by iterating forward the remaining steps */
+  double *o = b->seed;
+  if (sc_ob_iterate_orbit_forced(b, don, period, b->codes3, o) == SC_OK)
+    fx->d0 = o[(period - k) % period];
+  else
+    fx->d0 = NAN;
+  /* G' a difference step either side: where it vanishes */
+  double h = acc->fd_step * (1 + fabs(p)), g[2] = {NAN, NAN}, Gh, dh;
+  for (int s = 0; s < 2; s++)
+    if (on_state_G(b, period, like, p + (s ? -h : h), 0, &Gh, &g[s], &dh, &v))
+      g[s] = NAN;
+  mark_degenerate(fx, (g[0] - g[1]) / (2 * h));
+  sc_ob_set_p(b->m, b->sp.param, p);
 }
 
 /* A border in the state itself (m = +-(d_k - d_on(p))): Newton in p on
  * G(p) = f^m(d_on(p)) - d_on(p) with the orbit started on the border at
  * iterate k (the codes rotated to start there).  The map may be singular
- * next to such a border, the orbit through it is not. */
+ * next to such a border, the orbit through it is not.
+ *
+ * The branch meets such a border tangentially (its point approaches d_on
+ * like the square of the distance in p), so where another point of the
+ * orbit also lies next to d_on (a period-16 orbit that shadows a
+ * period-4 one passes d* twice), the corrector stops far from the root,
+ * where the orbit started on the border no longer follows the segment's
+ * codes (G is not defined there).  Then G along the natural codes steers
+ * Newton, whose step is kept inside the bracket of G's sign changes met
+ * (bisected where it would leave it); the root is accepted only where
+ * the orbit follows the segment's codes, as their system's certificate. */
 static void newton_on_state(sc_orbit_branch *b, int period,
                             const sc_itin_code *codes, const sc_border *like,
                             double pa, double ma, double pb, double mb,
@@ -195,11 +236,13 @@ static void newton_on_state(sc_orbit_branch *b, int period,
   for (int i = 0; i < period; i++) b->codes3[i] = codes[(i + k) % period];
   double t = ma / (ma - mb);
   if (!(t >= 0 && t <= 1)) t = 0.5;
-  double p = pa + t * (pb - pa);
+  double p = pa + t * (pb - pa), lo = NAN, hi = NAN, Glo = NAN;
   sc_map_value v;
   for (int it = 0; it < BORDER_NEWTON_MAX; it++) {
     double G, Gp, don;
-    int st = on_state_G(b, period, like, p, &G, &Gp, &don, &v);
+    int st = on_state_G(b, period, like, p, 0, &G, &Gp, &don, &v);
+    int forced = st == SC_OK;
+    if (!forced) st = on_state_G(b, period, like, p, 1, &G, &Gp, &don, &v);
     if (st) {
       snprintf(fx->why, sizeof fx->why,
                "the orbit from the border cannot be evaluated at %.17g (%s)",
@@ -208,36 +251,23 @@ static void newton_on_state(sc_orbit_branch *b, int period,
     }
     fx->F = G, fx->m = 0, fx->mult = v.dfdd, fx->iterations = it;
     fx->slope = Gp;
-    if (!isfinite(Gp) || Gp == 0) {
+    /* the bracket: the last points with G of either sign */
+    if (isnan(lo) || (G > 0) == (Glo > 0)) lo = p, Glo = G;
+    else hi = p;
+    double dp = Gp != 0 ? G / Gp : HUGE_VAL;
+    if (forced && it > 0 && step_done(dp, p, acc)) {
+      on_state_done(b, period, like, p, dp, don, it, fx);
+      return;
+    }
+    double pn = p - dp;
+    if (!isnan(hi) && !(pn > fmin(lo, hi) && pn < fmax(lo, hi)))
+      pn = 0.5 * (lo + hi);
+    if (!isfinite(pn)) {
       snprintf(fx->why, sizeof fx->why, "singular derivative (%.3g)", Gp);
       return;
     }
-    double dp = G / Gp;
-    if (fx->iterations > 0 && step_done(dp, p, acc)) {
-      fx->ok = 1;
-      fx->p = p, fx->dk = don, fx->step = fabs(dp);
-      fx->iterations = it + 1;
-      fx->noise = BORDER_NOISE_ULPS * DBL_EPSILON * (1 + fabs(don)) +
-                  sc_map_precision(b->m);
-      /* the orbit's first point: iterate back is not possible; report
-       * the continued point by iterating forward the remaining steps */
-      double *o = b->seed;
-      if (sc_ob_iterate_orbit_forced(b, don, period, b->codes3, o) == SC_OK)
-        fx->d0 = o[(period - k) % period];
-      else
-        fx->d0 = NAN;
-      /* G' a difference step either side: where it vanishes */
-      double h = acc->fd_step * (1 + fabs(p)), g[2] = {NAN, NAN}, Gh, dh;
-      for (int s = 0; s < 2; s++)
-        if (on_state_G(b, period, like, p + (s ? -h : h), &Gh, &g[s], &dh,
-                       &v))
-          g[s] = NAN;
-      mark_degenerate(fx, (g[0] - g[1]) / (2 * h));
-      sc_ob_set_p(b->m, b->sp.param, p);
-      return;
-    }
-    p -= dp;
-    fx->step = fabs(dp);
+    fx->step = fabs(pn - p);
+    p = pn;
   }
   snprintf(fx->why, sizeof fx->why,
            "Newton did not converge in %d iterations (last step %.3g)",
@@ -304,7 +334,7 @@ void sc_ob_locate_border(sc_orbit_branch *b, int period,
   /* The orbit located must be the segment's, not one of lower period
    * through the same border (bk2 with beta = 1: the synchronous orbit
    * d = d* = 0 is a fixed point of every f^m). */
-  int q = sc_ob_minimal_period(b, o, period);
+  int q = sc_ob_minimal_period(b, o, period, codes);
   if (q < period) {
     fx->ok = 0;
     snprintf(fx->why, sizeof fx->why,
