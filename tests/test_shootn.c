@@ -332,6 +332,24 @@ static void failures(void) {
           sc_shootn_reason_text(res.reason));
   tu_int("non-finite guess", sc_shootn_solve(s, nan2, &res, &msg), SC_EINVAL);
   sc_shootn_free(s);
+  /* Period 128 in chaos: ||J_g|| ~ 1e23, J_g - I singular in rounding;
+   * single shooting must not call a point with f^128(x) - x of order 1
+   * an orbit (its tolerance grows with ||J_g|| only up to 1/sqrt(eps)). */
+  sc_shootn_alloc(m, 128, SC_SHOOT_SINGLE, NULL, &s, &msg);
+  double x[2] = {0.1, 0.1};
+  sc_mapn_value *v;
+  sc_mapn_value_alloc(m, SC_EVAL_VALUE, &v, &msg);
+  for (int i = 0; i < 1000; i++) {
+    sc_map_eval_n(m, x, SC_EVAL_VALUE, v, &msg);
+    memcpy(x, v->f, sizeof x);
+  }
+  st = sc_shootn_solve(s, x, &res, &msg);
+  tu_true(st != SC_OK || res.residual <= 1e-4,
+          "period 128 in chaos: no orbit claimed without a certificate "
+          "(status %d, residual %g)",
+          st, res.residual);
+  sc_mapn_value_free(v);
+  sc_shootn_free(s);
   sc_map_free(m);
 }
 

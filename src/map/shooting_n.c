@@ -15,6 +15,13 @@
  * one-dimensional shooting). */
 #define STAGNATION_ULPS 4.0
 
+/* The residual tolerance of single shooting grows with ||J_g|| (the
+ * rounding of f^m), but no further than this: beyond it f^m carries less
+ * than half the digits of a double, f^m(x) - x can no longer certify an
+ * orbit (it would accept residuals of order 1 for the chaotic orbits of
+ * long period), and multiple shooting is the method. */
+#define SINGLE_FTOL_GROWTH_MAX (1 / 1.4901161193847656e-08) /* 1 / sqrt(eps) */
+
 /* A deflated step divides F's Newton step by 1 - tau; where |1 - tau| is
  * below this the deflated step is not defined (it would be longer than
  * 1 / DBL_EPSILON times F's step): reported as a singular matrix. */
@@ -399,7 +406,8 @@ static double residual_tol(const sc_shootn *s, const sc_accuracy *acc) {
     for (size_t j = 0; j < s->n; j++) row += fabs(s->J[i * s->n + j]);
     norm = fmax(norm, row);
   }
-  return isfinite(norm) ? ftol * fmax(1, norm) : ftol;
+  return isfinite(norm) ? ftol * fmin(fmax(1, norm), SINGLE_FTOL_GROWTH_MAX)
+                        : ftol;
 }
 
 /* A failed solve: reason and status, the message with the point. */
@@ -485,8 +493,10 @@ int sc_shootn_solve_orbit(sc_shootn *s, const double *x0,
     if (it >= acc.newton_maxiter)
       return give_up(s, res, SC_SHOOTN_MAXITER, SC_ENOCONV, fnorm, msg);
     st = newton_step(s, msg);
-    if (st == SC_ESING && fnorm <= ftol) {
-      /* within tolerance where the matrix is exactly singular */
+    if (st == SC_ESING && fnorm <= acc.newton_ftol) {
+      /* within the unscaled tolerance where the matrix is singular (a
+       * start at a fold); the scaled one would accept any point where
+       * J_g is huge, and J_g - I then singular in rounding */
       res->step = it == 0 ? 0 : last;
       return finish(s, res, msg);
     }
