@@ -155,12 +155,11 @@ static int add_end(sc_branchn *b, int branch, int period, const double *u,
   s->branch = branch;
   s->period = period;
   s->method = SC_LOC_NONE;
-  if (u) {
-    memcpy(s->x, u, b->n * sizeof *u);
-    s->p = u[b->n];
-  } else {
-    s->p = NAN;
-  }
+  memcpy(s->x, u, b->n * sizeof *u);
+  s->p = u[b->n];
+  sc_msg m2;
+  if (sc_bn_multipliers(b, period, s->x, s->p, s->re, s->im, &m2))
+    for (size_t i = 0; i < b->n; i++) s->re[i] = s->im[i] = NAN;
   snprintf(s->note, sizeof s->note, "%.100s%.90s", what, more);
   return SC_OK;
 }
@@ -364,9 +363,8 @@ static int run_segment(sc_branchn *b, const bn_job *j, sc_msg *msg) {
   if (found) found = sc_branch_set(br, u, &m2) == SC_OK;
   if (!found) {
     if (bi == 0) {
-      st = sc_fail(msg, SC_ENOCONV,
-                   "branch: no period-%d orbit found from the start: %s",
-                   period, m2.text);
+      st = sc_fail(msg, SC_ENOCONV, "no period-%d orbit found from it (%s)",
+                   period, sc_msg_what(m2.text));
       goto out;
     }
     char why[BN_NOTE];

@@ -12,5 +12,5 @@ list(APPEND SC_CLI_SOURCES src/cli/task_map.c)
 list(APPEND SC_CLI_SOURCES src/cli/task_sweep.c)
 list(APPEND SC_CLI_SOURCES src/cli/task_chart.c src/cli/progress.c $<$<BOOL:${SLIPCONT_MPI}>:src/cli/mpi_chart.c>)
 list(APPEND SC_CLI_SOURCES src/cli/task_fixed_point.c src/cli/task_branch.c
-  src/cli/task_fixed_point_n.c)
+  src/cli/task_fixed_point_n.c src/cli/task_branch_n.c)
 list(APPEND SC_CLI_SOURCES src/cli/task_curve.c src/cli/task_curve_n.c)

@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "cli/progress.h"
+#include "cli/task_branch_n.h"
 #include "cli/tasks.h"
 #include "slipcont/analysis.h"
 #include "slipcont/orbits.h"
@@ -77,6 +78,7 @@ static const sc_key_info branch_keys[] = {
      "first|LP|PD|GR|CS|SW|BR|TT|UZ",
      "special point at which f^m is drawn against d (figs 5.9-5.11): the "
      "first one with that label, or the first of any label but EP"},
+    SC_CLI_SHOW_KEY,
 };
 
 /* What a start found by parse_starts() is given to. */
@@ -235,6 +237,18 @@ static int branch_check(const sc_scene *s, sc_msg *msg) {
     return sc_scene_fail_key(s, "task", "to", msg,
                              "to = %s equals from (valid: to != from)",
                              sc_scene_text(s, "to"));
+  const sc_map *m = sc_scene_map(s);
+  if (sc_map_dim(m) > 1) {
+    if (sc_scene_int(s, "max-period") < sc_scene_int(s, "period"))
+      return sc_scene_fail_key(s, "task", "max-period", msg,
+                               "max-period = %ld is below period = %ld "
+                               "(valid: >= period)",
+                               sc_scene_int(s, "max-period"),
+                               sc_scene_int(s, "period"));
+    return sc_brn_check(s, msg);
+  }
+  int show; /* read by the n-dimensional path; checked for every model */
+  if ((st = sc_cli_show(s, &show, msg))) return st;
   if (sc_scene_int(s, "sweep-keep") > sc_scene_int(s, "sweep-iterations"))
     return sc_scene_fail_key(s, "task", "sweep-keep", msg,
                              "sweep-keep = %ld is more than sweep-iterations "
@@ -758,11 +772,13 @@ typedef struct {
   double lo, hi;         /* d-range of its plot */
   plot_marks pm;         /* what branch.png draws */
   double marks[SC_CLI_MAXMARKS]; /* user points (UZ) */
+  sc_brn_job nd;         /* n > 1: the n-dimensional branch */
 } branch_job;
 
 static int branch_prepare(sc_cli_run *r, void *job) {
   branch_job *j = job;
   const sc_scene *s = r->scene;
+  if (sc_map_dim(r->map) > 1) return sc_brn_prepare(r, &j->nd);
   j->pname = sc_scene_text(s, "parameter");
   j->pm.ylo = INFINITY;
   j->pm.yhi = -INFINITY;
@@ -833,6 +849,7 @@ static int start_not_found(sc_cli_run *r, const branch_job *j) {
 /* The starts, the continuation, then the brute-force sweep. */
 static int branch_compute(sc_cli_run *r, void *job) {
   branch_job *j = job;
+  if (sc_map_dim(r->map) > 1) return sc_brn_compute(r, &j->nd);
   double t0 = sc_progress_now();
   unsigned long ev0 = sc_map_nevals(r->map);
   int st = SC_OK;
@@ -861,6 +878,7 @@ static int branch_compute(sc_cli_run *r, void *job) {
 
 static int branch_write(sc_cli_run *r, void *job) {
   branch_job *j = job;
+  if (sc_map_dim(r->map) > 1) return sc_brn_write(r, &j->nd);
   int maxq = j->sp.max_period, st;
   if ((st = write_points(r, j->ob, j->pname)) ||
       (st = write_point_orbits(r, j->ob, j->param, j->buf, maxq, &j->pm)) ||
@@ -900,6 +918,7 @@ static special_count count_specials(const sc_orbit_branch *ob) {
 
 static int branch_summary(sc_cli_run *r, void *job, FILE *f) {
   const branch_job *j = job;
+  if (sc_map_dim(r->map) > 1) return sc_brn_summary(r, &j->nd, f);
   const sc_orbit_branch *ob = j->ob;
   fprintf(f, "  branches: %d, points: %zu, special points: %zu\n",
           sc_orbit_branch_nbranches(ob), sc_orbit_branch_npoints(ob),
@@ -956,6 +975,7 @@ static int branch_summary(sc_cli_run *r, void *job, FILE *f) {
 
 static int branch_plots(sc_cli_run *r, void *job) {
   branch_job *j = job; /* the placement writes into the marks */
+  if (sc_map_dim(r->map) > 1) return sc_brn_plots(r, &j->nd);
   int st = write_branch_plot(r, j->ob, j->pname, j->sp.from, j->sp.to,
                              j->sw != NULL, &j->pm);
   if (!st && j->have_special)
@@ -965,6 +985,7 @@ static int branch_plots(sc_cli_run *r, void *job) {
 
 static int branch_report(sc_cli_run *r, void *job) {
   const branch_job *j = job;
+  if (sc_map_dim(r->map) > 1) return sc_brn_report(r, &j->nd);
   sc_cli_note(r, "%d branches, %zu points, %zu special points in %.2f s",
               sc_orbit_branch_nbranches(j->ob), sc_orbit_branch_npoints(j->ob),
               sc_orbit_branch_nspecial(j->ob), j->elapsed);
@@ -973,6 +994,7 @@ static int branch_report(sc_cli_run *r, void *job) {
 
 static void branch_release(sc_cli_run *r, void *job) {
   branch_job *j = job;
+  sc_brn_release(&j->nd);
   if (j->pname) sc_map_set_param(r->map, j->param, j->saved, NULL);
   sc_orbit_branch_free(j->ob);
   sc_sweep_free(j->sw);
@@ -985,7 +1007,8 @@ const sc_cli_task sc_cli_task_branch = {
              .doc = "continuation of a periodic orbit in one parameter: "
                     "folds (LP), flips (PD), grazing (GR), crossing-sliding "
                     "(CS), switching (SW), both re-stick (BR), threshold "
-                    "touched (TT)",
+                    "touched (TT); for maps of n > 1 dimensions folds, "
+                    "flips, Neimark-Sacker (NS) and branch points (BP)",
              .keys = branch_keys,
              .nkeys = sizeof branch_keys / sizeof branch_keys[0],
              .check = branch_check},
@@ -994,7 +1017,12 @@ const sc_cli_task sc_cli_task_branch = {
                "multiplier,residual,error,method,border,note), "
                "branch-points.csv (every orbit point of each special point), "
                "branch-orbits.csv, branch-sweep.csv, summary.txt, "
-               "branch.gp/png, branch-map.gp/png",
+               "branch.gp/png, branch-map.gp/png; n > 1: branch.csv "
+               "(PARAMETER,state,multiplier,multipliers,stable,period,"
+               "branch), points.csv (label,parameter,value,state,period,"
+               "multiplier,multipliers,coefficient,theta,residual,error,"
+               "iterations,method,note), branch-points.csv, "
+               "branch-orbits.csv, summary.txt, branch.gp/png",
     .job_size = sizeof(branch_job),
     .prepare = branch_prepare,
     .compute = branch_compute,
