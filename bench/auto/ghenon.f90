@@ -2,8 +2,9 @@
 ! Henon map (x, y) -> (y, alpha - beta x - y^2 + R x y), as slipcont's
 ! model "ghenon" (PAR(1) = alpha, PAR(2) = beta, PAR(3) = R), for the
 ! comparison of docs/performance.md, "Beside AUTO-07p: ghenon"
-! (run_ghenon.py).  The start is the fixed point x = y = s = -3 at
-! beta = 1.2, R = 0.5, alpha = (1 - R) s^2 + (1 + beta) s = -2.1.
+! (run_ghenon.py).  The start is the fixed point x = y = s = -5.64 at
+! alpha = 3.5, beta = 1.2, R = 0.5 (the lower root of
+! (1 - R) s^2 + (1 + beta) s = alpha), where slipcont starts too.
 !
 ! Its fixed points are x = y = s with (1 - R) s^2 + (1 + beta) s = alpha;
 ! the Jacobian there has trace (R - 2) s and determinant beta - R s, so
@@ -56,10 +57,12 @@ SUBROUTINE STPNT(NDIM, U, PAR, T)
   DOUBLE PRECISION, INTENT(INOUT) :: U(NDIM), PAR(*)
   DOUBLE PRECISION, INTENT(IN) :: T
   DOUBLE PRECISION :: S
-  S = -3D0
+  PAR(1) = 3.5D0
   PAR(2) = 1.2D0
   PAR(3) = 0.5D0
-  PAR(1) = (1 - PAR(3)) * S**2 + (1 + PAR(2)) * S
+  ! the root s < -(1 + beta) / (2 (1 - R)) of the fixed-point equation
+  S = (-(1 + PAR(2)) - SQRT((1 + PAR(2))**2 + 4 * (1 - PAR(3)) * PAR(1))) &
+      / (2 * (1 - PAR(3)))
   U(1) = S
   U(2) = S
 END SUBROUTINE STPNT

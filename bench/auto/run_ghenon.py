@@ -159,6 +159,7 @@ def auto_all(work, step=STEP):
     base = open(os.path.join(work, "c.ghenon")).read()
     wall, tt, rows, special = auto(work, base)
     res.wall, res.total, res.points, res.runs = wall, tt, len(rows), 1
+    res.branch_points = len(rows)
     labs = {}
     for label, row in special:
         labs.setdefault(label, row)
@@ -236,9 +237,61 @@ def ms(x):
     return "%.3g ms" % (1e3 * x)
 
 
+def slipcont_parse(out):
+    """slipcont's results from ghenon_bench's lines: branch {label:
+    (alpha, error, residual, coefficient)}, curves {name: (points,
+    worst)}, specials [(curve, label, alpha, beta, residual)]."""
+    branch, curves, special = {}, {}, []
+    for line in out.splitlines():
+        w = line.split()
+        if w[:1] == ["branch"]:
+            branch[w[1]] = (float(w[2]), float(w[4]), float(w[6]), float(w[8]))
+        elif w[:1] == ["curve"]:
+            curves[w[1]] = (int(w[3]), float(w[5]))
+        elif w[:1] == ["special"]:
+            special.append((w[1], w[2], float(w[3]), float(w[4]), float(w[6])))
+    return branch, curves, special
+
+
+def nearest_ab(alpha, beta):
+    """The codimension-two point nearest to (alpha, beta) and the
+    distance max(|alpha - alpha*|, |beta - beta*|)."""
+    name, a, b = min(CODIM2, key=lambda c: max(abs(alpha - c[1]),
+                                                 abs(beta - c[2])))
+    return name, max(abs(alpha - a), abs(beta - b))
+
+
+def report_both(a, s_out):
+    branch, curves, special = slipcont_parse(s_out)
+    print("| branch point | exact alpha | slipcont | error | residual | AUTO written | error | AUTO's own error (PVLS) |")
+    print("|---|---|---|---|---|---|---|---|")
+    for (label, exact, _), sl in zip(BRANCH, ("LP", "NS", "PD")):
+        w, e = a.branch[label]
+        p, err, res, _ = branch[sl]
+        print("| %s | %.17g | %.17g | %.2g | %.2g | %.11g | %.2g | %.2g |"
+              % (sl, exact, p, err, res, w, abs(w - exact), e))
+    print("\n| curve | slipcont points | largest alpha - closed form | "
+          "AUTO points | AUTO (PVLS) | AUTO written |")
+    print("|---|---|---|---|---|---|")
+    for name, _, _, _ in CURVES:
+        worst, written, _, npts = a.curve[name]
+        sp, sw = curves[name]
+        print("| %s | %d | %.2g | %d | %.2g | %.2g |"
+              % (name, sp, sw, npts, worst, written))
+    print("\nslipcont's points of codimension two (the distance from the "
+          "nearest of the table's, max(|alpha - alpha*|, |beta - beta*|)):\n")
+    print("| curve | label | alpha | beta | residual | nearest | distance |")
+    print("|---|---|---|---|---|---|---|")
+    for name, label, al, be, res in special:
+        c, d = nearest_ab(al, be)
+        print("| %s | %s | %.17g | %.17g | %.2g | %s | %.2g |"
+              % (name, label, al, be, res, c, d))
+    print()
+
+
 def report_auto(a, t, rounds):
     print("AUTO-07p: %d runs (the branch, then each curve both ways), %d "
-          "points.\n" % (a.runs, a.points))
+          "points (%d on the branch).\n" % (a.runs, a.points, a.branch_points))
     print("| point | exact alpha | AUTO written | error | AUTO's own error (PVLS) |")
     print("|---|---|---|---|---|")
     for label, exact, _ in BRANCH:
@@ -309,6 +362,8 @@ def main():
             print("| %s | (not built) | %s | | -, %s |"
                   % (how, ms(med(t[x])), ms(min(t[x]))))
     print()
+    if bench:
+        report_both(a, s_out)
     report_auto(a, t, rounds)
     if bench:
         print("slipcont (%s once), its last round:\n" % os.path.basename(bench))

@@ -43,4 +43,11 @@ cp "$HERE/ghenon.f90" "$HERE/c.ghenon" "$WORK/"
   cat "$WORK/build.log" >&2
   exit 1
 }
-python3 "$HERE/run_ghenon.py" "$WORK" "$ROUNDS"
+gcc -O2 -std=c11 -I"$ROOT/include" -I"$ROOT/bench" "$HERE/ghenon_bench.c" \
+  "$BUILD/libslipcont.a" -lklu -lamd -lcolamd -lbtf -lsuitesparseconfig \
+  -lslicot -llapack -lblas -lgsl -lgslcblas -linih -lquadmath -lgfortran \
+  -fopenmp -lm -o "$WORK/ghenon_bench"
+echo "slipcont warm, in one process (median of 50):"
+"$WORK/ghenon_bench" repeat 50 | tail -1
+echo
+python3 "$HERE/run_ghenon.py" "$WORK" "$ROUNDS" "$WORK/ghenon_bench"
