@@ -48,6 +48,16 @@ grep -q "period 12: 19 orbits (0 stable)" "$TMP/ex/summary.txt"
 check "henon: the summary counts per period" test $? -eq 0
 grep -q "failed [0-9]* (no" "$TMP/ex/summary.txt"
 check "henon: failed starts grouped by reason" test $? -eq 0
+# The plot script (written with plot = no too): the plane, coloured by
+# period, stable filled (pt 7), unstable open (pt 6).
+expect_header "henon: fixed-point-orbits.csv" "$TMP/ex/fixed-point-orbits.csv" \
+  "x1,x2,stable,orbit,period"
+for w in "lc palette" "pt 7" "pt 6" "set cbrange [0.5:12.5]"; do
+  grep -qF "$w" "$TMP/ex/fixed-point.gp"
+  check "henon: fixed-point.gp has '$w'" test $? -eq 0
+done
+check "henon: one plotted point per orbit point" \
+  test "$(data_rows "$TMP/ex/fixed-point-orbits.csv")" -eq "$(awk -F, 'NR > 1 {s += $1 * $2} END {print s}' "$TMP/ex/periods.csv")"
 
 # A start alone: Newton from d0, no box.
 cat >"$TMP/d0.ini" <<'INI'
