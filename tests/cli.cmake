@@ -7,12 +7,13 @@ sc_add_test(test_plot)
 # The program itself, through small shell scripts: refusals of bad input,
 # overrides, outputs, the examples, and the guide's key tables.
 foreach(script cli_errors cli_refusals cli_signals cli_steps cli_outputs cli_examples cli_guide
-               cli_messages cli_inputs cli_fixed_point cli_fixed_point_n cli_branch_n)
+               cli_messages cli_inputs cli_fixed_point cli_fixed_point_n cli_branch_n
+               cli_mapn)
   add_test(NAME ${script}
     COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/${script}.sh
             $<TARGET_FILE:slipcont_cli> ${PROJECT_SOURCE_DIR})
 endforeach()
-set_tests_properties(cli_examples PROPERTIES TIMEOUT 300)
+set_tests_properties(cli_examples cli_mapn PROPERTIES TIMEOUT 300)
 # The Henon example searches periods 1..12 from 1441 starts each: about
 # 3 s of processor time, 167 s of wall time under the sanitizers on the
 # shared 2-core machine at load 19: the limit is for a hang.

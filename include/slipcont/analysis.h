@@ -78,6 +78,10 @@ typedef struct {
    * SC_ECALLBACK.  May be NULL. */
   int (*progress)(void *ctx, size_t done, size_t total);
   void *progress_ctx; /**< passed to progress */
+  /** A map of n > 1 components: the initial state's n values (copied by
+   * sc_sweep_alloc()); NULL starts every component at d0.  Unused for
+   * n = 1. */
+  const double *x0;
 } sc_sweep_spec;
 
 /** Status of a point whose map was undefined (written as period -1). */
@@ -95,9 +99,10 @@ typedef struct {
                          0 none (SC_PERIOD_HIGH); SC_PERIOD_UNSETTLED (-2)
                          still converging;
                          SC_SWEEP_UNDEFINED if status != SC_OK */
-  const double *d;  /**< the kept iterates (keep of them), or NULL when
-                         status != SC_OK */
+  const double *d;  /**< the kept iterates (keep of them, each of dim
+                         components), or NULL when status != SC_OK */
   int nd;           /**< number of kept iterates (0 when undefined) */
+  size_t dim;       /**< components of a state (the map's n) */
 } sc_sweep_point;
 
 /** A prepared sweep and its results (opaque; sc_sweep_alloc()). */

@@ -55,6 +55,11 @@ struct sc_sweep {
   int pass_dir[2];
   sc_map **maps;
   sc_period **pds;      /* per map: the period detector (period.h) */
+  size_t dim;           /* state components; n > 1 uses the next ones */
+  sc_periodn **pdns;    /* per map: the detector of states */
+  sc_mapn_value **vals; /* per map: an evaluation's storage */
+  double *x0n;          /* the initial state (dim) */
+  double *xs;           /* per map: a state and the next seed (2 dim) */
   int nmaps;
   unsigned long evals0; /* map evaluations of the clones before the run */
   double *d;            /* npoints * keep */
@@ -74,8 +79,14 @@ void sc_sweep_free(sc_sweep *s) {
   if (!s) return;
   for (int i = 0; s->maps && i < s->nmaps; i++) sc_map_free(s->maps[i]);
   for (int i = 0; s->pds && i < s->nmaps; i++) sc_period_free(s->pds[i]);
+  for (int i = 0; s->pdns && i < s->nmaps; i++) sc_periodn_free(s->pdns[i]);
+  for (int i = 0; s->vals && i < s->nmaps; i++) sc_mapn_value_free(s->vals[i]);
   free(s->maps);
   free(s->pds);
+  free(s->pdns);
+  free(s->vals);
+  free(s->x0n);
+  free(s->xs);
   free(s->d);
   free(s->status);
   free(s->period);
@@ -124,8 +135,9 @@ int sc_sweep_alloc(const sc_map *m, const sc_sweep_spec *sp, sc_sweep **out,
   s->pass_dir[0] = sp->direction == SC_SWEEP_DOWN ? SC_SWEEP_DOWN : SC_SWEEP_UP;
   s->pass_dir[1] = SC_SWEEP_DOWN;
   s->npoints = sp->steps * (size_t)s->npasses;
+  s->dim = sc_map_dim(m);
   if (s->npoints / (size_t)s->npasses != sp->steps ||
-      s->npoints > ((size_t)-1) / sizeof(double) / (size_t)sp->keep)
+      s->npoints > ((size_t)-1) / sizeof(double) / (size_t)sp->keep / s->dim)
     goto nomem;
   s->nmaps = 1;
 #ifdef _OPENMP
@@ -136,17 +148,39 @@ int sc_sweep_alloc(const sc_map *m, const sc_sweep_spec *sp, sc_sweep **out,
   s->pds = calloc((size_t)s->nmaps, sizeof *s->pds);
   s->first_undef = calloc((size_t)s->nmaps, sizeof *s->first_undef);
   s->undef_msg = calloc((size_t)s->nmaps, sizeof *s->undef_msg);
-  s->d = malloc(s->npoints * (size_t)sp->keep * sizeof *s->d);
+  s->d = malloc(s->npoints * (size_t)sp->keep * s->dim * sizeof *s->d);
   s->status = calloc(s->npoints, sizeof *s->status);
   s->period = calloc(s->npoints, sizeof *s->period);
   if (!s->maps || !s->pds || !s->first_undef || !s->undef_msg || !s->d ||
       !s->status || !s->period)
     goto nomem;
+  if (s->dim > 1) {
+    s->pdns = calloc((size_t)s->nmaps, sizeof *s->pdns);
+    s->vals = calloc((size_t)s->nmaps, sizeof *s->vals);
+    s->x0n = malloc(s->dim * sizeof *s->x0n);
+    s->xs = malloc(2 * (size_t)s->nmaps * s->dim * sizeof *s->xs);
+    if (!s->pdns || !s->vals || !s->x0n || !s->xs) goto nomem;
+    for (size_t k = 0; k < s->dim; k++) {
+      s->x0n[k] = sp->x0 ? sp->x0[k] : sp->d0;
+      if (!isfinite(s->x0n[k])) {
+        sc_sweep_free(s);
+        return sc_fail(msg, SC_EINVAL,
+                       "sc_sweep_alloc: d0 component %zu = %g is not finite",
+                       k + 1, sp->x0 ? sp->x0[k] : sp->d0);
+      }
+    }
+  }
   for (int i = 0; i < s->nmaps; i++) {
     int st = sc_map_clone(m, &s->maps[i], msg);
-    if (!st)
+    if (!st && s->dim == 1)
       st = sc_period_alloc(SC_SWEEP_PERIOD_MAX, SC_PERIOD_DEFAULT_CONFIRM,
                            sc_map_accuracy(m)->period_rtol, &s->pds[i], msg);
+    if (!st && s->dim > 1)
+      st = sc_periodn_alloc(s->dim, SC_SWEEP_PERIOD_MAX,
+                            SC_PERIOD_DEFAULT_CONFIRM,
+                            sc_map_accuracy(m)->period_rtol, &s->pdns[i], msg);
+    if (!st && s->dim > 1)
+      st = sc_mapn_value_alloc(m, SC_EVAL_VALUE, &s->vals[i], msg);
     if (st) {
       sc_sweep_free(s);
       return st;
@@ -188,7 +222,8 @@ int sc_sweep_get_point(const sc_sweep *s, size_t i, sc_sweep_point *pt) {
   pt->status = s->status[i];
   pt->period = s->period[i];
   pt->nd = s->status[i] ? 0 : s->spec.keep;
-  pt->d = s->status[i] ? NULL : s->d + i * (size_t)s->spec.keep;
+  pt->d = s->status[i] ? NULL : s->d + i * (size_t)s->spec.keep * s->dim;
+  pt->dim = s->dim;
   return SC_OK;
 }
 
@@ -243,24 +278,81 @@ static int compute_point(sc_sweep *s, int t, size_t i, double x0,
   return SC_OK;
 }
 
+/* compute_point() for a map of n > 1 components: from the state @p x0,
+ * the final state into @p xend (NaN where the map failed). */
+static int compute_point_n(sc_sweep *s, int t, size_t i, const double *x0,
+                           double *xend, sc_msg *msg) {
+  const sc_sweep_spec *sp = &s->spec;
+  const size_t n = s->dim;
+  sc_map *m = s->maps[t];
+  sc_mapn_value *v = s->vals[t];
+  int dir;
+  int st = sc_map_set_param(m, sp->param, point_value(s, i, &dir), msg);
+  if (st) return st;
+  double *keep = s->d + i * (size_t)sp->keep * n;
+  int first_kept = sp->iterations - sp->keep;
+  const double *x = x0;
+  int k, period = 0;
+  sc_periodn_reset(s->pdns[t], x0);
+  for (k = 0; k < sp->iterations; k++) {
+    st = sc_map_eval_n(m, x, SC_EVAL_VALUE, v, msg);
+    if (st) break;
+    x = v->f;
+    period = sc_periodn_push(s->pdns[t], x);
+    if (k >= first_kept)
+      memcpy(keep + (size_t)(k - first_kept) * n, x, n * sizeof *x);
+  }
+  if (st) {
+    s->status[i] = st;
+    s->period[i] = SC_SWEEP_UNDEFINED;
+    if (!recoverable(st)) return st;
+    if (i < s->first_undef[t]) {
+      s->first_undef[t] = i;
+      sc_fail(&s->undef_msg[t], st, "%s = %.17g, iterate %d from (%.17g, "
+              "...): %.400s",
+              sc_map_type(m)->params[sp->param].name,
+              sc_map_get_param(m, sp->param), k + 1, x0[0], msg->text);
+    }
+    for (size_t c = 0; c < n; c++) xend[c] = NAN;
+    return SC_OK;
+  }
+  s->status[i] = SC_OK;
+  if (!period && sc_periodn_settling(s->pdns[t])) period = SC_PERIOD_UNSETTLED;
+  s->period[i] = period;
+  memcpy(xend, x, n * sizeof *x);
+  return SC_OK;
+}
+
+/* Point @p i on map @p t from the state @p x0 (dim values; the map's
+ * own path for n = 1), the final state into @p xend. */
+static int compute_any(sc_sweep *s, int t, size_t i, const double *x0,
+                       double *xend, sc_msg *msg) {
+  if (s->dim > 1) return compute_point_n(s, t, i, x0, xend, msg);
+  return compute_point(s, t, i, x0[0], xend, msg);
+}
+
 static int report_progress(sc_sweep *s) {
   if (!s->spec.progress) return 0;
   return s->spec.progress(s->spec.progress_ctx, s->done, s->npoints);
 }
 
 static int run_previous(sc_sweep *s, sc_msg *msg) {
-  double x = s->spec.d0;
+  const size_t n = s->dim;
+  double x1 = s->spec.d0, xe1;
+  /* the state and the next seed: scalars for n = 1 */
+  double *x = n > 1 ? s->xs : &x1, *xend = n > 1 ? s->xs + n : &xe1;
+  const double *x0 = n > 1 ? s->x0n : &s->spec.d0;
+  memcpy(x, x0, n * sizeof *x);
   sc_msg m;
   for (size_t i = 0; i < s->npoints; i++) {
-    double xend;
-    int st = compute_point(s, 0, i, isfinite(x) ? x : s->spec.d0, &xend, &m);
+    int st = compute_any(s, 0, i, isfinite(x[0]) ? x : x0, xend, &m);
     if (st) {
       int dir;
       return sc_fail(msg, st, "sweep at %s = %.17g: %s",
                      sc_map_type(s->maps[0])->params[s->spec.param].name,
                      point_value(s, i, &dir), m.text);
     }
-    x = xend;
+    memcpy(x, xend, n * sizeof *x);
     s->done = i + 1;
     if (report_progress(s))
       return sc_fail(msg, SC_ECALLBACK, "sweep stopped by its progress callback");
@@ -289,8 +381,10 @@ static int run_fixed(sc_sweep *s, sc_msg *msg) {
 #endif
       stop = s->stop;
       if (stop) continue;
-      double xend;
-      int st = compute_point(s, t, (size_t)i, s->spec.d0, &xend, &m);
+      double xe1;
+      double *xend = s->dim > 1 ? s->xs + 2 * (size_t)t * s->dim : &xe1;
+      int st = compute_any(s, t, (size_t)i, s->dim > 1 ? s->x0n : &s->spec.d0,
+                           xend, &m);
 #ifdef _OPENMP
 #pragma omp critical /* unnamed: no exported lock symbol */
 #endif

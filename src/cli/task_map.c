@@ -12,10 +12,11 @@
 static const sc_key_info map_keys[] = {
     {"iterate", SC_KEY_INT, 0, "1", 1, 1000, 0, 0, NULL,
      "n: the map drawn is f^n, the n-th iterate"},
-    {"from", SC_KEY_REAL, 1, NULL, -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
-     "first state of the grid (bk2: d = Y2 - Y1)"},
-    {"to", SC_KEY_REAL, 1, NULL, -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
-     "last state of the grid"},
+    {"from", SC_KEY_STATE, 1, NULL, -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
+     "first state of the grid (bk2: d = Y2 - Y1; n > 1 components: the "
+     "segment's first end, 0.1 -0.2)"},
+    {"to", SC_KEY_STATE, 1, NULL, -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
+     "last state of the grid (n > 1: the segment's other end)"},
     {"steps", SC_KEY_INT, 0, "1001", 1, 100000000, 0, 0, NULL,
      "grid points, both ends included (1: from only)"},
 };
@@ -65,6 +66,9 @@ static void add_point(map_pieces *ps, double d, double f, const char *itin) {
 /* One map run: the grid, and what the summary says about it. */
 typedef struct {
   int n;                 /* the iterate drawn, f^n */
+  size_t dim;            /* state components; > 1: a segment of states */
+  double *xf, *xt;       /* dim > 1: the segment's ends */
+  double *flo_n, *fhi_n; /* dim > 1: each component's range */
   double from, to;
   size_t steps;
   size_t nok, nundef, nfailed;
@@ -109,6 +113,20 @@ static int map_prepare(sc_cli_run *r, void *job) {
   const sc_scene *s = r->scene;
   sc_map *m = r->map;
   j->n = (int)sc_scene_int(s, "iterate");
+  j->dim = sc_map_dim(m);
+  if (j->dim > 1) {
+    j->xf = malloc(4 * j->dim * sizeof *j->xf);
+    if (!j->xf) return sc_fail(r->msg, SC_ENOMEM, "map: out of memory");
+    j->xt = j->xf + j->dim;
+    j->flo_n = j->xt + j->dim;
+    j->fhi_n = j->flo_n + j->dim;
+    sc_scene_state(s, "from", j->xf, j->dim);
+    sc_scene_state(s, "to", j->xt, j->dim);
+    for (size_t i = 0; i < j->dim; i++)
+      j->flo_n[i] = HUGE_VAL, j->fhi_n[i] = -HUGE_VAL;
+    j->steps = (size_t)sc_scene_int(s, "steps");
+    return SC_OK;
+  }
   j->from = sc_scene_real(s, "from");
   j->to = sc_scene_real(s, "to");
   j->steps = (size_t)sc_scene_int(s, "steps");
@@ -161,8 +179,64 @@ static int map_point(sc_cli_run *r, map_job *j, FILE *f, double d) {
   return SC_OK;
 }
 
+/* A map of n > 1 components: f^n at the states x(t) = from + t (to -
+ * from), t on steps points of [0, 1], into map.csv (t, the state, f^n's
+ * components, itinerary, status). */
+static int map_compute_n(sc_cli_run *r, map_job *j) {
+  const size_t n = j->dim;
+  sc_mapn_value *v = NULL;
+  double x[SC_MAXDIM];
+  int st = sc_mapn_value_alloc(r->map, SC_EVAL_VALUE, &v, r->msg);
+  sc_file *csv = NULL;
+  if (!st) st = sc_cli_open(r, "map.csv", &csv);
+  if (st) {
+    sc_mapn_value_free(v);
+    return st;
+  }
+  FILE *f = sc_file_stream(csv);
+  fputs("t,", f);
+  sc_csv_state_header(f, r->map, "");
+  fputc(',', f);
+  sc_csv_state_header(f, r->map, "f_");
+  fputs(",itinerary,status\n", f);
+  for (size_t i = 0; i < j->steps && !st; i++) {
+    if ((st = sc_cli_stop(r))) break;
+    double t = j->steps > 1 ? sc_grid_point(0, 1, j->steps, i) : 0;
+    for (size_t c = 0; c < n; c++) x[c] = j->xf[c] + t * (j->xt[c] - j->xf[c]);
+    sc_msg em;
+    int e = sc_map_iterate_n(r->map, x, j->n, SC_EVAL_ITINERARY, v, &em);
+    sc_csv_double(f, t);
+    fputc(',', f);
+    sc_csv_state(f, x, n);
+    if (e == SC_ENOMEM) {
+      st = sc_fail(r->msg, e, "map at t = %.17g: %s", t, em.text);
+      break;
+    }
+    if (e) {
+      if (!j->nundef)
+        snprintf(j->first_reason, sizeof j->first_reason, "at t = %.17g: %.400s",
+                 t, em.text);
+      j->nundef++;
+      for (size_t c = 0; c < n; c++) fputs(",nan", f);
+      fprintf(f, ",,%s\n", sc_cli_csv_text(em.text));
+      continue;
+    }
+    fputc(',', f);
+    sc_csv_state(f, v->f, n);
+    fprintf(f, ",%s,ok\n", sc_cli_csv_text(v->itinerary));
+    for (size_t c = 0; c < n; c++) {
+      j->flo_n[c] = fmin(j->flo_n[c], v->f[c]);
+      j->fhi_n[c] = fmax(j->fhi_n[c], v->f[c]);
+    }
+    j->nok++;
+  }
+  sc_mapn_value_free(v);
+  return st ? st : sc_cli_commit(r, "map.csv", csv);
+}
+
 static int map_compute(sc_cli_run *r, void *job) {
   map_job *j = job;
+  if (j->dim > 1) return map_compute_n(r, j);
   sc_file *csv = NULL;
   int st = sc_cli_open(r, "map.csv", &csv);
   if (st) return st;
@@ -180,9 +254,28 @@ static int map_compute(sc_cli_run *r, void *job) {
   return st ? st : sc_cli_commit(r, "map.csv", csv);
 }
 
+/* The summary of a segment of states. */
+static void map_summary_n(sc_cli_run *r, const map_job *j, FILE *f) {
+  char c[32];
+  fprintf(f, "  f^%d evaluated at %zu states from (", j->n, j->steps);
+  sc_csv_points(f, j->xf, 1, j->dim);
+  fputs(") to (", f);
+  sc_csv_points(f, j->xt, 1, j->dim);
+  fprintf(f, "): %zu defined, %zu undefined\n", j->nok, j->nundef);
+  for (size_t i = 0; j->nok && i < j->dim; i++)
+    fprintf(f, "  range of component %s of f^%d: [%.17g, %.17g]\n",
+            sc_map_state_component(r->map, i, c, sizeof c), j->n,
+            j->flo_n[i], j->fhi_n[i]);
+  if (j->nundef) fprintf(f, "  first undefined point %s\n", j->first_reason);
+}
+
 static int map_summary(sc_cli_run *r, void *job, FILE *f) {
   const map_job *j = job;
   int n = j->n;
+  if (j->dim > 1) {
+    map_summary_n(r, j, f);
+    return SC_OK;
+  }
   fprintf(f, "  f^%d evaluated at %zu points: %zu defined, %zu undefined\n", n,
           j->steps, j->nok, j->nundef);
   if (j->nok) fprintf(f, "  range of f^%d: [%.17g, %.17g]\n", n, j->flo, j->fhi);
@@ -208,10 +301,38 @@ static int map_summary(sc_cli_run *r, void *job, FILE *f) {
   return SC_OK;
 }
 
+/* The components of f^n along the segment, against t. */
+static int map_plots_n(sc_cli_run *r, const map_job *j) {
+  static const char *const rgb[] = {"#1f4e9e", "#d62728", "#2ca02c",
+                                    "#9467bd", "#ff7f0e", "#17becf"};
+  sc_map *m = r->map;
+  char title[512], c[32], key[64];
+  sc_plot_title(m, NULL, title, sizeof title);
+  sc_file *gp = NULL;
+  int st = sc_cli_plot_begin(r, "map", title,
+                             "t (the state from + t (to - from))",
+                             j->n == 1 ? "f" : "f^n", &gp);
+  if (st) return st;
+  FILE *f = sc_file_stream(gp);
+  fputs("set xrange [0:1]\nplot ", f);
+  for (size_t i = 0; i < j->dim; i++) {
+    /* columns: t, the n components of the state, those of f^n */
+    fprintf(f, "%s'map.csv' skip 1 using 1:%zu with points pt 7 ps 0.35 "
+               "lc rgb '%s' title ",
+            i ? ", \\\n     " : "", 2 + j->dim + i, rgb[i % 6]);
+    snprintf(key, sizeof key, "component %s",
+             sc_map_state_component(m, i, c, sizeof c));
+    sc_plot_quote(f, key);
+  }
+  fputc('\n', f);
+  return sc_cli_plot_end(r, "map", gp);
+}
+
 static int map_plots(sc_cli_run *r, void *job) {
   const map_job *j = job;
   sc_map *m = r->map;
   char title[512], ylabel[64];
+  if (j->dim > 1) return map_plots_n(r, j);
   const char *state = sc_map_type(m)->state_name;
   if (j->n == 1) snprintf(ylabel, sizeof ylabel, "f(%s)", state);
   else snprintf(ylabel, sizeof ylabel, "f^{%d}(%s)", j->n, state);
@@ -297,6 +418,7 @@ static void map_release(sc_cli_run *r, void *job) {
   map_job *j = job;
   (void)r;
   free(j->pieces);
+  free(j->xf);
 }
 
 const sc_cli_task sc_cli_task_map = {
@@ -306,8 +428,9 @@ const sc_cli_task sc_cli_task_map = {
              .keys = map_keys,
              .nkeys = sizeof map_keys / sizeof map_keys[0],
              .check = NULL},
-    .outputs = "map.csv (d,f,df,itinerary,status), summary.txt, map.gp, "
-               "map.png",
+    .outputs = "map.csv (d,f,df,itinerary,status; n > 1: t,d1..dn,"
+               "f_d1..f_dn,itinerary,status along the segment from-to), "
+               "summary.txt, map.gp, map.png",
     .job_size = sizeof(map_job),
     .prepare = map_prepare,
     .compute = map_compute,

@@ -1,5 +1,6 @@
 /* Task `orbit`: iterate the map from d0 and, for models with continuous
  * motion (bk2), follow the motion itself (fig 5.4). */
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -7,6 +8,8 @@
 
 #include "cli/tasks.h"
 #include "slipcont/analysis.h"
+#include "slipcont/linalg.h"
+#include "slipcont/period.h"
 
 static const sc_key_info orbit_keys[] = {
     {"d0", SC_KEY_STATE, 1, NULL, -HUGE_VAL, HUGE_VAL, 1, 1, NULL,
@@ -106,7 +109,8 @@ static double stuck_velocity(const sc_map *m) {
  * itineraries (a ring), where the map failed, the trajectory's extent. */
 typedef struct {
   long n;        /* iterations */
-  double *d;     /* d[0..n]; d[0..k] are defined */
+  size_t dim;    /* state components (the map's n); > 1: d holds states */
+  double *d;     /* d[0..n] (states d[k dim ..]); d[0..k] are defined */
   long k;        /* iterates done */
   double dfdd[ORBIT_TAIL];
   int neutral[ORBIT_TAIL];
@@ -119,12 +123,54 @@ typedef struct {
 static int orbit_prepare(sc_cli_run *r, void *job) {
   orbit_job *j = job;
   j->n = sc_scene_int(r->scene, "iterations");
-  j->d = malloc((size_t)(j->n + 1) * sizeof *j->d);
+  j->dim = sc_map_dim(r->map);
+  j->d = malloc((size_t)(j->n + 1) * j->dim * sizeof *j->d);
   j->itin = calloc(ORBIT_TAIL, sizeof *j->itin);
   if (!j->d || !j->itin)
     return sc_fail(r->msg, SC_ENOMEM, "orbit: out of memory");
-  j->d[0] = sc_scene_real(r->scene, "d0");
+  if (j->dim > 1) sc_scene_state(r->scene, "d0", j->d, j->dim);
+  else j->d[0] = sc_scene_real(r->scene, "d0");
   return SC_OK;
+}
+
+/* The iterates of a map of n > 1 components into orbit.csv (k, the
+ * components, itinerary), up to the first where the map fails. */
+static int orbit_iterate_n(sc_cli_run *r, orbit_job *j) {
+  const size_t n = j->dim;
+  sc_mapn_value *v = NULL;
+  int st = sc_mapn_value_alloc(r->map, SC_EVAL_VALUE, &v, r->msg);
+  sc_file *csv = NULL;
+  if (!st) st = sc_cli_open(r, "orbit.csv", &csv);
+  if (st) {
+    sc_mapn_value_free(v);
+    return st;
+  }
+  FILE *f = sc_file_stream(csv);
+  fputs("k,", f);
+  sc_csv_state_header(f, r->map, "");
+  fputs(",itinerary\n", f);
+  for (j->k = 0; j->k < j->n; j->k++) {
+    long k = j->k;
+    const double *x = j->d + (size_t)k * n;
+    if ((st = sc_cli_stop(r))) break;
+    j->fail = sc_map_eval_n(r->map, x, SC_EVAL_ITINERARY, v, &j->em);
+    fprintf(f, "%ld,", k);
+    sc_csv_state(f, x, n);
+    if (j->fail) {
+      fputs(",undefined\n", f);
+      break;
+    }
+    fprintf(f, ",%s\n", sc_cli_csv_text(v->itinerary));
+    memcpy(j->d + (size_t)(k + 1) * n, v->f, n * sizeof *v->f);
+  }
+  sc_mapn_value_free(v);
+  if (st) return st;
+  if (!j->fail) {
+    fprintf(f, "%ld,", j->n);
+    sc_csv_state(f, j->d + (size_t)j->n * n, n);
+    fputs(",\n", f);
+  }
+  return sc_cli_commit(r, "orbit.csv", csv);
 }
 
 /* The iterates into orbit.csv, up to the first where the map fails. */
@@ -197,16 +243,134 @@ static int orbit_trajectory(sc_cli_run *r, orbit_job *j) {
 
 static int orbit_compute(sc_cli_run *r, void *job) {
   orbit_job *j = job;
+  if (j->dim > 1) return orbit_iterate_n(r, j);
   int st = orbit_iterate(r, j);
   if (!st && !j->fail && sc_scene_flag(r->scene, "trajectory"))
     st = orbit_trajectory(r, j);
   return st;
 }
 
+/* The period of the @p nt states x[0..nt-1] of n components: period.h's
+ * rule on states (sc_periodn) with one confirmation cycle, as
+ * sc_sweep_period() does for one component; states at rest to rtol of
+ * their size are period 1.  0: none up to SC_SWEEP_PERIOD_MAX; -1: no
+ * detector. */
+static int tail_period_n(const double *x, size_t nt, size_t n, double rtol) {
+  double ext = 0, amax = 0;
+  for (size_t i = 0; i < n; i++) {
+    double lo = x[i], hi = x[i];
+    for (size_t k = 0; k < nt; k++) {
+      lo = fmin(lo, x[k * n + i]);
+      hi = fmax(hi, x[k * n + i]);
+      amax = fmax(amax, fabs(x[k * n + i]));
+    }
+    ext = fmax(ext, hi - lo);
+  }
+  if (ext <= rtol * amax + SC_PERIOD_FLOOR_ULPS * DBL_EPSILON * amax) return 1;
+  int pm = SC_SWEEP_PERIOD_MAX < (int)(nt / 2) ? SC_SWEEP_PERIOD_MAX
+                                                : (int)(nt / 2);
+  if (pm < 1) return 0;
+  sc_periodn *pd;
+  if (sc_periodn_alloc(n, pm, 1, rtol, &pd, NULL)) return -1;
+  sc_periodn_reset(pd, x);
+  int p = 0;
+  for (size_t k = 1; k < nt && !p; k++) p = sc_periodn_push(pd, x + k * n);
+  sc_periodn_free(pd);
+  return p;
+}
+
+/* The multipliers of the period-p orbit through the states pts[0..p-1]:
+ * the eigenvalues of the product of the p Jacobians (sc_product_eigs(),
+ * without forming the product), by decreasing modulus, into re, im. */
+static int orbit_multipliers(sc_map *m, const double *pts, int p, size_t n,
+                             double *re, double *im, sc_msg *msg) {
+  sc_mapn_value *v = NULL;
+  double *J = malloc((size_t)p * n * n * sizeof *J);
+  const double **A = malloc((size_t)p * sizeof *A);
+  int st = J && A ? sc_mapn_value_alloc(m, SC_EVAL_DERIV, &v, msg)
+                  : sc_fail(msg, SC_ENOMEM, "orbit: out of memory");
+  for (int k = 0; k < p && !st; k++) {
+    st = sc_map_eval_n(m, pts + (size_t)k * n, SC_EVAL_DERIV, v, msg);
+    if (!st) memcpy(J + (size_t)k * n * n, v->J, n * n * sizeof *J);
+    A[k] = J + (size_t)k * n * n;
+  }
+  if (!st) st = sc_product_eigs(n, (size_t)p, A, re, im, msg);
+  sc_mapn_value_free(v);
+  free(J);
+  free(A);
+  return st;
+}
+
+/* Points of the tail the invariant-circle test looks at, at most. */
+#define ORBIT_CIRCLE_TAIL SC_CIRCLE_POINTS
+
+/* Findings of a map of n > 1 components: the period of the tail and, for
+ * a periodic orbit, its points and multipliers; with no period, whether
+ * the tail lies on an invariant circle. */
+static void orbit_summary_n(sc_cli_run *r, const orbit_job *j, FILE *f) {
+  const size_t n = j->dim;
+  const double *d = j->d;
+  long last = j->k;
+  long nt = (last + 1) / 2 < ORBIT_TAIL ? (last + 1) / 2 : ORBIT_TAIL;
+  if (nt < 1) nt = 1;
+  const double *tail = d + (size_t)(last + 1 - nt) * n;
+  double rtol = sc_map_accuracy(r->map)->period_rtol;
+  int p = tail_period_n(tail, (size_t)nt, n, rtol);
+  fputs("  final state: ", f);
+  sc_csv_points(f, d + (size_t)last * n, 1, n);
+  fprintf(f, " after %ld iterates\n", last);
+  if (p > 0) {
+    double re[SC_MAXDIM], im[SC_MAXDIM];
+    sc_msg em;
+    fprintf(f, "  period of the last %ld iterates: %d\n", nt, p);
+    for (long k = last - p; k < last; k++) {
+      fputs("    ", f);
+      sc_csv_points(f, d + (size_t)k * n, 1, n);
+      fputc('\n', f);
+    }
+    if (orbit_multipliers(r->map, d + (size_t)(last - p) * n, p, n, re, im,
+                          &em)) {
+      fprintf(f, "  multipliers: not computed (%s)\n", sc_cli_user_text(em.text));
+      return;
+    }
+    fprintf(f, "  multipliers (eigenvalues of the product of the %d "
+               "Jacobians, by decreasing modulus): ", p);
+    sc_csv_multipliers(f, re, im, n);
+    fprintf(f, " (%s)\n", hypot(re[0], im[0]) < 1 ? "stable" : "unstable");
+    return;
+  }
+  long nc = (last + 1) / 2 < ORBIT_CIRCLE_TAIL ? (last + 1) / 2
+                                               : ORBIT_CIRCLE_TAIL;
+  double *work = malloc(3 * (size_t)nc * sizeof *work), ratio = NAN;
+  int circle = work && sc_orbit_on_circle(d + (size_t)(last + 1 - nc) * n,
+                                          (size_t)nc, n, rtol, work, &ratio);
+  free(work);
+  if (circle)
+    fprintf(f, "  no period up to %d; the last %ld iterates lie on a closed "
+               "curve that the map turns in order: an invariant circle "
+               "(quasi-periodic)\n",
+            SC_SWEEP_PERIOD_MAX, nc);
+  else
+    fprintf(f, "  no period up to %d found in the last %ld iterates (chaos, "
+               "a longer period, or a transient)\n",
+            SC_SWEEP_PERIOD_MAX, nt);
+}
+
 /* Findings: the period of the tail and, for a periodic orbit, its
  * points, itineraries and multiplier (product of f' over one period). */
 static int orbit_summary(sc_cli_run *r, void *job, FILE *f) {
   const orbit_job *j = job;
+  if (j->dim > 1) {
+    if (j->fail) {
+      fprintf(f, "  the map is undefined at iterate %ld (", j->k);
+      sc_csv_points(f, j->d + (size_t)j->k * j->dim, 1, j->dim);
+      fprintf(f, "): %s\n", j->em.text);
+    } else {
+      orbit_summary_n(r, j, f);
+    }
+    fprintf(f, "  map evaluations: %lu\n", sc_map_nevals(r->map));
+    return SC_OK;
+  }
   const double *d = j->d;
   long n = j->n, last = j->k; /* d[0..last] are defined */
   if (j->fail) {
@@ -311,12 +475,50 @@ static int velocity_plot(sc_cli_run *r, const char *title) {
   return sc_cli_plot_end(r, "velocity", gp);
 }
 
+/* A map of n > 1 components: every component against k, and for n = 2
+ * the phase plane (the second component against the first). */
+static int orbit_plots_n(sc_cli_run *r, const orbit_job *j,
+                         const char *title) {
+  static const char *const rgb[] = {"#1f4e9e", "#d62728", "#2ca02c",
+                                    "#9467bd", "#ff7f0e", "#17becf"};
+  sc_map *m = r->map;
+  char c0[32], c1[32];
+  sc_file *gp = NULL;
+  int st = sc_cli_plot_begin(r, "orbit", title, "k (iterate)", "state", &gp);
+  if (st) return st;
+  FILE *f = sc_file_stream(gp);
+  fputs("plot ", f);
+  for (size_t i = 0; i < j->dim; i++) {
+    fprintf(f, "%s'orbit.csv' skip 1 using 1:%zu with linespoints pt 7 "
+               "ps 0.5 lw 0.5 lc rgb '%s' title ",
+            i ? ", \\\n     " : "", i + 2, rgb[i % 6]);
+    sc_plot_quote(f, sc_map_state_component(m, i, c0, sizeof c0));
+  }
+  fputc('\n', f);
+  if ((st = sc_cli_plot_end(r, "orbit", gp)) || j->dim != 2) return st;
+  sc_map_state_component(m, 0, c0, sizeof c0);
+  sc_map_state_component(m, 1, c1, sizeof c1);
+  if ((st = sc_cli_plot_begin(r, "phase", title, c0, c1, &gp))) return st;
+  f = sc_file_stream(gp);
+  fputs("# the orbit in the plane: the first iterates (the transient) "
+        "light, the rest dark\n",
+        f);
+  fprintf(f, "half = %ld\n", j->k / 2);
+  fputs("plot 'orbit.csv' skip 1 using ($1 < half ? $2 : NaN):3 with points "
+        "pt 7 ps 0.35 lc rgb '#9ecae1' title 'first half', \\\n"
+        "     '' skip 1 using ($1 >= half ? $2 : NaN):3 with points pt 7 "
+        "ps 0.5 lc rgb '#1f4e9e' title 'second half'\n",
+        f);
+  return sc_cli_plot_end(r, "phase", gp);
+}
+
 /* The orbit d_k against k; the trajectory's plots when it has rows. */
 static int orbit_plots(sc_cli_run *r, void *job) {
   const orbit_job *j = job;
   sc_map *m = r->map;
   char title[512];
   sc_plot_title(m, NULL, title, sizeof title);
+  if (j->dim > 1) return orbit_plots_n(r, j, title);
   sc_file *gp = NULL;
   int st = sc_cli_plot_begin(r, "orbit", title, "k (iterate)",
                              sc_plot_label(m, sc_map_type(m)->state_name),
@@ -336,6 +538,11 @@ static int orbit_plots(sc_cli_run *r, void *job) {
 static int orbit_report(sc_cli_run *r, void *job) {
   const orbit_job *j = job;
   if (!j->fail) return SC_OK;
+  if (j->dim > 1)
+    return sc_fail(r->msg, j->fail, "orbit: map undefined at iterate %ld "
+                                    "from (%.17g, %.17g%s): %s",
+                   j->k, j->d[j->k * (long)j->dim], j->d[j->k * (long)j->dim + 1],
+                   j->dim > 2 ? ", ..." : "", j->em.text);
   return sc_fail(r->msg, j->fail, "orbit: map undefined at iterate %ld from "
                                   "%.17g: %s",
                  j->k, j->d[j->k], j->em.text);
@@ -355,7 +562,8 @@ const sc_cli_task sc_cli_task_orbit = {
              .keys = orbit_keys,
              .nkeys = sizeof orbit_keys / sizeof orbit_keys[0],
              .check = orbit_check},
-    .outputs = "orbit.csv (k,d,itinerary), summary.txt, orbit.gp/png; with "
+    .outputs = "orbit.csv (k,d,itinerary; n > 1: k,d1..dn,itinerary), "
+               "summary.txt, orbit.gp/png, for n = 2 phase.gp/png; with "
                "trajectory = yes also trajectory.csv "
                "(tau,y1,y2,u1,u2,mode), phase.gp/png, velocity.gp/png",
     .job_size = sizeof(orbit_job),

@@ -33,6 +33,7 @@ static const sc_key_info sweep_keys[] = {
     {"seed", SC_KEY_CHOICE, 0, "fixed", 0, 0, 0, 0, "fixed|previous",
      "each value starts from d0 (fixed; parallel), or from the final state "
      "of the previous value (previous)"},
+    SC_CLI_SHOW_KEY,
 };
 
 /* Most kept values held in memory (8 bytes each): 4 GiB. */
@@ -41,6 +42,8 @@ static const sc_key_info sweep_keys[] = {
 static int sweep_check(const sc_scene *s, sc_msg *msg) {
   int st = sc_cli_check_param_ends(s, msg);
   if (st) return st;
+  int show;
+  if ((st = sc_cli_show(s, &show, msg))) return st;
   const char *xs = sc_scene_text(s, "x-scale");
   if (xs && strcmp(xs, "log") == 0 &&
       sc_grid_check("x-scale", sc_scene_real(s, "from"), sc_scene_real(s, "to"),
@@ -114,6 +117,9 @@ static void write_findings(FILE *f, const sc_sweep *sw, const char *pname) {
 /* One sweep run: its spec, the sweep, its progress bar. */
 typedef struct {
   const char *pname; /* the parameter swept */
+  size_t n;          /* state components */
+  int show;          /* what the plot draws (sc_cli_show()) */
+  double x0[SC_MAXDIM]; /* d0 of a map of n > 1 components */
   sc_sweep_spec sp;
   sc_sweep *sw;
   sc_progress bar;
@@ -133,7 +139,16 @@ static int sweep_prepare(sc_cli_run *r, void *job) {
                     : SC_GRID_LINEAR;
   sp->iterations = (int)sc_scene_int(s, "iterations");
   sp->keep = (int)sc_scene_int(s, "keep");
-  sp->d0 = sc_scene_real(s, "d0");
+  j->n = sc_map_dim(r->map);
+  if (j->n > 1) {
+    sc_scene_state(s, "d0", j->x0, SC_MAXDIM);
+    sp->x0 = j->x0;
+    sp->d0 = j->x0[0];
+  } else {
+    sp->d0 = sc_scene_real(s, "d0");
+  }
+  int st = sc_cli_show(s, &j->show, r->msg);
+  if (st) return st;
   const char *dir = sc_scene_text(s, "direction");
   if (!dir) sp->direction = sp->to >= sp->from ? SC_SWEEP_UP : SC_SWEEP_DOWN;
   else if (strcmp(dir, "both") == 0) sp->direction = SC_SWEEP_BOTH;
@@ -163,7 +178,13 @@ static int sweep_write(sc_cli_run *r, void *job) {
   int st = sc_cli_open(r, "sweep.csv", &csv);
   if (st) return st;
   FILE *f = sc_file_stream(csv);
-  fprintf(f, "%s,d,period,direction\n", j->pname);
+  if (j->n > 1) {
+    fprintf(f, "%s,", j->pname);
+    sc_csv_state_header(f, r->map, "");
+    fputs(",period,direction\n", f);
+  } else {
+    fprintf(f, "%s,d,period,direction\n", j->pname);
+  }
   size_t n = sc_sweep_npoints(j->sw);
   sc_sweep_point pt;
   for (size_t i = 0; i < n; i++) {
@@ -171,13 +192,14 @@ static int sweep_write(sc_cli_run *r, void *job) {
     sc_sweep_get_point(j->sw, i, &pt);
     if (pt.status != SC_OK) {
       sc_csv_double(f, pt.p);
-      fprintf(f, ",nan,%d,%s\n", SC_SWEEP_UNDEFINED, dir_name(pt.direction));
+      for (size_t c = 0; c < j->n; c++) fputs(",nan", f);
+      fprintf(f, ",%d,%s\n", SC_SWEEP_UNDEFINED, dir_name(pt.direction));
       continue;
     }
     for (int k = 0; k < pt.nd; k++) {
       sc_csv_double(f, pt.p);
       fputc(',', f);
-      sc_csv_double(f, pt.d[k]);
+      sc_csv_state(f, pt.d + (size_t)k * pt.dim, pt.dim);
       fprintf(f, ",%d,%s\n", pt.period, dir_name(pt.direction));
     }
   }
@@ -200,12 +222,14 @@ static int sweep_plots(sc_cli_run *r, void *job) {
   const sweep_job *j = job;
   const sc_sweep_spec *sp = &j->sp;
   sc_map *m = r->map;
-  char title[512], key[2][96];
+  char title[512], key[2][96], yl[96];
   const char *xl = sc_plot_label(m, j->pname);
   sc_plot_title(m, j->pname, title, sizeof title);
   sc_file *gp = NULL;
   int st = sc_cli_plot_begin(r, "sweep", title, xl,
-                             sc_plot_label(m, sc_map_type(m)->state_name),
+                             j->n > 1 ? sc_cli_show_label(m, j->show, yl,
+                                                          sizeof yl)
+                                      : sc_plot_label(m, sc_map_type(m)->state_name),
                              &gp);
   if (st) return st;
   FILE *f = sc_file_stream(gp);
@@ -215,12 +239,27 @@ static int sweep_plots(sc_cli_run *r, void *job) {
   else sc_plot_axis_format(f, "x", fmin(sp->from, sp->to), fmax(sp->from, sp->to));
   snprintf(key[0], sizeof key[0], "increasing %s", xl);
   snprintf(key[1], sizeof key[1], "decreasing %s", xl);
-  fputs("# column 4 is the direction of the pass: up or down; the up pass "
-        "is drawn\n# first with larger points so that both stay visible "
-        "where they agree\n",
-        f);
-  fputs("up(c)   = strcol(4) eq 'up'   ? column(c) : NaN\n", f);
-  fputs("down(c) = strcol(4) eq 'down' ? column(c) : NaN\n", f);
+  if (j->n > 1) {
+    /* columns: the parameter, the n components, period, direction */
+    char use[512];
+    sc_cli_show_using(j->show, j->n, 2, use, sizeof use);
+    fprintf(f, "# column %zu is the direction of the pass: up or down; the up "
+               "pass is drawn\n# first with larger points so that both stay "
+               "visible where they agree\n",
+            j->n + 3);
+    fprintf(f, "# what is drawn of the state (show): %s\n", use);
+    fprintf(f, "shown(c) = %s%s%s\n", j->show == SC_CLI_SHOW_NORM ? "" : "column(",
+            use, j->show == SC_CLI_SHOW_NORM ? "" : ")");
+    fprintf(f, "up(c)   = strcol(%zu) eq 'up'   ? shown(c) : NaN\n", j->n + 3);
+    fprintf(f, "down(c) = strcol(%zu) eq 'down' ? shown(c) : NaN\n", j->n + 3);
+  } else {
+    fputs("# column 4 is the direction of the pass: up or down; the up pass "
+          "is drawn\n# first with larger points so that both stay visible "
+          "where they agree\n",
+          f);
+    fputs("up(c)   = strcol(4) eq 'up'   ? column(c) : NaN\n", f);
+    fputs("down(c) = strcol(4) eq 'down' ? column(c) : NaN\n", f);
+  }
   /* The dots are tiny: the key shows large ones (keyentry). */
   const char *upc = sp->direction == SC_SWEEP_BOTH ? "#6fa8dc" : "#1f4e9e";
   fputs("plot ", f);
