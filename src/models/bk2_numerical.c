@@ -746,6 +746,41 @@ static int end_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
   return next;
 }
 
+/* The roots of a step are picked from its Hermite interpolants, whose
+ * error can exceed the time between two re-sticks (next to a BR, where
+ * both blocks re-stick at once, 1e-7 apart and less): after the chosen
+ * event is located at te, a re-stick guard already past zero there,
+ * beyond the tie margin of resolve_ties(), rose through zero before it.
+ * That event is located instead, on [t0, te]; repeated until none is
+ * earlier (at most once per guard).  Returns the event time, `which`,
+ * the state and slope updated. */
+static double first_event(const bk2_inst *b, int w, gsl_odeiv2_system *sys,
+                          int mode, int fresh, const int *kinds, int ng,
+                          double t0, const double *y0, const double *dy0,
+                          double te, double hmax, int *which, double *yt,
+                          double *dyt, double *slope) {
+  for (int pass = 0; pass < ng; pass++) {
+    int earlier = -1;
+    double tol = b->acc.event_atol + b->acc.event_rtol * te, s0, si;
+    for (int i = 0; i < ng && earlier < 0; i++) {
+      if (i == *which || kinds[i] >= 3) continue;
+      double gi = guard(b, mode, kinds[i], yt, dyt, &si);
+      if (gi > tol * fabs(si) + round_guard(b, yt)) earlier = i;
+    }
+    if (earlier < 0) return te;
+    double g0 = guard(b, mode, kinds[earlier], y0, dy0, &s0);
+    double gi = guard(b, mode, kinds[earlier], yt, dyt, &si);
+    int skip = t0 == 0 && (fresh & kinds[earlier]);
+    double r = hermite_root(g0, s0, gi, si, te - t0, skip, 1);
+    double guess = t0 + (r >= 0 ? r : 0.5 * (te - t0));
+    double t1 = te;
+    te = locate_event(b, w, sys, mode, kinds[earlier], t0, y0, t1, guess,
+                      hmax, yt, dyt, slope);
+    *which = earlier;
+  }
+  return te;
+}
+
 static int num_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
                      int fresh, bk2_state *x, double *duration,
                      bk2_events *ev, sc_msg *msg) {
@@ -796,6 +831,8 @@ static int num_phase(const bk2_inst *b, const bk2_dpar *P, int mode,
     if (which >= 0) {
       double te = locate_event(b, w, &sys, mode, kinds[which], t0, y0, t,
                                t0 + troot, hmax, yt, dyt, &slope);
+      te = first_event(b, w, &sys, mode, fresh, kinds, ng, t0, y0, dy0, te,
+                       hmax, &which, yt, dyt, &slope);
       *duration = te;
       int both = both_forced || resolve_ties(b, mode, kinds, ng, &which, te,
                                              yt, dyt, &slope);
