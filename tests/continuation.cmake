@@ -24,3 +24,8 @@ add_test(NAME curve_examples
 set_tests_properties(curve_examples PROPERTIES TIMEOUT 300)
 # Multipliers of a product without forming it (continuation/product_eigs.c).
 sc_add_test(test_product_eigs)
+# The curve task on n-dimensional models: ghenon's examples against their
+# closed forms, a start from a branch row, the refusals.
+add_test(NAME curve_n_cli
+  COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/curve_n_cli.sh
+          $<TARGET_FILE:slipcont_cli> ${PROJECT_SOURCE_DIR})

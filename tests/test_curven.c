@@ -260,6 +260,13 @@ static const sc_curven_special *find(const char *label, double x, double y) {
   return best;
 }
 
+/* Rows with a '?': located zeros that are not the point, or not located. */
+static int count_rejected(void) {
+  int c = 0;
+  for (size_t i = 0; i < T.nsp; i++) c += strchr(T.sp[i].label, '?') != NULL;
+  return c;
+}
+
 static int count(const char *label) {
   int c = 0;
   for (size_t i = 0; i < T.nsp; i++) c += strcmp(T.sp[i].label, label) == 0;
@@ -341,6 +348,7 @@ static void test_ghenon_ns(void) {
   }
   tu_int("ns: no Chenciner point in (alpha, beta) (d has no zero)",
          count("CH"), 0);
+  tu_int("ns: nothing rejected", count_rejected(), 0);
 out:
   sc_map_free(m);
 }
@@ -369,6 +377,8 @@ static void test_ghenon_fold(void) {
   double st0[2] = {0, 0};
   check_point("fold", "LPPD", 0, -1, st0, 2, NAN);
   tu_int("fold: no cusp (a vanishes only at R = 1)", count("CP"), 0);
+  tu_int("fold: nothing rejected (a's pole at R1 is no candidate)",
+         count_rejected(), 0);
 out:
   sc_map_free(m);
 }
@@ -399,6 +409,8 @@ static void test_ghenon_flip(void) {
   check_point("flip", "LPPD", 0, -1, st0, 2, NAN);
   tu_int("flip: no GPD in (alpha, beta) (b vanishes only at R = -1)",
          count("GPD"), 0);
+  tu_int("flip: nothing rejected (b's poles at R2, LPPD are no candidates)",
+         count_rejected(), 0);
 out:
   sc_map_free(m);
 }

@@ -312,16 +312,10 @@ static int locate(ntrace *T, size_t k, const double *a, const double *b,
   char label[8], note[256];
   int st = sc_curve_locate(&T->cs, k, u, &T->acc, &cert, &msg);
   double pv;
+  /* a sign change through a pole is no candidate point: not reported */
   if ((st || !(fabs(cert.psi) <= SC_SQRT_EPS * fmax(fabs(pa), fabs(pb)))) &&
-      pole_on_chord(T, k, a, b, pa, &pv)) {
-    snprintf(label, sizeof label, "%s?", T->labels[k]);
-    snprintf(note, sizeof note,
-             "rejected: the test changes sign through a pole or a "
-             "singularity (%.3g near the sign change, ends %.3g, %.3g), not "
-             "a zero",
-             pv, pa, pb);
-    return emit_special(T, label, mid, NAN, pv, note);
-  }
+      pole_on_chord(T, k, a, b, pa, &pv))
+    return SC_OK;
   if (st) {
     snprintf(label, sizeof label, "%s?", T->labels[k]);
     snprintf(note, sizeof note, "not located: %.200s", sc_msg_what(msg.text));
