@@ -8,14 +8,14 @@
 
 mkdir -p "$TMP/w"
 cd "$TMP/w" || exit 1
-for n in ns fold flip; do
+for ex in curve-ghenon-ns curve-ghenon-fold curve-ghenon-flip; do
   # shellcheck disable=SC2086
-  $limit "$BIN" run "$SRC/examples/curve-ghenon-$n.ini" --quiet $plotset \
+  $limit "$BIN" run "$SRC/examples/$ex.ini" --quiet $plotset \
     >"$TMP/stdout" 2>"$TMP/stderr"
   RC=$?
   ERR=$(cat "$TMP/stderr")
-  expect_rc "curve-ghenon-$n" 0
-  no_temporaries "curve-ghenon-$n" "out/curve-ghenon-$n"
+  expect_rc "$ex" 0
+  no_temporaries "$ex" "out/$ex"
 done
 D=out/curve-ghenon-ns
 expect_header "ns" "$D/curve.csv" \
