@@ -88,6 +88,27 @@ run_sc check "$TMP/w/row.ini" --set "task.start=$TMP/w/branch.csv:1"
 expect_rc "ns from an LP row" 2
 expect_err "ns from an LP row" "is a LP in alpha (valid: a NS in x = alpha for type = ns)"
 
+# From the branch task's own rows: examples/ghenon-branch.ini (beta = 0.7,
+# R = -0.5) locates LP, NS, PD in alpha; the NS curve from its NS row
+# meets R1..R4 at s = 2, -2, -1, 0 over (R - 2) (beta = 1 + R s,
+# alpha = s^2 + 2 s): R1 (-0.96, 1.4), R2 (2.24, 0.6), R3 (0.96, 0.8),
+# R4 (0, 1).
+$limit "$BIN" run "$SRC/examples/ghenon-branch.ini" --out "$TMP/w/gb" --quiet \
+  --set output.plot=no >/dev/null 2>&1
+ns=$(awk -F, '$1 == "NS" { print NR - 1; exit }' "$TMP/w/gb/points.csv")
+sed -e '/^d0 =/d' -e 's/^beta = 1.2/beta = 0.7/' -e 's/^R = 0.5/R = -0.5/' \
+  "$SRC/examples/curve-ghenon-ns.ini" >"$TMP/w/gb.ini"
+run_sc run "$TMP/w/gb.ini" --set "task.start=$TMP/w/gb/points.csv:$ns" \
+  --out "$TMP/w/gbns" --quiet --set output.plot=no
+expect_rc "ns from ghenon-branch's NS row ($ns)" 0
+for p in "R1 -0.96 1.4" "R2 2.24 0.6" "R3 0.96 0.8" "R4 0 1"; do
+  set -- $p
+  check "ns from the branch row: $1 at ($2, $3)" awk -F, -v l="$1" -v a="$2" -v b="$3" \
+    'function d(x) { return x < 0 ? -x : x }
+    $1 == l { n++; if (d($2 - a) > 1e-10 || d($3 - b) > 1e-10) exit 1 }
+    END { exit n != 1 }' "$TMP/w/gbns/points.csv"
+done
+
 # refusals: borders, multiple shooting, marks, ns of a one-dimensional map
 run_sc check "$SRC/examples/curve-ghenon-ns.ini" --set task.type=graze
 expect_rc "ghenon: type = graze" 2
