@@ -187,7 +187,9 @@ typedef struct sc_shootn sc_shootn;
  * orbit points x_0 .. x_(m-1) as unknowns, F_k = f(x_k) - x_(k+1 mod m):
  * its Jacobian is block cyclic (J(x_k) on the diagonal, -I on the block
  * superdiagonal and in the corner), m n unknowns with m n (n + 1)
- * nonzeros, solved by @p ls.
+ * nonzeros, solved by @p ls.  As sc_shoot, the object holds its own
+ * workspace (one per thread) and borrows the map, whose counters
+ * advance.
  * @param m       the map (borrowed; must outlive the object).
  * @param period  1 <= period <= SC_SHOOTN_MAX_PERIOD.
  * @param method  SC_SHOOT_SINGLE or SC_SHOOT_MULTIPLE.

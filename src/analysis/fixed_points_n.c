@@ -162,26 +162,30 @@ static int record(search *s, const sc_shootn *sh, int q,
   return SC_OK;
 }
 
-/* Multipliers of the recorded orbit r: from a shooting of period r->period
- * (the multipliers of f^m for a lower period are those of f^q raised to
- * m / q, so they are taken again at the orbit's own period). */
+/* Multipliers of the recorded orbit r of a lower period q than the
+ * shooting's m (those of f^m are the q-periodic ones to the power m / q):
+ * the eigenvalues of the product of the q Jacobians at its points. */
 static int orbit_multipliers(search *s, rec *r) {
-  sc_shootn *sh;
-  int st = sc_shootn_alloc(s->map, r->period, SC_SHOOT_SINGLE, NULL, &sh,
-                           s->msg);
-  if (st) return st;
-  sc_shootn_result res;
-  st = sc_shootn_solve(sh, r->x, &res, s->msg);
-  if (st == SC_OK) {
-    const double *re, *im;
-    sc_shootn_multipliers(sh, &re, &im);
-    memcpy(r->re, re, s->n * sizeof *re);
-    memcpy(r->im, im, s->n * sizeof *im);
-    r->multiplier = res.multiplier;
-    r->stable = res.stable;
-    r->residual = fmax(r->residual, res.residual);
+  size_t n = s->n, q = (size_t)r->period;
+  double *J = malloc(q * n * n * sizeof *J);
+  const double **A = malloc(q * sizeof *A);
+  sc_mapn_value *v = NULL;
+  int st = sc_mapn_value_alloc(s->map, SC_EVAL_DERIV, &v, s->msg);
+  if (!st && (!J || !A)) st = sc_fail(s->msg, SC_ENOMEM, "out of memory");
+  for (size_t k = 0; k < q && !st; k++) {
+    st = sc_map_eval_n(s->map, r->x + k * n, SC_EVAL_DERIV, v, s->msg);
+    if (!st) memcpy(J + k * n * n, v->J, n * n * sizeof *J);
+    A[k] = J + k * n * n;
   }
-  sc_shootn_free(sh);
+  if (!st) st = sc_product_eigs(n, q, A, r->re, r->im, s->msg);
+  if (!st) {
+    double mod = hypot(r->re[0], r->im[0]);
+    r->multiplier = r->im[0] == 0 ? r->re[0] : mod;
+    r->stable = mod < 1;
+  }
+  sc_mapn_value_free(v);
+  free(J);
+  free(A);
   return st;
 }
 
