@@ -84,7 +84,7 @@ typedef struct {
   double p;          /**< parameter */
   const double *x;   /**< n values */
   const double *re;  /**< n multipliers (as sc_branchn_point) */
-  const double *im;
+  const double *im;  /**< their imaginary parts */
   double coef;       /**< LP: a; PD: b; NS: the first Lyapunov
                           coefficient d (docs/maps.md, "Normal forms");
                           NaN for NN, BP, EP or where it failed */
