@@ -248,6 +248,34 @@ static void check_pitchfork(void) {
   sc_map_free(m);
 }
 
+/* A neutral saddle: ghenon at beta = -0.5, R = -3 has det = beta - R s =
+ * 1 at s = 0.5 with tr = (R - 2) s = -2.5: real multipliers mu, 1/mu
+ * (kappa = tr / 2 = -1.25), a zero of the NS test that is no
+ * bifurcation: reported NN at alpha = 4 s^2 + 0.5 s = 1.25, no NS. */
+static void check_neutral_saddle(void) {
+  sc_map *m;
+  sc_msg msg;
+  sc_map_alloc("ghenon", NULL, &m, &msg);
+  sc_map_set_param_by_name(m, "beta", -0.5, &msg);
+  sc_map_set_param_by_name(m, "R", -3, &msg);
+  double s0 = (-0.5 + sqrt(0.25 + 32)) / 8, x0[2] = {s0, s0};
+  sc_branchn_spec sp = {.param = 0, .from = 2, .to = 0.5, .period = 1,
+                        .x0 = x0, .max_points = 5000, .max_branches = 1,
+                        .max_period = 1};
+  sc_branchn *b;
+  tu_int("neutral saddle: alloc", sc_branchn_alloc(m, &sp, &b, &msg), SC_OK);
+  tu_int("neutral saddle: run", sc_branchn_run(b, &msg), SC_OK);
+  sc_branchn_special s;
+  double xs[2] = {0.5, 0.5};
+  expect(b, "neutral saddle NN", SC_PTN_NN, 1, 1.25, xs, &s);
+  tu_close("neutral saddle: kappa", s.kappa, -1.25, PT_TOL);
+  tu_true(isnan(s.theta) && isnan(s.coef), "neutral saddle: no angle, no "
+          "coefficient (%g, %g)", s.theta, s.coef);
+  tu_true(!find(b, SC_PTN_NS, 1, 1.25, &s), "neutral saddle: no NS");
+  sc_branchn_free(b);
+  sc_map_free(m);
+}
+
 static void check_refusals(void) {
   sc_map *m;
   sc_msg msg;
@@ -279,6 +307,7 @@ int main(void) {
   check_ghenon();
   check_henon();
   check_pitchfork();
+  check_neutral_saddle();
   check_refusals();
   return tu_finish();
 }
