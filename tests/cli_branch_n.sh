@@ -57,6 +57,27 @@ check "henon: the cascade's segments have periods 1, 2, 4, 8" awk -F, '
   NR > 1 { seen[$7] = 1 } END { exit !(seen[1] && seen[2] && seen[4] && seen[8]) }' \
   "$TMP/he/branch.csv"
 
+# A start inside the interval (at) is continued both ways: AUTO-07p's
+# ghenon branch (bench/auto/c.ghenon: beta = 1.2, R = 0.5, x = y = -3 at
+# alpha = -2.1): LP at s = -2.2 (alpha = -2.42), NS at s = 0.4 (alpha =
+# 0.96, kappa = -0.3), PD at s = 1.1 (alpha = 3.025).
+run_sc run "$SRC/examples/ghenon-branch.ini" --out "$TMP/at" --quiet \
+  --set output.plot=no --set model.beta=1.2 --set model.R=0.5 \
+  --set task.from=-3 --set task.at=-2.1 --set task.to=3.5 --set "task.d0=-3 -3"
+expect_rc "at inside the interval" 0
+check "at: both ways, LP, NS and PD of AUTO's branch (1e-10)" awk -F, '
+  function abs(x) { return x < 0 ? -x : x }
+  function at(a, s) { return abs($3 - a) < 1e-10 && abs($4 - s) < 1e-10 &&
+                      $12 + 0 < 1e-12 }
+  $1 == "LP" && at(-2.42, -2.2) { lp++ }
+  $1 == "NS" && at(0.96, 0.4) && abs($10 + 0.3) < 1e-10 { ns++ }
+  $1 == "PD" && at(3.025, 1.1) { pd++ }
+  $1 == "EP" { ep++ }
+  END { exit !(lp == 1 && ns == 1 && pd == 1 && ep == 2) }' "$TMP/at/points.csv"
+run_sc check "$SRC/examples/ghenon-branch.ini" --set task.at=5
+expect_rc "at outside [from, to]" 2
+expect_err "at outside [from, to]" "at = 5 outside [from, to]"
+
 # show = norm draws |x|; show = 2 the second component.
 run_sc run "$SRC/examples/ghenon-branch.ini" --out "$TMP/nm" --quiet --set task.show=norm
 expect_rc "show = norm" 0

@@ -34,7 +34,11 @@ typedef struct {
   double to;        /**< the other end of the interval (!= from) */
   int period;       /**< period m of the starting orbit, >= 1 */
   const double *x0; /**< n values: a guess of a point of the starting
-                         orbit at p = from, polished by Newton (copied) */
+                         orbit at p = at, polished by Newton (copied) */
+  int has_at;       /**< 0: x0 lies at from (the start continued towards
+                         to); 1: at at */
+  double at;        /**< has_at: where x0 lies, in [from, to]; inside, the
+                         start is continued both ways */
   int switch_pd;    /**< 1: at each flip continue the period-2m branch */
   int switch_bp;    /**< 1: at each branch point continue the crossing
                          branch both ways */
@@ -106,7 +110,8 @@ typedef struct sc_branchn sc_branchn;
 /**
  * @brief Check @p spec against @p m and prepare a run.
  * @return SC_OK; SC_EINVAL naming the field (a parameter index, an equal
- *         from and to, a period outside [1, max_period], a non-finite x0,
+ *         from and to, at outside [from, to], a period outside
+ *         [1, max_period], a non-finite x0,
  *         a model of more than 16 components, a model with borders);
  *         SC_ENOMEM.
  */
@@ -114,7 +119,8 @@ SC_API int sc_branchn_alloc(sc_map *m, const sc_branchn_spec *spec,
                             sc_branchn **out, sc_msg *msg);
 
 /**
- * @brief Continue from (x0, from) towards to, and every switched branch.
+ * @brief Continue from (x0, at) towards to (and from at back to from when
+ * at is inside the interval), and every switched branch.
  *
  * The start is corrected by Newton with the parameter fixed.  Along each
  * segment the four tests of the fixed-point system are watched

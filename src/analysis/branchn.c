@@ -197,6 +197,10 @@ static int check_spec(const sc_map *m, const sc_branchn_spec *sp,
                    "2, >= 1)", sp->max_points, sp->max_branches);
   if (!sp->x0)
     return sc_fail(msg, SC_EINVAL, "branch: no start x0");
+  if (sp->has_at && !((sp->at - sp->from) * (sp->at - sp->to) <= 0))
+    return sc_fail(msg, SC_EINVAL,
+                   "branch: at = %.17g outside [from, to] = [%.17g, %.17g]",
+                   sp->at, sp->from, sp->to);
   for (size_t i = 0; i < n; i++)
     if (!isfinite(sp->x0[i]))
       return sc_fail(msg, SC_EINVAL, "branch: x0[%zu] = %g (valid: finite)",
@@ -381,12 +385,19 @@ out:
 
 int sc_branchn_run(sc_branchn *b, sc_msg *msg) {
   for (size_t q = 0; q < b->np; q++) b->psave[q] = sc_map_get_param(b->m, q);
+  double at = b->sp.has_at ? b->sp.at : b->sp.from;
   bn_job first = {.period = b->sp.period,
                   .dir = b->sp.to > b->sp.from ? 1 : -1};
   memcpy(first.u, b->x0, b->n * sizeof *b->x0);
-  first.u[b->n] = b->sp.from;
+  first.u[b->n] = at;
   snprintf(first.why, sizeof first.why, "start");
   int st = sc_bn_push_job(b, &first);
+  if (!st && at != b->sp.from) { /* inside: the other way too */
+    bn_job back = first;
+    back.dir = -first.dir;
+    snprintf(back.why, sizeof back.why, "start, towards from: ");
+    st = sc_bn_push_job(b, &back);
+  }
   while (!st && b->jobnext < b->njobs) {
     bn_job j = b->jobs[b->jobnext++];
     if (b->nbranches >= b->sp.max_branches) {

@@ -13,11 +13,11 @@
 
 /* Keys of the one-dimensional branch that mean nothing here, refused
  * when set apart from their defaults: its starts (found by the interval
- * scan of f^m - d), user points, the brute-force sweep's settings (no
+ * scan of f^m - d; `at` serves), user points, the brute-force sweep's settings (no
  * sweep is drawn under an n-dimensional branch: `sweep` is ignored), the
  * map drawn at a special point, the sparse solver of long orbits. */
 static const char *const one_d_keys[] = {
-    "starts", "auto-at", "auto-period", "auto-d", "at", "marks", "plot-at",
+    "starts", "auto-at", "auto-period", "auto-d", "marks", "plot-at",
     "sweep-steps", "sweep-iterations", "sweep-keep", "linsolve"};
 
 /* A key set to other than its default (a key without a default: set at
@@ -45,8 +45,15 @@ int sc_brn_check(const sc_scene *s, sc_msg *msg) {
   if (!sc_scene_text(s, "d0"))
     return sc_scene_fail_key(s, "task", "d0", msg,
                              "no start: give d0 (%zu numbers: a guess of an "
-                             "orbit point at from)",
+                             "orbit point at `at`, default from)",
                              n);
+  if (sc_scene_text(s, "at")) {
+    double at = sc_scene_real(s, "at");
+    if ((sc_scene_real(s, "from") - at) * (sc_scene_real(s, "to") - at) > 0)
+      return sc_scene_fail_key(s, "task", "at", msg,
+                               "at = %s outside [from, to]",
+                               sc_scene_text(s, "at"));
+  }
   int show;
   return sc_cli_show(s, &show, msg);
 }
@@ -71,6 +78,8 @@ int sc_brn_prepare(sc_cli_run *r, sc_brn_job *j) {
       .to = sc_scene_real(s, "to"),
       .period = (int)sc_scene_int(s, "period"),
       .x0 = j->x0,
+      .has_at = sc_scene_text(s, "at") != NULL,
+      .at = sc_scene_text(s, "at") ? sc_scene_real(s, "at") : 0,
       .switch_pd = sw,
       .switch_bp = sw,
       .max_points = sc_scene_int(s, "max-points"),
@@ -92,14 +101,15 @@ int sc_brn_compute(sc_cli_run *r, sc_brn_job *j) {
   j->nev = sc_map_nevals(r->map) - ev0;
   if (st == SC_ENOCONV || st == SC_EINVAL) {
     const sc_scene *s = r->scene;
+    const char *at = sc_scene_text(s, sc_scene_text(s, "at") ? "at" : "from");
     char why[SC_MSG_LEN];
     snprintf(why, sizeof why, "%s", sc_msg_what(r->msg->text));
     return sc_scene_fail_key(
         s, "task", "d0", r->msg,
         "d0 = %s at %s = %s: %s; to find starts, run the fixed-point task "
         "there (kind = fixed-point, period = %d, [model] %s = %s)",
-        sc_scene_text(s, "d0"), j->pname, sc_scene_text(s, "from"), why,
-        j->sp.period, j->pname, sc_scene_text(s, "from"));
+        sc_scene_text(s, "d0"), j->pname, at, why, j->sp.period, j->pname,
+        at);
   }
   return st;
 }
