@@ -798,8 +798,9 @@ const sc_cli_task sc_cli_task_chart = {
              .keys = chart_keys,
              .nkeys = sizeof chart_keys / sizeof chart_keys[0],
              .check = chart_check},
-    .outputs = "chart.csv (x,y,period,d,iterations), summary.txt, chart.gp, "
-               "chart.png; chart.checkpoint while unfinished",
+    .outputs = "chart.csv (x,y,period,d,iterations; n > 1: d1, the first "
+               "component), summary.txt, chart.gp, chart.png; "
+               "chart.checkpoint while unfinished",
     .job_size = sizeof(chart_job),
     .prepare = chart_prepare,
     .compute = chart_compute,

@@ -304,8 +304,9 @@ const sc_cli_task sc_cli_task_sweep = {
              .keys = sweep_keys,
              .nkeys = sizeof sweep_keys / sizeof sweep_keys[0],
              .check = sweep_check},
-    .outputs = "sweep.csv (PARAMETER,d,period,direction), summary.txt, "
-               "sweep.gp, sweep.png",
+    .outputs = "sweep.csv (PARAMETER,d,period,direction; n > 1: "
+               "PARAMETER,d1..dn,period,direction), summary.txt, sweep.gp, "
+               "sweep.png",
     .job_size = sizeof(sweep_job),
     .prepare = sweep_prepare,
     .compute = sweep_compute,
