@@ -597,6 +597,52 @@ static void test_product_lp_pd(void) {
   }
 }
 
+
+/* A period-2 curve: henon's flip of its period-2 orbit,
+ * a = (1 + b)^2 / 4 + (1 - b)^2 (the orbit points x1 + x2 = (1 - b) / a,
+ * x1 x2 = (1 - b)^2 / a^2 - 1 / a give f^2 the trace 4 a^2 x1 x2 + 2 b
+ * and the determinant b^2, and 1 + tr + det = 0); its other multiplier
+ * is -b^2, so R2 at b = 1 (a = 1) and b = -1 (a = 4). */
+static void test_henon_period2(void) {
+  sc_map *m;
+  sc_msg msg;
+  sc_map_alloc("henon", NULL, &m, &msg);
+  double b = 0.3, a = (1 + b) * (1 + b) / 4 + (1 - b) * (1 - b);
+  sc_map_set_param(m, 0, a, &msg);
+  sc_map_set_param(m, 1, b, &msg);
+  double S = (1 - b) / a, P = (1 - b) * (1 - b) / (a * a) - 1 / a;
+  double x1 = (S + sqrt(S * S - 4 * P)) / 2, x0[2] = {x1, b * (S - x1)};
+  sc_curve_settings set;
+  sc_curve_settings_default(&set);
+  set.type = SC_CURVE_FLIP, set.period = 2, set.ix = 0, set.iy = 1;
+  set.xlo = -1, set.xhi = 5, set.ylo = -1.2, set.yhi = 1.2;
+  set.hmax = 0.03, set.h0 = 0.003;
+  memset(&T, 0, sizeof T);
+  sc_curven_output out = {on_pt, on_sp, &T};
+  sc_curve_stats st;
+  int rc = sc_curven_trace(m, &set, x0, NAN, &out, &st, &msg);
+  if (tu_true(rc == SC_OK, "henon period 2: %s", rc ? msg.text : "")) {
+    double e = 0;
+    for (long i = 0; i < T.np; i++) {
+      double bi = T.y[i];
+      e = fmax(e, fabs(T.x[i] - (1 + bi) * (1 + bi) / 4 - (1 - bi) * (1 - bi)));
+    }
+    tu_close("henon period-2 flip: a = (1 + b)^2 / 4 + (1 - b)^2", e, 0,
+             TOL_CURVE);
+    const sc_curven_special *r = find("R2", 1, 1);
+    tu_true(r && fabs(r->x - 1) + fabs(r->y - 1) <= TOL_POINT,
+            "henon period 2: R2 at (1, 1)");
+    r = find("R2", 4, -1);
+    tu_true(r && fabs(r->x - 4) + fabs(r->y + 1) <= TOL_POINT,
+            "henon period 2: R2 at (4, -1)");
+    tu_int("henon period 2: two R2", count("R2"), 2);
+    tu_int("henon period 2: nothing else but the two ends", (int)T.nsp, 4);
+    tu_int("henon period 2: nothing rejected (b's poles at R2)",
+           count_rejected(), 0);
+  }
+  sc_map_free(m);
+}
+
 static void test_refusals(void) {
   sc_map *m;
   sc_msg msg;
@@ -636,6 +682,7 @@ int main(void) {
   test_product_ns(&gh3_type, -1, "PDNS");
   test_product_ns(&gh4_type, 1, "NSNS");
   test_product_lp_pd();
+  test_henon_period2();
   test_refusals();
   return tu_finish();
 }

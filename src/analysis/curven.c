@@ -277,28 +277,30 @@ static void classify(ntrace *T, size_t k, const double *u, double pa,
 #define POLE_BISECTIONS 40
 
 /* Whether test k changes sign between the points a and b through a pole
- * rather than a zero: a coefficient does so at a resonance where its
- * vectors or resolvents are singular (the fold's a at R1, the flip's b at
- * R2).  Bisection of the sign change along the chord from a to b: at a
- * pole |psi| there exceeds its values at both ends (*pv); at a zero it
- * falls below them. */
+ * or a jump rather than a zero: a coefficient does so at a resonance
+ * where its vectors or resolvents are singular (the fold's a at R1, the
+ * flip's b at R2 and LPPD; off the curve next to them, which of two
+ * nearby multipliers is the critical one can change).  Bisection of the
+ * sign change along the chord from a to b: at a zero |psi| falls to
+ * rounding on both sides of the final bracket; at a pole or a jump it
+ * stays of the size of its ends (or is not a number).  *pv: the value
+ * left of the final bracket. */
 static int pole_on_chord(ntrace *T, size_t k, const double *a,
-                         const double *b, double pa, double *pv) {
-  double lo = 0, hi = 1, plo = pa, psi[SC_NF_MAXTEST], big = fabs(pa);
-  *pv = NAN;
+                         const double *b, double pa, double pb, double *pv) {
+  double lo = 0, hi = 1, plo = pa, phi = pb, psi[SC_NF_MAXTEST];
   for (int it = 0; it < POLE_BISECTIONS; it++) {
     double t = 0.5 * (lo + hi);
     for (size_t i = 0; i < T->N; i++) T->mid[i] = a[i] + t * (b[i] - a[i]);
     if (tests_at(T->mid, psi, T)) return 0;
-    *pv = psi[k];
-    if (!isfinite(psi[k])) return 1; /* singular there: no zero */
+    if (!isfinite(psi[k])) { /* singular there: no zero */
+      *pv = psi[k];
+      return 1;
+    }
     if ((plo > 0) == (psi[k] > 0)) lo = t, plo = psi[k];
-    else hi = t;
+    else hi = t, phi = psi[k];
   }
-  for (size_t i = 0; i < T->N; i++) T->mid[i] = a[i] + lo * (b[i] - a[i]);
-  tests_at(b, psi, T);
-  big = fmax(big, fabs(psi[k]));
-  return fabs(*pv) > big;
+  *pv = plo;
+  return fmin(fabs(plo), fabs(phi)) > SC_SQRT_EPS * fmax(fabs(pa), fabs(pb));
 }
 
 /* Locate the zero of test k between the points a and b (values pa, pb
@@ -312,9 +314,10 @@ static int locate(ntrace *T, size_t k, const double *a, const double *b,
   char label[8], note[256];
   int st = sc_curve_locate(&T->cs, k, u, &T->acc, &cert, &msg);
   double pv;
-  /* a sign change through a pole is no candidate point: not reported */
+  /* a sign change through a pole or a jump is no candidate point: not
+   * reported */
   if ((st || !(fabs(cert.psi) <= SC_SQRT_EPS * fmax(fabs(pa), fabs(pb)))) &&
-      pole_on_chord(T, k, a, b, pa, &pv))
+      pole_on_chord(T, k, a, b, pa, pb, &pv))
     return SC_OK;
   if (st) {
     snprintf(label, sizeof label, "%s?", T->labels[k]);
