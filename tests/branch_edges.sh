@@ -199,6 +199,44 @@ else
   fail "degenerate SW: the presets disagree beyond their errors ($all)"
 fi
 
+# A switch curve started from that degenerate row: where it cannot start,
+# the message says the row is degenerate (not "start from a row labelled
+# SW", which it is), exits 1 and leaves no output folder.
+n=$(awk -F, '$1 == "SW" && $9 == "degenerate" { print NR - 1; exit }' \
+  "$TMP/deg-default/points.csv")
+if [ -n "$n" ]; then
+  cat >"$TMP/curve-deg.ini" <<EOF
+[model]
+name = bk2
+driver = frozen
+beta = 3
+[task]
+kind = curve
+type = switch
+x = alpha
+y = beta
+x-from = 1
+x-to = 4
+y-from = 2
+y-to = 4
+start = $TMP/deg-default/points.csv:$n
+EOF
+  "$BIN" run "$TMP/curve-deg.ini" --quiet --out "$TMP/curve-deg" \
+    >"$TMP/stdout" 2>"$TMP/stderr"
+  rc=$?
+  if [ $rc = 1 ] && [ ! -e "$TMP/curve-deg" ] &&
+    grep -q "the row's point is degenerate" "$TMP/stderr" &&
+    ! grep -q "start from a row labelled SW" "$TMP/stderr"; then
+    pass "switch curve from the degenerate SW row: refused as degenerate (exit 1)"
+  elif [ $rc = 0 ]; then
+    pass "switch curve from the degenerate SW row: started"
+  else
+    fail "switch curve from the degenerate SW row: exit $rc, $(cat "$TMP/stderr")"
+  fi
+else
+  fail "no degenerate SW row in $TMP/deg-default/points.csv"
+fi
+
 # --- a curve's start moved ----------------------------------------------
 # The fold of fig 5.8's period-1 orbit at beta = 2.5: alpha =
 # 2.9925306744279 (docs/branches.md), to the corrector's 1e-9.

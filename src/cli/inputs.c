@@ -46,12 +46,13 @@ static int read_row(FILE *f, const char *path, long n, sc_cli_points_row *row,
                                        "period"};
   char *line = NULL, *h[16], *v[16];
   size_t cap = 0;
-  int col[5] = {-1, -1, -1, -1, -1}, colb = -1;
+  int col[5] = {-1, -1, -1, -1, -1}, colb = -1, colm = -1;
   int nh = getline(&line, &cap, f) > 0 ? split(line, h, 16) : 0;
   for (int i = 0; i < nh; i++) {
     for (int k = 0; k < 5; k++)
       if (strcmp(h[i], names[k]) == 0) col[k] = i;
     if (strcmp(h[i], "border") == 0) colb = i; /* optional */
+    if (strcmp(h[i], "method") == 0) colm = i; /* optional */
   }
   for (int k = 0; k < 5; k++)
     if (col[k] < 0) {
@@ -92,6 +93,8 @@ static int read_row(FILE *f, const char *path, long n, sc_cli_points_row *row,
     snprintf(row->param, sizeof row->param, "%.63s", v[col[1]]);
     snprintf(row->border, sizeof row->border, "%.63s",
              colb >= 0 && colb < nv ? v[colb] : "");
+    snprintf(row->method, sizeof row->method, "%.15s",
+             colm >= 0 && colm < nv ? v[colm] : "");
   }
   free(line);
   return st;

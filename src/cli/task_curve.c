@@ -296,6 +296,7 @@ typedef struct {
   double elapsed;
   double marks[SC_CLI_MAXMARKS]; /* user points: values of x */
   sc_cli_curve_n *nd; /* an n-dimensional model's path; NULL for n = 1 */
+  int degenerate; /* the start row's point is degenerate (no certificate) */
 } curve_job;
 
 static int curve_prepare(sc_cli_run *r, void *job) {
@@ -339,6 +340,7 @@ static int curve_prepare(sc_cli_run *r, void *job) {
   if (sc_cli_points_row_read(spec, &row, why, sizeof why))
     return sc_fail(r->msg, SC_EIO, "curve: start = %s: %s", spec, why);
   j->d0 = row.d;
+  j->degenerate = strcmp(row.method, "degenerate") == 0;
   set->period = row.period;
   /* a border row starts the curve on its own border */
   if (set->type == SC_CURVE_BORDER)
@@ -360,6 +362,19 @@ static int start_failed(sc_cli_run *r, const curve_job *j) {
     snprintf(key, sizeof key, "start = %.500s", spec);
   else
     snprintf(key, sizeof key, "d0 = %.500s", sc_scene_text(s, "d0"));
+  /* a degenerate row is a touch of its border, or an orbit on it along
+   * an interval: its own label is no help */
+  if (j->degenerate)
+    return sc_scene_fail_key(
+        s, "task", "start", r->msg,
+        "%s (period %d at %s = %.12g, %s = %.12g): the row's point is "
+        "degenerate (its method column: the orbit touches its border or "
+        "sits on it along an interval, so its defining system has no "
+        "isolated root), and no %s curve could be started there (%s); "
+        "start from a row located by Newton",
+        key, j->set.period, j->xn, sc_map_get_param(m, (size_t)j->set.ix),
+        j->yn, sc_map_get_param(m, (size_t)j->set.iy), type_names[j->ti],
+        why);
   return sc_scene_fail_key(
       s, "task", spec ? "start" : "d0", r->msg,
       "%s (period %d at %s = %.12g, %s = %.12g): the start is not on a %s "

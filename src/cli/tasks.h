@@ -296,6 +296,8 @@ typedef struct {
   int period;      /**< in [1, 4096] */
   char border[64]; /**< the border of a border point ("" if none, or no
                         such column) */
+  char method[16]; /**< how it was located ("newton", "degenerate", ...;
+                        "" if none, or no such column) */
 } sc_cli_points_row;
 
 /** The row named by @p spec, "FILE:N" (N = 1 is the first row after the
