@@ -49,6 +49,12 @@ typedef struct {
   const char *values[SC_MAXVALUES];  /**< allowed values, NULL-terminated;
                                           the first is the default */
   const char *doc;                   /**< one line */
+  /** int_hi > 0: a whole-number option ("blocks"), any value in
+   * [int_lo, int_hi] written in decimal; values[0] is its default written
+   * out and values[1] is NULL.  The model's setup() reads the number
+   * itself in opt[] (not an index). */
+  int int_lo;
+  int int_hi;  /**< 0: the option takes one of values[] */
 } sc_option_info;
 
 /**
@@ -288,6 +294,11 @@ typedef struct sc_model_type {
    * map layer reads eval() (sc_map_eval_n()). */
   int (*eval_n)(void *inst, const double *x, unsigned flags,
                 sc_mapn_value *out, sc_msg *msg);
+  /** The state dimension of a model whose dimension depends on its
+   * options (the chain: blocks - 1), read after every setup(); NULL: dim
+   * is the dimension.  Such a model gives eval_n (used for every n, 1
+   * included) and no eval. */
+  size_t (*dim_of)(const void *inst);
   /** Continuous motion (see sc_map_trajectory()); NULL if none. */
   int (*trajectory)(void *inst, double d, int iterations, double dtau,
                     int (*fn)(void *, double, const double *, int),

@@ -26,16 +26,38 @@ const sc_model_type *sc_model_find(const char *name) {
   return NULL;
 }
 
+/* The model's dimension after a setup: dim_of() where the options set it
+ * (the n-dimensional workspace follows it), else the table's. */
+static int refresh_dim(sc_map *m) {
+  size_t n = m->type->dim_of ? m->type->dim_of(m->inst) : m->type->dim;
+  if (n < 1) n = 1;
+  if (n == m->dim && m->step) return SC_OK;
+  sc_mapn_work_free(m);
+  m->dim = n;
+  return sc_mapn_work_alloc(m) ? SC_ENOMEM : SC_OK;
+}
+
 static int setup(sc_map *m, sc_msg *msg) {
-  return m->type->setup ? m->type->setup(m->inst, m->p, m->opt, &m->acc, msg)
-                        : SC_OK;
+  int st = m->type->setup
+               ? m->type->setup(m->inst, m->p, m->opt, &m->acc, msg)
+               : SC_OK;
+  if (st == SC_OK && refresh_dim(m))
+    return sc_fail(msg, SC_ENOMEM, "%s: out of memory for dimension %zu",
+                   m->type->name, m->dim);
+  return st;
+}
+
+/* A whole-number option's value as its text (map.h's option getter). */
+static void int_option_text(sc_map *m, size_t i) {
+  snprintf(m->opt_text[i], sizeof m->opt_text[i], "%d", m->opt[i]);
 }
 
 int sc_map_alloc_type(const sc_model_type *type, const sc_accuracy *acc,
                       sc_map **out, sc_msg *msg) {
   *out = NULL;
   if (!type || type->nparam > SC_MAXPARAM || type->noption > SC_MAXOPTION ||
-      type->dim > SC_MAXDIM || (type->dim > 1 ? !type->eval_n : !type->eval))
+      type->dim > SC_MAXDIM ||
+      (type->dim > 1 || type->dim_of ? !type->eval_n : !type->eval))
     return sc_fail(msg, SC_EINVAL, "sc_map_alloc: malformed model table");
   sc_map *m = calloc(1, sizeof *m);
   if (!m) goto fail;
@@ -43,6 +65,11 @@ int sc_map_alloc_type(const sc_model_type *type, const sc_accuracy *acc,
   m->inst = calloc(1, type->inst_size ? type->inst_size : 1);
   if (!m->inst) goto fail;
   for (size_t i = 0; i < type->nparam; i++) m->p[i] = type->params[i].def;
+  for (size_t i = 0; i < type->noption; i++)
+    if (type->options[i].int_hi > 0) {
+      m->opt[i] = atoi(type->options[i].values[0]);
+      int_option_text(m, i);
+    }
   if (acc) {
     int st = sc_accuracy_check(acc, msg);
     if (st) {
@@ -53,7 +80,6 @@ int sc_map_alloc_type(const sc_model_type *type, const sc_accuracy *acc,
   } else {
     sc_accuracy_preset(&m->acc, "default", NULL);
   }
-  if (sc_mapn_work_alloc(m)) goto fail;
   int st = setup(m, msg);
   if (st) {
     sc_map_free(m);
@@ -92,6 +118,7 @@ int sc_map_clone(const sc_map *m, sc_map **out, sc_msg *msg) {
   if (st) return st;
   memcpy((*out)->p, m->p, sizeof m->p);
   memcpy((*out)->opt, m->opt, sizeof m->opt);
+  memcpy((*out)->opt_text, m->opt_text, sizeof m->opt_text);
   st = setup(*out, msg);
   if (st) {
     sc_map_free(*out);
@@ -170,6 +197,10 @@ int sc_map_set_param_by_name(sc_map *m, const char *name, double value,
 
 char *sc_option_values_text(const sc_option_info *oi, char *buf, size_t len) {
   buf[0] = '\0';
+  if (oi->int_hi > 0) {
+    snprintf(buf, len, "%d..%d", oi->int_lo, oi->int_hi);
+    return buf;
+  }
   for (int k = 0; k < SC_MAXVALUES && oi->values[k]; k++) {
     if (k) strncat(buf, "|", len - strlen(buf) - 1);
     strncat(buf, oi->values[k], len - strlen(buf) - 1);
@@ -183,6 +214,27 @@ static int option_index(const sc_map *m, const char *name) {
   return -1;
 }
 
+/* Set the whole-number option @p i from its text (a decimal integer in
+ * the option's range); setup() may still refuse it. */
+static int set_int_option(sc_map *m, int i, const char *value, sc_msg *msg) {
+  const sc_option_info *oi = &m->type->options[i];
+  char *end = NULL;
+  long v = value ? strtol(value, &end, 10) : 0;
+  if (!value || end == value || *end || v < oi->int_lo || v > oi->int_hi)
+    return sc_fail(msg, SC_EINVAL,
+                   "%s = '%s' is not valid (valid: a whole number in %d..%d)",
+                   oi->name, value ? value : "(null)", oi->int_lo, oi->int_hi);
+  int old = m->opt[i];
+  m->opt[i] = (int)v;
+  int st = setup(m, msg);
+  if (st) {
+    m->opt[i] = old;
+    setup(m, NULL);
+  }
+  int_option_text(m, (size_t)i);
+  return st;
+}
+
 int sc_map_set_option(sc_map *m, const char *name, const char *value,
                       sc_msg *msg) {
   int i = option_index(m, name);
@@ -190,6 +242,7 @@ int sc_map_set_option(sc_map *m, const char *name, const char *value,
     return sc_fail(msg, SC_EINVAL, "unknown option '%s' for model %s",
                    name ? name : "(null)", m->type->name);
   const sc_option_info *oi = &m->type->options[i];
+  if (oi->int_hi > 0) return set_int_option(m, i, value, msg);
   int v = -1;
   for (int k = 0; value && k < SC_MAXVALUES && oi->values[k]; k++)
     if (strcmp(oi->values[k], value) == 0) v = k;
@@ -212,6 +265,7 @@ int sc_map_set_option(sc_map *m, const char *name, const char *value,
 const char *sc_map_get_option(const sc_map *m, const char *name) {
   int i = option_index(m, name);
   if (i < 0) return NULL;
+  if (m->type->options[i].int_hi > 0) return m->opt_text[i];
   return m->type->options[i].values[m->opt[i]];
 }
 
@@ -278,22 +332,50 @@ static void clear_value(sc_map_value *v) {
     v->dfdp[i] = v->d2fddp[i] = v->d3fdd2p[i] = 0;
 }
 
+/* One iterate of a model whose dimension is 1 at its current options but
+ * which gives eval_n only (the chain of two blocks), as a one-dimensional
+ * value, so every one-dimensional task runs on it. */
+static int eval_one_component(sc_map *m, double d, unsigned flags,
+                              sc_map_value *out, sc_msg *msg) {
+  sc_mapn_value *v = m->step;
+  v->nphases = 0;
+  v->itinerary[0] = '\0';
+  int st = m->type->eval_n(m->inst, &d, flags, v, msg);
+  if (st) return st;
+  out->f = v->f[0];
+  out->nphases = v->nphases;
+  if (flags & SC_EVAL_ITINERARY)
+    memcpy(out->itinerary, v->itinerary, SC_ITIN_LEN);
+  if (flags & SC_EVAL_DERIV) {
+    out->dfdd = v->J[0];
+    for (size_t q = 0; q < m->type->nparam; q++) out->dfdp[q] = v->fp[q];
+  }
+  if (flags & SC_EVAL_DERIV2) {
+    out->d2fdd2 = v->H[0];
+    out->d3fdd3 = v->T[0];
+    for (size_t q = 0; q < m->type->nparam; q++) out->d2fddp[q] = v->Jp[q];
+  }
+  return SC_OK;
+}
+
 int sc_map_eval_ex(sc_map *m, double d, unsigned flags,
                    const sc_itin_code *force, sc_itin_code *code,
                    sc_border_list *borders, sc_map_value *out, sc_msg *msg) {
   if (!isfinite(d))
     return sc_fail(msg, SC_EINVAL, "sc_map_eval: %s = %g is not finite",
                    m->type->state_name, d);
-  if (!m->type->eval)
+  if (!m->type->eval && m->dim > 1)
     return sc_fail(msg, SC_EINVAL,
                    "model %s has %zu state components: its map is evaluated "
-                   "with sc_map_eval_n()", m->type->name, m->type->dim);
+                   "with sc_map_eval_n()", m->type->name, m->dim);
   clear_value(out);
   if (code) code->n = 0;
   if (flags & SC_EVAL_DERIV2) flags |= SC_EVAL_DERIV;
   m->nevals++;
   int st;
-  if (m->type->eval_ex && (force || code || borders))
+  if (!m->type->eval)
+    st = eval_one_component(m, d, flags, out, msg);
+  else if (m->type->eval_ex && (force || code || borders))
     st = m->type->eval_ex(m->inst, d, flags, force, code, borders, out, msg);
   else
     st = m->type->eval(m->inst, d, flags, out, msg);

@@ -9,6 +9,9 @@ struct sc_map {
   const sc_model_type *type;
   double p[SC_MAXPARAM];
   int opt[SC_MAXOPTION];
+  /* a whole-number option's value as text (sc_map_get_option()) */
+  char opt_text[SC_MAXOPTION][16];
+  size_t dim;             /* state dimension, read after every setup */
   sc_accuracy acc;
   void *inst;             /* type->inst_size bytes, owned */
   unsigned long nevals;   /* evaluations of one iterate */

@@ -8,9 +8,7 @@
 
 #include "map_impl.h"
 
-size_t sc_map_dim(const sc_map *m) {
-  return m->type->dim > 1 ? m->type->dim : 1;
-}
+size_t sc_map_dim(const sc_map *m) { return m->dim; }
 
 const char *sc_map_state_component(const sc_map *m, size_t i, char *buf,
                                    size_t len) {
@@ -139,7 +137,7 @@ int sc_map_eval_n(sc_map *m, const double *x, unsigned flags,
   if (flags & SC_EVAL_DERIV2) flags |= SC_EVAL_DERIV;
   out->nphases = 0;
   out->itinerary[0] = '\0';
-  if (m->type->dim <= 1) return eval_1d(m, x[0], flags, out, msg);
+  if (!m->type->eval_n) return eval_1d(m, x[0], flags, out, msg);
   m->nevals++;
   st = m->type->eval_n(m->inst, x, flags, out, msg);
   if (st) return st;

@@ -34,14 +34,14 @@ static const sc_param_info bk2_params[] = {
 static const sc_option_info bk2_options[] = {
     {"driver",
      {"moving", "frozen", NULL},
-     "the driver keeps moving during slips, or stops (assumption 1)"},
+     "the driver keeps moving during slips, or stops (assumption 1)", 0, 0},
     {"friction",
      {"coulomb", "velocity-weakening", NULL},
      "kinetic friction: constant mu T_i (coulomb), or T_i / (1 + gamma "
-     "|U_i - V_s|) (velocity-weakening)"},
+     "|U_i - V_s|) (velocity-weakening)", 0, 0},
     {"flows",
      {"exact", "numerical", NULL},
-     "closed-form flows, or GSL odeiv2 integration"},
+     "closed-form flows, or GSL odeiv2 integration", 0, 0},
 };
 
 double sc_bk2_dstar(double alpha, double beta) {
