@@ -83,6 +83,63 @@ SC_API double sc_guard_m3(const sc_guard *g);
 SC_API int sc_guard_first_root(const sc_guard *g, double tmax, int skip_start,
                         double atol, double rtol, sc_root *out);
 
+/**
+ * A guard with any number of sinusoids, its terms in the caller's arrays:
+ * the N-block chain's (docs/chain.md), where a run of m slipping blocks
+ * has m frequencies and a stuck block between two runs sees both runs'.
+ * sc_guard_first_root() stays the fast path for short guards (bk2).
+ */
+typedef struct {
+  double c0;        /**< constant term */
+  double c1;        /**< drift */
+  int n;            /**< number of sinusoids, >= 0 */
+  const double *w;  /**< n frequencies, > 0 */
+  const double *a;  /**< n cosine coefficients */
+  const double *b;  /**< n sine coefficients */
+} sc_guard_long;
+
+/** What sc_guard_long_first_root() found. */
+typedef struct {
+  int found;    /**< 1: a root in [0, tmax]; 0: none */
+  int tangent;  /**< 1: g' at the root is within rounding of 0 (a touch) */
+  double t;     /**< the root (tmax when none) */
+  double slope; /**< g'(t) */
+  long steps;   /**< steps taken (for benchmarks) */
+} sc_root_long;
+
+/** @brief g(t), g'(t), g''(t) of a long guard; any output may be NULL. */
+SC_API void sc_guard_long_eval(const sc_guard_long *g, double t, double *g0,
+                               double *g1, double *g2);
+
+/**
+ * @brief The first root of the long guard @p g in [0, tmax], approached
+ * from below in steps that are each proved root-free: at t with g(t) < 0
+ * and M2 = sum w_k^2 sqrt(a_k^2 + b_k^2) >= |g''|, the next root is no
+ * earlier than the first zero of g(t) + g'(t) s + M2 s^2 / 2 (docs/chain.md,
+ * "Events").  Near a simple root the steps are Newton's, shortened; at a
+ * touch they shrink geometrically until g passes its maximum or comes
+ * within rounding of zero, which is reported as a root (tangent set when
+ * g' is within rounding of zero too).
+ * @param skip_start 1: g(0) = 0 by construction (a slip starting on its
+ *        re-stick guard) and that root is skipped; 0: a g(0) within
+ *        rounding of zero is a root only where g rises through it (g'(0)
+ *        > 0, or g'(0) = 0 < g''(0)).
+ * @return SC_OK (found or not: out->found); SC_EINVAL for a malformed
+ *         guard (non-finite coefficients, n < 0, w <= 0) or tmax not
+ *         finite and >= 0; SC_ENOCONV for a start on zero that neither
+ *         rises nor falls (g' and g'' within rounding of zero) or more
+ *         steps than a march can take (SC_GUARD_LONG_MAXSTEPS).
+ * Thread safe; no allocation.
+ */
+SC_API int sc_guard_long_first_root(const sc_guard_long *g, double tmax,
+                                    int skip_start, sc_root_long *out);
+
+/** Most steps of one sc_guard_long_first_root() search: a guard of
+ * period 2 pi needs tens per period far from its roots, so this covers
+ * horizons of tens of thousands of periods; beyond, the search stops with
+ * SC_ENOCONV rather than run without end. */
+#define SC_GUARD_LONG_MAXSTEPS 10000000L
+
 #ifdef __cplusplus
 }
 #endif

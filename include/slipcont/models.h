@@ -319,6 +319,10 @@ SC_API extern const sc_model_type sc_model_henon;
 /** The generalized Henon map (x, y) -> (y, alpha - beta x - y^2 + R x y). */
 SC_API extern const sc_model_type sc_model_ghenon;
 
+/** The chain of N blocks, open or in a ring (docs/chain.md); its state
+ * has N - 1 components. */
+SC_API extern const sc_model_type sc_model_chain;
+
 /** Number of built-in models; sc_model_get(i) lists them. */
 SC_API size_t sc_model_count(void);
 /** Built-in model @p i, or NULL. */

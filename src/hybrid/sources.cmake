@@ -1,1 +1,1 @@
-list(APPEND SC_SOURCES src/hybrid/guard.c)
+list(APPEND SC_SOURCES src/hybrid/guard.c src/hybrid/guard_long.c)

@@ -1,0 +1,116 @@
+/* The first root of a guard with any number of sinusoids (hybrid.h,
+ * sc_guard_long_first_root(); docs/chain.md, "Events").
+ *
+ * Every event of the chain is a guard that reaches zero from below.  At a
+ * time t where g(t) < 0, Taylor's theorem with M2 >= |g''| everywhere
+ * gives g(t + s) <= g(t) + g'(t) s + M2 s^2 / 2, so g stays negative until
+ * the first positive zero of that quadratic: the march steps there, and
+ * no root is ever stepped over.  Near a simple root the step is Newton's,
+ * shortened by the curvature term, so the march converges from below
+ * with the error squared at each step; at a maximum that only touches
+ * zero, the steps shrink geometrically (by ~0.41 of the distance to the
+ * maximum) until g passes it or comes within rounding of zero, which is
+ * then a root (a touch: a grazing). */
+#include <float.h>
+#include <math.h>
+
+#include "slipcont/hybrid.h"
+
+/* Rounding bound on one evaluation of g: a few ulps of each term's size,
+ * the sinusoids' arguments w t included (their rounding grows with t),
+ * as guard.c's GUARD_ROUND_ULPS. */
+#define LONG_ROUND_ULPS 8.0
+
+void sc_guard_long_eval(const sc_guard_long *g, double t, double *g0,
+                        double *g1, double *g2) {
+  double v0 = g->c0 + g->c1 * t, v1 = g->c1, v2 = 0;
+  for (int k = 0; k < g->n; k++) {
+    double w = g->w[k], c = cos(w * t), s = sin(w * t);
+    double p = g->a[k] * c + g->b[k] * s, q = g->b[k] * c - g->a[k] * s;
+    v0 += p;
+    v1 += w * q;
+    v2 -= w * w * p;
+  }
+  if (g0) *g0 = v0;
+  if (g1) *g1 = v1;
+  if (g2) *g2 = v2;
+}
+
+/* The guard's bounds: M2 >= |g''|, M3 >= |g'''| everywhere; sizes for
+ * the rounding of g and g' at time t (size0 + size0t t, size1 + size1t t). */
+typedef struct {
+  double M2, M3, size0, size0t, size1, size1t;
+} long_bounds;
+
+static int long_bounds_make(const sc_guard_long *g, long_bounds *z) {
+  *z = (long_bounds){0, 0, fabs(g->c0), fabs(g->c1), fabs(g->c1), 0};
+  if (!isfinite(g->c0) || !isfinite(g->c1) || g->n < 0) return -1;
+  for (int k = 0; k < g->n; k++) {
+    double w = g->w[k], amp = hypot(g->a[k], g->b[k]);
+    if (!(w > 0) || !isfinite(w) || !isfinite(amp)) return -1;
+    z->M2 += w * w * amp;
+    z->M3 += w * w * w * amp;
+    z->size0 += amp;
+    z->size0t += w * amp;
+    z->size1 += w * amp;
+    z->size1t += w * w * amp;
+  }
+  return 0;
+}
+
+/* The first time after a start on zero (g(t0) within rounding of 0) that
+ * g can reach zero again, from g' < 0 (quadratic bound) or g' = 0 > g''
+ * (cubic bound); 0 if g neither falls nor curves down there. */
+static double leave_zero(const long_bounds *z, double g1, double g2,
+                         double r1) {
+  if (g1 < -r1) return z->M2 > 0 ? -2 * g1 / z->M2 : HUGE_VAL;
+  if (g2 < 0) return z->M3 > 0 ? -3 * g2 / z->M3 : HUGE_VAL;
+  return 0;
+}
+
+/* The step from a point where g = g0 < 0 with slope g1: the first zero of
+ * g0 + g1 s + M2 s^2 / 2 (written without cancellation). */
+static double safe_step(const long_bounds *z, double g0, double g1) {
+  if (z->M2 > 0) return -2 * g0 / (g1 + sqrt(g1 * g1 - 2 * z->M2 * g0));
+  return g1 > 0 ? -g0 / g1 : HUGE_VAL;
+}
+
+int sc_guard_long_first_root(const sc_guard_long *g, double tmax,
+                             int skip_start, sc_root_long *out) {
+  *out = (sc_root_long){0, 0, tmax, NAN, 0};
+  long_bounds z;
+  if (!g || long_bounds_make(g, &z) || !isfinite(tmax) || tmax < 0)
+    return SC_EINVAL;
+  const double ulp = LONG_ROUND_ULPS * DBL_EPSILON;
+  double t = 0, g0, g1, g2;
+  sc_guard_long_eval(g, 0, &g0, &g1, &g2);
+  if (fabs(g0) <= ulp * z.size0) {
+    double r1 = ulp * z.size1;
+    if (!skip_start && (g1 > r1 || (fabs(g1) <= r1 && g2 > 0))) {
+      *out = (sc_root_long){1, fabs(g1) <= r1, 0, g1, 0};
+      return SC_OK;
+    }
+    double s = leave_zero(&z, g1, g2, r1);
+    if (!(s > 0)) return SC_ENOCONV;
+    t = s;
+    if (t > tmax) return SC_OK;
+    sc_guard_long_eval(g, t, &g0, &g1, NULL);
+    out->steps++;
+  }
+  for (;;) {
+    double r0 = ulp * (z.size0 + z.size0t * t);
+    if (g0 >= -r0) {
+      /* within rounding of zero, from below: the root; one Newton step
+       * takes an overshoot of the last step back to the zero */
+      double r1 = ulp * (z.size1 + z.size1t * t);
+      if (g1 > r1 && g0 > 0) t -= g0 / g1;
+      *out = (sc_root_long){1, fabs(g1) <= r1, t, g1, out->steps};
+      return SC_OK;
+    }
+    double s = safe_step(&z, g0, g1);
+    if (!(t + s <= tmax)) return SC_OK; /* none up to tmax */
+    t += s;
+    sc_guard_long_eval(g, t, &g0, &g1, NULL);
+    if (++out->steps > SC_GUARD_LONG_MAXSTEPS) return SC_ENOCONV;
+  }
+}

@@ -1,0 +1,113 @@
+/* Private to the chain model (docs/chain.md): the instance, its cache of
+ * run bases, and the phase machinery shared by chain.c (the table, setup,
+ * the onset and the event loop) and chain_phase.c (one slip phase: its
+ * runs in closed form, its guards, its first events, the state and its
+ * sensitivities at the end). */
+#ifndef SC_MODELS_CHAIN_IMPL_H
+#define SC_MODELS_CHAIN_IMPL_H
+
+#include "slipcont/common.h"
+#include "slipcont/models.h"
+
+/* Most blocks (the option's range). */
+#define CHAIN_MAXBLOCKS 256
+/* Parameters in table order; beta_i for i = 2..5 is P_BETA2 + i - 2. */
+enum { P_ALPHA, P_PHI, P_V, P_GAMMA, P_BETA2, CHAIN_NPARAM = P_BETA2 + 4 };
+/* Blocks whose threshold is a parameter (beta2..beta5; block 1's is 1);
+ * the others have threshold 1 (docs/chain.md, "Parameters"). */
+#define CHAIN_PARAM_BLOCKS 5
+/* Options in table order. */
+enum { O_BLOCKS, O_TOPOLOGY, O_DRIVER, O_FRICTION };
+
+/* Shapes of a run's coupling matrix L (docs/chain.md, "Exact flows"):
+ * a path whose two ends are coupled to stuck blocks (degree 2 at both
+ * ends: inside an open chain, or any proper part of a ring); a path whose
+ * first block is a free end of the open chain (degree 1 there; the run
+ * at the other end uses it read backwards); the whole chain (open: free
+ * ends at both; ring: the cycle). */
+enum { SHAPE_INNER, SHAPE_END, SHAPE_WHOLE, CHAIN_NSHAPES };
+
+/* A run's eigenbasis: L = Q diag(mu) Q^T, Q column-major (Q[i + k m] is
+ * component i of eigenvector k). */
+typedef struct {
+  const double *Q, *mu;
+} chain_basis;
+
+/* One run of slipping blocks in a phase: blocks start, start + 1, ...,
+ * start + m - 1 (mod N); row i of its basis is its element i, or element
+ * m - 1 - i when rev (a run at the open chain's right end); its modes
+ * are off .. off + m - 1 of the phase's modal arrays. */
+typedef struct {
+  int start, m, rev, off;
+  chain_basis B;
+} chain_run;
+
+typedef struct {
+  int N, ring, frozen;
+  double alpha, phi, v, Vs;
+  double T[CHAIN_MAXBLOCKS], K[CHAIN_MAXBLOCKS];
+  sc_accuracy acc;
+  int alloc_N;        /* blocks the buffers below were sized for */
+  /* bases computed at setup (N <= CHAIN_EAGER_BLOCKS): table[shape][m] */
+  double *table;      /* their storage */
+  chain_basis *eager; /* [CHAIN_NSHAPES * (N + 1)], NULL: bases per phase */
+  double *scratch;    /* bases of one phase otherwise: N^2 + N doubles */
+  double *lwork;      /* dsyev's workspace */
+  int nlwork;
+  /* one phase */
+  chain_run *runs;
+  int nruns;
+  int *slip, *fresh;
+  double *Y, *U, *Y0, *U0;
+  double *lam, *om, *P0, *P1, *A, *B; /* per mode */
+  double *cs, *sn;                    /* cos, sin of each mode at the event */
+  double *gw, *ga, *gb;               /* one guard's terms */
+  /* sensitivities: columns d_1..d_(N-1), then the parameters */
+  int P;
+  double *TY, *TU;    /* [c N + i] */
+  double *mz, *mzp;   /* one column's modal sensitivities, per mode */
+  double *NY, *NU;    /* one column's sensitivities at the event */
+  double *Ad;         /* accelerations at the event, per block */
+} chain_inst;
+
+/* The event that ends a phase. */
+typedef struct {
+  int kind;     /* CHAIN_RESTICK or CHAIN_THRESHOLD */
+  int block;    /* 0-based */
+  double t;     /* the root */
+  double slope; /* the guard's slope there */
+} chain_event;
+enum { CHAIN_RESTICK = 0, CHAIN_THRESHOLD = 1 };
+
+/* Degree of block j in the chain (its number of neighbours). */
+static inline int chain_degree(const chain_inst *c, int j) {
+  return c->ring ? 2 : (j > 0) + (j < c->N - 1);
+}
+/* Neighbours of block j into nb (at most 2); returns their number. */
+static inline int chain_neighbours(const chain_inst *c, int j, int nb[2]) {
+  int k = 0;
+  if (c->ring) {
+    nb[k++] = (j + c->N - 1) % c->N;
+    nb[k++] = (j + 1) % c->N;
+  } else {
+    if (j > 0) nb[k++] = j - 1;
+    if (j < c->N - 1) nb[k++] = j + 1;
+  }
+  return k;
+}
+
+/* The eigenbasis of a run's coupling matrix (from the table, or computed
+ * into the phase's scratch at offset *used doubles). */
+int chain_basis_of(chain_inst *c, int shape, int m, size_t *used,
+                   chain_basis *out, sc_msg *msg);
+
+/* One slip phase from the state in c->Y, c->U with the slipping set
+ * c->slip (c->fresh: the blocks that started with it): the phase's runs,
+ * their modal data, the first events (up to CHAIN_MAXBLOCKS in ev, their
+ * number in *nev, the earliest first), the state at the end in c->Y,
+ * c->U, and with deriv the sensitivities c->TY, c->TU carried to it.
+ * Returns SC_OK or a negative status (SC_EUNDEF: no event). */
+int chain_phase(chain_inst *c, int deriv, chain_event *ev, int *nev,
+                sc_msg *msg);
+
+#endif
