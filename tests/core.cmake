@@ -34,3 +34,4 @@ set_tests_properties(search_replay_chart search_replay_fig56 PROPERTIES
 sc_add_test(test_vw_edges)
 # Branch starts with velocity weakening: mirror images alike.
 sc_add_test(test_vw_starts)
+sc_add_test(test_chain)

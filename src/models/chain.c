@@ -23,22 +23,22 @@ extern void dsyev_(const char *jobz, const char *uplo, const int *n, double *a,
  * N^2 + N doubles, rather than hold ~90 MB at 256 blocks. */
 #define CHAIN_EAGER_BLOCKS 64
 
+/* Ranges as bk2's (docs/model.md). */
 static const sc_param_info chain_params[CHAIN_NPARAM] = {
-    {"alpha", 3, 0, HUGE_VAL, 1, 1, "coupling spring / driver spring", NULL,
-     NULL},
-    {"phi", 1.25, 1, HUGE_VAL, 1, 1,
+    {"alpha", 3, 0, 1e6, 1, 0, "coupling spring / driver spring", NULL, NULL},
+    {"phi", 1.25, 1, 1e6, 1, 0,
      "static / kinetic friction ratio (kinetic friction T_i / phi)", NULL,
      NULL},
-    {"v", 0.025, 0, HUGE_VAL, 0, 1, "driver velocity", "V", NULL},
-    {"gamma", 1, 0, HUGE_VAL, 0, 1,
+    {"v", 0.025, 0, 1e3, 0, 0, "driver velocity", "V", NULL},
+    {"gamma", 1, 0, 1e6, 0, 0,
      "velocity weakening (a friction law still to come; no effect)", NULL,
      "friction=velocity-weakening"},
-    {"beta2", 1, 0, HUGE_VAL, 1, 1, "static threshold of block 2 (block 1's is 1)",
+    {"beta2", 1, 0, 1e6, 1, 0, "static threshold of block 2 (block 1's is 1)",
      NULL, NULL},
-    {"beta3", 1, 0, HUGE_VAL, 1, 1, "static threshold of block 3", NULL, NULL},
-    {"beta4", 1, 0, HUGE_VAL, 1, 1, "static threshold of block 4", NULL, NULL},
-    {"beta5", 1, 0, HUGE_VAL, 1, 1,
-     "static threshold of block 5 (blocks past 5: 1)", NULL, NULL},
+    {"beta3", 1, 0, 1e6, 1, 0, "static threshold of block 3", NULL, NULL},
+    {"beta4", 1, 0, 1e6, 1, 0, "static threshold of block 4", NULL, NULL},
+    {"beta5", 1, 0, 1e6, 1, 0, "static threshold of block 5 (blocks past 5: 1)",
+     NULL, NULL},
 };
 
 static const sc_option_info chain_options[] = {
@@ -197,7 +197,10 @@ static size_t chain_dim_of(const void *inst) {
 
 /* The state at the end of the GSP of differences d: every block at Vs,
  * the block with the smallest gap T_j - S_j at its threshold, and with
- * it every block whose gap equals it (docs/chain.md, "Events"); with
+ * it every block whose gap equals it (docs/chain.md, "Events"); the
+ * positions are placed from the last block of such a tie (bk2 places
+ * them from block 2 at d*: f is not differentiable there, and its
+ * derivatives are then the same one-sided ones as bk2's); with
  * deriv, the sensitivities of that state.  Positions relative to block
  * 1's during the GSP: D_i = d_1 + ... + d_(i-1), S_i = D_i + alpha c_i,
  * c_i = sum over neighbours n of (D_i - D_n) (block 1's own position
@@ -213,7 +216,7 @@ static void onset(chain_inst *c, const double *d, int deriv) {
     cc[i] = 0;
     for (int s = 0; s < nn; s++) cc[i] += D[i] - D[nb[s]];
     double gap = c->T[i] - (D[i] + al * cc[i]);
-    if (gap < gmin) gmin = gap, j = i;
+    if (gap <= gmin) gmin = gap, j = i; /* the last of a tie, as bk2 */
   }
   for (int i = 0; i < N; i++) {
     c->slip[i] = c->fresh[i] =
