@@ -227,13 +227,15 @@ static int search_guard(chain_inst *c, const sc_guard_long *g, int skip,
   if (S->best < HUGE_VAL) lim = fmin(lim, S->best + tie_window(c, S->best));
   sc_root_long r;
   int st = sc_guard_long_first_root(g, lim, skip, &r);
+  /* the guards are built from finite parameters, so a refused one has
+   * overflowed: a state far too large (Newton's steps can go there) */
   if (st)
-    return sc_fail(msg, st == SC_EINVAL ? SC_EINTERNAL : st,
+    return sc_fail(msg, st == SC_EINVAL ? SC_ENONFINITE : st,
                    "chain: the %s guard of block %d could not be searched "
                    "(%s)",
                    kind == CHAIN_RESTICK ? "re-stick" : "threshold", block + 1,
-                   st == SC_EINVAL ? "malformed" : "a start on zero, or too "
-                                                   "many steps");
+                   st == SC_EINVAL ? "its terms overflow: a state too large"
+                                   : "a start on zero, or too many steps");
   if (r.found) record(S, kind, block, r.t, r.slope);
   return SC_OK;
 }
