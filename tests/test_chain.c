@@ -403,6 +403,67 @@ static void check_symmetry(int N, int ring, const char *driver, int npoints) {
   sc_map_free(m);
 }
 
+/* Whether an itinerary of N <= 9 blocks is its own mirror image: every
+ * slipping set holds block N + 1 - i with block i. */
+static int itin_mirrored(const char *it, int N) {
+  int in[10] = {0};
+  for (const char *p = it;; p++) {
+    if (*p >= '1' && *p <= '9') {
+      in[*p - '0'] = 1;
+      continue;
+    }
+    for (int i = 1; i <= N; i++)
+      if (in[i] != in[N + 1 - i]) return 0;
+    memset(in, 0, sizeof in);
+    if (!*p) return 1;
+  }
+}
+
+/* States fixed by the symmetry: their blocks re-stick in pairs at one
+ * instant (roots equal up to rounding, taken together by the tie rule),
+ * and f is fixed by the symmetry too.  A ring with equal thresholds at
+ * d = 0 slips all together and returns to d = 0. */
+static void check_symmetric_states(void) {
+  const char *drv[2] = {"moving", "frozen"};
+  for (int k = 0; k < 2; k++) {
+    sc_map *m = chain_new(5, "open", drv[k]);
+    sc_mapn_value *v;
+    sc_msg msg;
+    sc_mapn_value_alloc(m, SC_EVAL_ITINERARY, &v, &msg);
+    set(m, "beta2", 1.4);
+    set(m, "beta3", 1.9);
+    set(m, "beta4", 1.4);
+    const double ds[2][4] = {{0.05, 0.02, -0.02, -0.05},
+                             {0.05, -0.02, 0.02, -0.05}};
+    for (int j = 0; j < 2; j++) {
+      double mf[4];
+      int st = sc_map_eval_n(m, ds[j], SC_EVAL_ITINERARY, v, &msg);
+      tu_true(st == SC_OK, "symmetric state %d, %s: %s", j, drv[k], msg.text);
+      mirror(5, v->f, mf);
+      double e = 0;
+      for (int i = 0; i < 4; i++) e = fmax(e, fabs(mf[i] - v->f[i]));
+      tu_true(itin_mirrored(v->itinerary, 5),
+              "open, 5 blocks, %s, symmetric d: itinerary %s mirrored",
+              drv[k], v->itinerary);
+      tu_close("symmetric d: |M f - f|", e, 0, SYM_TOL);
+    }
+    sc_mapn_value_free(v);
+    sc_map_free(m);
+    m = chain_new(4 + k, "ring", drv[k]);
+    sc_mapn_value_alloc(m, SC_EVAL_ITINERARY, &v, &msg);
+    double z[4] = {0, 0, 0, 0};
+    tu_true(sc_map_eval_n(m, z, SC_EVAL_ITINERARY, v, &msg) == SC_OK &&
+                strcmp(v->itinerary, k ? "12345" : "1234") == 0,
+            "ring of %d at d = 0, %s: one synchronous slip (%s)", 4 + k,
+            drv[k], v->itinerary);
+    double e = 0;
+    for (int i = 0; i < 3 + k; i++) e = fmax(e, fabs(v->f[i]));
+    tu_close("ring at d = 0: |f|", e, 0, SYM_TOL);
+    sc_mapn_value_free(v);
+    sc_map_free(m);
+  }
+}
+
 /* --- derivatives against differences --------------------------------- */
 
 /* Central differences with h = 1e-6 on f of order 1 with derivatives of
@@ -536,6 +597,7 @@ int main(void) {
     check_symmetry(N, 0, "frozen", 200);
     check_symmetry(N, 0, "moving", 200);
   }
+  check_symmetric_states();
   for (int N = 3; N <= 4; N++)
     for (int ring = 0; ring <= 1; ring++) {
       check_derivatives(N, ring, "moving");

@@ -76,6 +76,7 @@ typedef struct {
   int block;    /* 0-based */
   double t;     /* the root */
   double slope; /* the guard's slope there */
+  double u;     /* how well t is known: rounding over slope */
 } chain_event;
 enum { CHAIN_RESTICK = 0, CHAIN_THRESHOLD = 1 };
 

@@ -184,13 +184,38 @@ static int threshold_guard(chain_inst *c, int j, sc_guard_long *g) {
 typedef struct {
   chain_event *ev;
   int n;
-  double best; /* earliest root so far (HUGE_VAL: none) */
-  double H;    /* the horizon of guards with sinusoids */
+  double best;   /* earliest root so far (HUGE_VAL: none) */
+  double best_u; /* how well it is known (root_spread()) */
+  double H;      /* the horizon of guards with sinusoids */
 } chain_search;
 
-/* Two roots this close to t are one instant. */
+/* Two roots this close to t are one instant, when both are known exactly
+ * (add each root's own spread, root_spread()). */
 static double tie_window(const chain_inst *c, double t) {
   return CHAIN_TIE_TOLS * (c->acc.event_atol + c->acc.event_rtol * t);
+}
+
+/* How well the root t of g is known: the rounding of g there over its
+ * slope, and no more than sqrt(2 rounding / M2) (a root where g only
+ * touches zero).  Roots of guards that are equal by a symmetry (the two
+ * ends of a mirrored chain) differ by about this much: a slope of 0.02
+ * turns a rounding of 4e-16 into 2e-14, past the event tolerance. */
+static double root_spread(const sc_guard_long *g, double t, double slope) {
+  double size = fabs(g->c0) + fabs(g->c1) * t, M2 = 0;
+  for (int k = 0; k < g->n; k++) {
+    double amp = hypot(g->a[k], g->b[k]);
+    size += amp * (1 + g->w[k] * t);
+    M2 += g->w[k] * g->w[k] * amp;
+  }
+  double r = CHAIN_ROUND_ULPS * DBL_EPSILON * size;
+  double u = fabs(slope) > 0 ? r / fabs(slope) : HUGE_VAL;
+  return M2 > 0 ? fmin(u, sqrt(2 * r / M2)) : fmin(u, r);
+}
+
+/* Whether a root at t known to u is at the instant of the earliest one. */
+static int at_best(const chain_inst *c, const chain_search *S, double t,
+                   double u) {
+  return t <= S->best + tie_window(c, S->best) + S->best_u + u;
 }
 
 /* Whether g can never reach zero: no positive drift, and its constant
@@ -206,25 +231,27 @@ static int never_zero(const sc_guard_long *g) {
 }
 
 static void record(chain_search *S, int kind, int block, double t,
-                   double slope) {
-  S->ev[S->n++] = (chain_event){kind, block, t, slope};
-  if (t < S->best) S->best = t;
+                   double slope, double u) {
+  S->ev[S->n++] = (chain_event){kind, block, t, slope, u};
+  if (t < S->best) S->best = t, S->best_u = u;
 }
 
 /* A stuck block whose neighbours are stuck too: S_j - T_j = c0 + Vs t. */
 static void linear_threshold(const sc_guard_long *g, int j, chain_search *S) {
   double r = CHAIN_ROUND_ULPS * DBL_EPSILON * (fabs(g->c0) + fabs(g->c1));
   if (!(g->c1 > 0)) return;
-  record(S, CHAIN_THRESHOLD, j, g->c0 >= -r ? 0 : -g->c0 / g->c1, g->c1);
+  record(S, CHAIN_THRESHOLD, j, g->c0 >= -r ? 0 : -g->c0 / g->c1, g->c1,
+         r / g->c1);
 }
 
-/* Search g up to the earliest root so far (plus a tie window), or the
- * horizon. */
+/* Search g up to the earliest root so far (plus a tie window, where a
+ * root known as well as that one is at its instant), or the horizon. */
 static int search_guard(chain_inst *c, const sc_guard_long *g, int skip,
                         int kind, int block, chain_search *S, sc_msg *msg) {
   if (never_zero(g)) return SC_OK;
   double lim = S->H;
-  if (S->best < HUGE_VAL) lim = fmin(lim, S->best + tie_window(c, S->best));
+  if (S->best < HUGE_VAL)
+    lim = fmin(lim, S->best + tie_window(c, S->best) + 2 * S->best_u);
   sc_root_long r;
   int st = sc_guard_long_first_root(g, lim, skip, &r);
   /* the guards are built from finite parameters, so a refused one has
@@ -236,7 +263,8 @@ static int search_guard(chain_inst *c, const sc_guard_long *g, int skip,
                    kind == CHAIN_RESTICK ? "re-stick" : "threshold", block + 1,
                    st == SC_EINVAL ? "its terms overflow: a state too large"
                                    : "a start on zero, or too many steps");
-  if (r.found) record(S, kind, block, r.t, r.slope);
+  if (r.found)
+    record(S, kind, block, r.t, r.slope, root_spread(g, r.t, r.slope));
   return SC_OK;
 }
 
@@ -428,7 +456,7 @@ int chain_phase(chain_inst *c, int deriv, chain_event *ev, int *nev,
   int st = find_runs(c, msg);
   if (st) return st;
   for (int r = 0; r < c->nruns; r++) run_modes(c, &c->runs[r]);
-  chain_search S = {ev, 0, HUGE_VAL, CHAIN_HORIZON_TURNS * CHAIN_TWO_PI};
+  chain_search S = {ev, 0, HUGE_VAL, 0, CHAIN_HORIZON_TURNS * CHAIN_TWO_PI};
   st = search_all(c, &S, msg);
   if (st) return st;
   if (S.n == 0)
@@ -440,7 +468,7 @@ int chain_phase(chain_inst *c, int deriv, chain_event *ev, int *nev,
   /* the events at the earliest instant, the earliest first */
   int n = 0, first = 0;
   for (int i = 0; i < S.n; i++)
-    if (ev[i].t <= S.best + tie_window(c, S.best)) {
+    if (at_best(c, &S, ev[i].t, ev[i].u)) {
       ev[n] = ev[i];
       if (ev[n].t < ev[first].t) first = n;
       n++;
