@@ -276,6 +276,28 @@ static void check_neutral_saddle(void) {
   sc_map_free(m);
 }
 
+/* n = 1 through the same code: the logistic map's flips at r = 3
+ * (x = 2/3) and, on the doubled branch, at r = 1 + sqrt(6), the values
+ * the one-dimensional branch (orbits.h) is tested on. */
+static void check_logistic(void) {
+  sc_map *m;
+  sc_msg msg;
+  sc_map_alloc("logistic", NULL, &m, &msg);
+  double x0[1] = {0.6};
+  sc_branchn_spec sp = {.param = 0, .from = 2.5, .to = 3.5, .period = 1,
+                        .x0 = x0, .switch_pd = 1, .max_points = 5000,
+                        .max_branches = 4, .max_period = 2};
+  sc_branchn *b;
+  tu_int("logistic: alloc", sc_branchn_alloc(m, &sp, &b, &msg), SC_OK);
+  tu_int("logistic: run", sc_branchn_run(b, &msg), SC_OK);
+  sc_branchn_special s;
+  double xf[1] = {2.0 / 3};
+  expect(b, "logistic PD period 1", SC_PTN_PD, 1, 3, xf, &s);
+  expect(b, "logistic PD period 2", SC_PTN_PD, 2, 1 + sqrt(6), NULL, &s);
+  sc_branchn_free(b);
+  sc_map_free(m);
+}
+
 static void check_refusals(void) {
   sc_map *m;
   sc_msg msg;
@@ -308,6 +330,7 @@ int main(void) {
   check_henon();
   check_pitchfork();
   check_neutral_saddle();
+  check_logistic();
   check_refusals();
   return tu_finish();
 }
