@@ -226,16 +226,20 @@ static int write_plot_data(sc_cli_run *r, const sc_brn_job *j) {
       if (sc_branchn_point_get(j->b, i, &pt) == SC_OK && pt.branch == b)
         q = pt.period;
     for (int k = 0; k < q; k++) {
+      int prev = -1; /* the previous point's stability: a point where it
+                        changes is drawn in both columns, so the lines
+                        meet */
       for (size_t i = 0; i < np; i++) {
         sc_branchn_point_get(j->b, i, &pt);
         if (pt.branch != b || iterate_to(r, j, pt.x, pt.p, k, v, y)) continue;
         double s = shown(j, y, n);
         sc_csv_double(g, pt.p);
         fputc(',', g);
-        sc_csv_double(g, pt.stable ? s : NAN);
+        sc_csv_double(g, pt.stable || prev == 1 ? s : NAN);
         fputc(',', g);
-        sc_csv_double(g, pt.stable ? NAN : s);
+        sc_csv_double(g, !pt.stable || prev == 0 ? s : NAN);
         fprintf(g, ",%d,%d\n", k, b);
+        prev = pt.stable;
       }
       fputs("\n\n", g);
     }
