@@ -109,6 +109,30 @@ for p in "R1 -0.96 1.4" "R2 2.24 0.6" "R3 0.96 0.8" "R4 0 1"; do
     END { exit n != 1 }' "$TMP/w/gbns/points.csv"
 done
 
+# The NS curve over ghenon's period chart (examples/ghenon-chart.ini
+# first): the chart's invariant circles drawn in the chart's colour.
+for ex in ghenon-chart curve-ghenon-chart; do
+  # shellcheck disable=SC2086
+  $limit "$BIN" run "$SRC/examples/$ex.ini" --quiet $plotset \
+    >"$TMP/stdout" 2>"$TMP/stderr"
+  RC=$?
+  ERR=$(cat "$TMP/stderr")
+  expect_rc "$ex" 0
+done
+D=out/curve-ghenon-chart
+check "curve-ghenon-chart: R4 at (0, 1), R3 at (7/9, 2/3), d < 0" awk -F, \
+  'function a(x) { return x < 0 ? -x : x }
+  $1 == "R4" { n++; if (a($2) > 1e-10 || a($3 - 1) > 1e-10 || !($8 < 0)) exit 1 }
+  $1 == "R3" { n++; if (a($2 - 7 / 9) > 1e-10 || a($3 - 2 / 3) > 1e-10) exit 1 }
+  END { exit n != 2 }' "$D/points.csv"
+check "curve-ghenon-chart: every point on s = 1 - beta, alpha = s^2 + 2 s" \
+  awk -F, 'function a(x) { return x < 0 ? -x : x }
+  NR > 1 && NF > 1 { s = 1 - $2; if (a($1 - s * s - 2 * s) > 1e-12 || a($3 - s) > 1e-12) exit 1 }' \
+  "$D/curve.csv"
+check "curve-ghenon-chart: the overlay's invariant circles in the chart's colour" \
+  grep -q "p == -3 ? " "$D/curve.gp"
+check "curve-ghenon-chart: and in its key" grep -q "title 'chart: invariant circle'" "$D/curve.gp"
+
 # refusals: borders, multiple shooting, marks, ns of a one-dimensional map
 run_sc check "$SRC/examples/curve-ghenon-ns.ini" --set task.type=graze
 expect_rc "ghenon: type = graze" 2

@@ -512,9 +512,10 @@ static unsigned pale(unsigned rgb) {
 static int plot_overlay(FILE *f, const char *ov) {
   char path[4096];
   if (!ov || !realpath(ov, path)) return 0;
-  /* the classes present: periods 1..64, then high, undefined, unsettled */
+  /* the classes present: periods 1..64, then high, undefined, unsettled,
+   * invariant circle (charts of n-dimensional maps) */
   enum { NPER = 64 };
-  int present[NPER + 3] = {0};
+  int present[NPER + 4] = {0};
   FILE *in = open_regular(path);
   if (in) {
     char line[512];
@@ -529,6 +530,7 @@ static int plot_overlay(FILE *f, const char *ov) {
         else if (per == 0) present[NPER] = 1;
         else if (per == -1) present[NPER + 1] = 1;
         else if (per == -2) present[NPER + 2] = 1;
+        else if (per == -3) present[NPER + 3] = 1;
       }
     fclose(in);
   }
@@ -537,7 +539,10 @@ static int plot_overlay(FILE *f, const char *ov) {
         f);
   for (int k = 0; k < 16; k++)
     fprintf(f, "%s0x%06x", k ? ", " : "", pale(sc_plot_period_rgb(k + 1)));
-  fprintf(f, "]\nrgb(p) = p == -2 ? 0x%06x : p == -1 ? 0x%06x : p == 0 ? "
+  fputs("]\nrgb(p) = ", f);
+  if (present[NPER + 3]) /* only then: other charts' scripts unchanged */
+    fprintf(f, "p == -3 ? 0x%06x : ", pale(sc_plot_period_rgb(-3)));
+  fprintf(f, "p == -2 ? 0x%06x : p == -1 ? 0x%06x : p == 0 ? "
              "0x%06x : C[int(p - 1) %% 16 + 1]\n",
           pale(sc_plot_period_rgb(-2)), pale(sc_plot_period_rgb(-1)),
           pale(sc_plot_period_rgb(0)));
@@ -546,15 +551,17 @@ static int plot_overlay(FILE *f, const char *ov) {
   fputs(" skip 1 using 1:2:(int(rgb($3)) >> 16 & 255):(int(rgb($3)) >> 8 "
         "& 255):(int(rgb($3)) & 255) with rgbimage notitle, \\\n",
         f);
-  for (int p = 1; p <= NPER + 3; p++) {
+  for (int p = 1; p <= NPER + 4; p++) {
     if (!present[p - 1]) continue;
-    int per = p <= NPER ? p : NPER + 1 - p; /* 0, -1, -2 */
+    int per = p <= NPER ? p : NPER + 1 - p; /* 0, -1, -2, -3 */
     char title[64];
     if (per >= 1) snprintf(title, sizeof title, "chart: period %d", per);
     else
       snprintf(title, sizeof title, "chart: %s",
-               per == 0 ? "higher or chaos"
-               : per == -1 ? "undefined" : "not settled");
+               per == 0    ? "higher or chaos"
+               : per == -1 ? "undefined"
+               : per == -2 ? "not settled"
+                           : "invariant circle");
     fprintf(f, "     keyentry with boxes fs solid border lc rgb '#bbbbbb' "
                "fc rgb '#%06x' title '%s', \\\n",
             pale(sc_plot_period_rgb(per)), title);
