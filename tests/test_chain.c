@@ -30,7 +30,7 @@ static double uni(double lo, double hi) {
 static sc_map *chain_new(int N, const char *topology, const char *driver) {
   sc_map *m = NULL;
   sc_msg msg;
-  char nb[8];
+  char nb[24];
   snprintf(nb, sizeof nb, "%d", N);
   if (sc_map_alloc("chain", NULL, &m, &msg) ||
       sc_map_set_option(m, "blocks", nb, &msg) ||
@@ -247,7 +247,7 @@ static int ref_map(ref_sys *s, const double *d, double *f, char *itin) {
     if (phase == REF_MAX_PHASES) return -2;
     if (phase) strcat(itin, "-");
     for (int i = 0; i < N; i++)
-      if (s->slip[i]) snprintf(itin + strlen(itin), 4, "%d", i + 1);
+      if (s->slip[i]) snprintf(itin + strlen(itin), 12, "%d", i + 1);
     gsl_odeiv2_evolve *ev = gsl_odeiv2_evolve_alloc((size_t)(2 * N));
     gsl_odeiv2_control *ct = gsl_odeiv2_control_y_new(REF_EPS, REF_EPS);
     gsl_odeiv2_step *st = gsl_odeiv2_step_alloc(gsl_odeiv2_step_rk8pd,
@@ -304,7 +304,7 @@ static void check_integration(int N, int ring, int frozen, int npoints) {
     set(m, "phi", s.phi);
     set(m, "v", s.V);
     for (int i = 1; i < N; i++) {
-      char nm[8];
+      char nm[24];
       snprintf(nm, sizeof nm, "beta%d", i + 1);
       s.T[i] = uni(0.6, 2);
       set(m, nm, s.T[i]);
@@ -377,7 +377,7 @@ static void check_symmetry(int N, int ring, const char *driver, int npoints) {
     /* ring: equal thresholds; open: T_i = T_(N+1-i) */
     double beta[MAXN] = {1};
     for (int i = 1; i < N; i++) {
-      char nm[8];
+      char nm[24];
       snprintf(nm, sizeof nm, "beta%d", i + 1);
       beta[i] = ring ? 1 : i > N - 1 - i ? beta[N - 1 - i] : uni(0.6, 2);
       set(m, nm, beta[i]);
@@ -487,7 +487,7 @@ static void check_derivatives(int N, int ring, const char *driver) {
   set(m, "phi", 1.3);
   set(m, "v", 0.037);
   for (int i = 1; i < N; i++) {
-    char nm[8];
+    char nm[24];
     snprintf(nm, sizeof nm, "beta%d", i + 1);
     set(m, nm, uni(0.8, 1.6));
   }
