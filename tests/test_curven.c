@@ -10,7 +10,9 @@
  *  - ghenon times a one-dimensional fold or flip (3-d: LPNS, PDNS on the
  *    NS curve) and times a planar rotation (4-d: NSNS on the NS curve,
  *    LPNS on the fold curve, PDNS on the flip curve), whose multipliers
- *    are those of the factors.
+ *    are those of the factors, and times a saddle (a real pair with
+ *    product 1: NSNS?, a neutral saddle, not NSNS);
+ *  - henon's period-2 flip curve with its two R2 (a curve of f^2).
  * Every curve point is held to 1e-12 and every codimension-two point to
  * 1e-10 (the closed forms are evaluated in double, their own error a few
  * ulps). */
@@ -153,6 +155,27 @@ static int gh4_eval(void *inst, const double *s, unsigned flags,
   return SC_OK;
 }
 
+/* gh4s: ghenon x (u, v) -> (2 rho u, v / 2), rho = 1 + alpha - c: the
+ * multipliers 2 rho and 1/2, a real pair whose product is 1 at
+ * alpha = c: a neutral saddle, not a second pair on the circle. */
+static int gh4s_eval(void *inst, const double *s, unsigned flags,
+                     sc_mapn_value *o, sc_msg *msg) {
+  (void)msg;
+  const double *p = ((inst6 *)inst)->p;
+  size_t n = o->n;
+  zero_derivs(o, flags);
+  ghenon_part(p, s, flags, o);
+  double rho = 1 + p[0] - p[3];
+  o->f[2] = 2 * rho * s[2];
+  o->f[3] = 0.5 * s[3];
+  if (flags & SC_EVAL_DERIV) {
+    J_(2, 2) = 2 * rho, J_(3, 3) = 0.5;
+    FP_(0, 2) = 2 * s[2], FP_(3, 2) = -2 * s[2];
+  }
+  if (flags & SC_EVAL_DERIV2) JP_(0, 2, 2) = 2, JP_(3, 2, 2) = -2;
+  return SC_OK;
+}
+
 /* cusp2: (x, y) -> (x + mu1 + mu2 x - x^3 + k x y, y / 2 + x^2): on the
  * fixed points y = 2 x^2 and mu1 + mu2 x - (1 - 2 k) x^3 = 0, so the
  * fold curve is mu2 = 3 (1 - 2 k) x^2, mu1 = -2 (1 - 2 k) x^3, with its
@@ -196,6 +219,10 @@ static const sc_model_type gh4_type = {
     .name = "gh4", .doc = "ghenon x a rotation", .state_name = "x",
     .dim = 4, .state_names = xyz, .nparam = 6, .params = gh_params,
     .inst_size = sizeof(inst6), .setup = setup6, .eval_n = gh4_eval};
+static const sc_model_type gh4s_type = {
+    .name = "gh4s", .doc = "ghenon x a saddle", .state_name = "x",
+    .dim = 4, .state_names = xyz, .nparam = 6, .params = gh_params,
+    .inst_size = sizeof(inst6), .setup = setup6, .eval_n = gh4s_eval};
 static const sc_model_type cusp_type = {
     .name = "cusp2", .doc = "cusp with a stable direction",
     .state_name = "x", .dim = 2, .state_names = xyz, .nparam = 3,
@@ -568,6 +595,28 @@ out:
   sc_map_free(m);
 }
 
+/* gh4s on ghenon's NS curve: the bialternate test vanishes at alpha = c
+ * through a real pair (2, 1/2): located, and written as NSNS? (a neutral
+ * saddle), not as NSNS. */
+static void test_neutral_pair(void) {
+  double R = R0, c = 0.3, al = 0.6, s = sqrt(1 + al) - 1, be;
+  ns_at(s, R, &al, &be);
+  double p[6] = {al, be, R, c, 1, 1}, x0[4] = {s, s, 0, 0};
+  sc_map *m = model_at(&gh4s_type, p);
+  double box[4] = {-2, 6, -1, 3};
+  if (trace(m, SC_CURVE_NS, 0, 1, box, x0) == SC_OK) {
+    double sl = sqrt(1 + c) - 1, al2, be2;
+    ns_at(sl, R, &al2, &be2);
+    tu_int("gh4s: no NSNS (the pair is real)", count("NSNS"), 0);
+    const sc_curven_special *q = find("NSNS?", al2, be2);
+    tu_true(q && fabs(q->x - al2) + fabs(q->y - be2) <= TOL_POINT &&
+                strstr(q->note, "neutral saddle"),
+            "gh4s: NSNS? at alpha = c, a neutral saddle (%s)",
+            q ? q->note : "none");
+  }
+  sc_map_free(m);
+}
+
 /* gh4 at alpha = c on ghenon's fold curve (LPNS) and flip curve (PDNS). */
 static void test_product_lp_pd(void) {
   double R = R0;
@@ -670,6 +719,7 @@ int main(void) {
   pg[4] = -1;
   check_model(&gh3_type, pg, xs);
   check_model(&gh4_type, pg, xs);
+  check_model(&gh4s_type, pg, xs);
   double pc[3] = {0.1, 0.2, 0.3};
   check_model(&cusp_type, pc, xs);
   test_ghenon_ns();
@@ -683,6 +733,7 @@ int main(void) {
   test_product_ns(&gh4_type, 1, "NSNS");
   test_product_lp_pd();
   test_henon_period2();
+  test_neutral_pair();
   test_refusals();
   return tu_finish();
 }
