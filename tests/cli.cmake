@@ -18,6 +18,12 @@ set_tests_properties(cli_examples cli_mapn PROPERTIES TIMEOUT 300)
 # 3 s of processor time, 167 s of wall time under the sanitizers on the
 # shared 2-core machine at load 19: the limit is for a hang.
 set_tests_properties(cli_fixed_point_n PROPERTIES TIMEOUT 600)
+# The ghenon atlas: its chart and curves against the closed forms
+# (docs/maps.md, "The ghenon atlas").
+add_test(NAME ghenon_atlas
+  COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/ghenon_atlas.sh
+          $<TARGET_FILE:slipcont_cli> ${PROJECT_SOURCE_DIR})
+set_tests_properties(ghenon_atlas PROPERTIES TIMEOUT 300)
 # Every example is run by some test (by name), so a new one cannot go
 # unchecked.
 add_test(NAME examples_covered
