@@ -208,6 +208,76 @@ static const sc_model_type pitch_model = {
     .eval_n = pitch_eval,
 };
 
+/* --- a piecewise-smooth map (an event map's stand-in) ----------------- */
+
+/* (x, y) -> (p - x / 2 + 2 max(x - 0.3, 0), y / 5), one slip phase an
+ * iterate, itinerary "A" left of x = 0.3 and "B" right of it: the fixed
+ * point x = p / 1.5 meets the kink at p = 0.45, where the branch must
+ * stop rather than pass a point where the map is not smooth. */
+static int kink_eval(void *inst, const double *s, unsigned flags,
+                     sc_mapn_value *out, sc_msg *msg) {
+  (void)msg;
+  const pitch_inst *c = inst;
+  double x = s[0], right = x > 0.3;
+  out->f[0] = c->p - 0.5 * x + (right ? 2 * (x - 0.3) : 0);
+  out->f[1] = 0.2 * s[1];
+  if (flags & SC_EVAL_DERIV) {
+    double J[4] = {right ? 1.5 : -0.5, 0, 0, 0.2}, fp[4] = {1, 0, 0, 0};
+    memcpy(out->J, J, sizeof J);
+    memcpy(out->fp, fp, sizeof fp);
+  }
+  if (flags & SC_EVAL_DERIV2) {
+    memset(out->H, 0, 8 * sizeof *out->H);
+    memset(out->Jp, 0, 8 * sizeof *out->Jp);
+    memset(out->T, 0, 16 * sizeof *out->T);
+  }
+  out->nphases = 1;
+  if (flags & SC_EVAL_ITINERARY) strcpy(out->itinerary, right ? "B" : "A");
+  return SC_OK;
+}
+
+static const sc_model_type kink_model = {
+    .name = "kink",
+    .doc = "(x, y) -> (p - x/2 + 2 max(x - 0.3, 0), y/5)",
+    .state_name = "x",
+    .dim = 2,
+    .nparam = 2,
+    .params = pitch_params,
+    .inst_size = sizeof(pitch_inst),
+    .setup = pitch_setup,
+    .eval_n = kink_eval,
+};
+
+static void check_kink(void) {
+  sc_map *m;
+  sc_msg msg;
+  sc_map_alloc_type(&kink_model, NULL, &m, &msg);
+  double x0[2] = {0.1 / 1.5, 0};
+  sc_branchn_spec sp = {.param = 0, .from = 0.1, .to = 1, .period = 1,
+                        .x0 = x0, .max_points = 5000, .max_branches = 1,
+                        .max_period = 1};
+  sc_branchn *b;
+  tu_int("kink: alloc", sc_branchn_alloc(m, &sp, &b, &msg), SC_OK);
+  tu_int("kink: run", sc_branchn_run(b, &msg), SC_OK);
+  sc_branchn_special s;
+  int n = (int)sc_branchn_nspecial(b);
+  tu_int("kink: one row", n, 1);
+  sc_branchn_special_get(b, 0, &s);
+  tu_true(s.label == SC_PTN_EP && s.p < 0.45 &&
+              strstr(s.note, "the itinerary changes") != NULL,
+          "kink: the segment ends before the kink at 0.45: %s at %g (%s)",
+          sc_branchn_label_text(s.label), s.p, s.note);
+  double pmax = 0;
+  for (size_t i = 0; i < sc_branchn_npoints(b); i++) {
+    sc_branchn_point pt;
+    sc_branchn_point_get(b, i, &pt);
+    pmax = fmax(pmax, pt.p);
+  }
+  tu_true(pmax < 0.45, "kink: no point beyond it (%g)", pmax);
+  sc_branchn_free(b);
+  sc_map_free(m);
+}
+
 static void check_pitchfork(void) {
   sc_map *m;
   sc_msg msg;
@@ -331,6 +401,7 @@ int main(void) {
   check_pitchfork();
   check_neutral_saddle();
   check_logistic();
+  check_kink();
   check_refusals();
   return tu_finish();
 }

@@ -160,7 +160,7 @@ static int add_end(sc_branchn *b, int branch, int period, const double *u,
   sc_msg m2;
   if (sc_bn_multipliers(b, period, s->x, s->p, s->re, s->im, &m2))
     for (size_t i = 0; i < b->n; i++) s->re[i] = s->im[i] = NAN;
-  snprintf(s->note, sizeof s->note, "%.100s%.90s", what, more);
+  snprintf(s->note, sizeof s->note, "%.150s%.41s", what, more);
   return SC_OK;
 }
 
@@ -307,21 +307,60 @@ static int rejected_special(sc_branchn *b, sc_branch *br, int bi, int period,
   return sc_bn_special(b, bi, period, um, tt, L->test, msg);
 }
 
+/* The itinerary of f^m at u into buf ("" if the map fails there); the
+ * return value: the evaluation's slip phases (0 for a smooth map, whose
+ * itinerary is symbolic only, as the logistic map's L and R). */
+static int itinerary_at(sc_branchn *b, int period, const double *u,
+                        char *buf, size_t len) {
+  buf[0] = '\0';
+  if (sc_map_set_param(b->m, b->param, u[b->n], NULL) ||
+      sc_map_iterate_n(b->m, u, period, SC_EVAL_ITINERARY, b->v1, NULL))
+    return 0;
+  snprintf(buf, len, "%s", b->v1->itinerary);
+  return b->v1->nphases;
+}
+
+/* On an event map (slip phases in its evaluation), a point whose
+ * itinerary of f^m is not the segment start's: the map is not smooth
+ * between them (a border the n-dimensional branch does not watch), so
+ * the segment ends before it with a row that says so. */
+static int itinerary_changed(sc_branchn *b, int bi, int period,
+                             const char *itin0, const double *uprev,
+                             const double *u, int *changed) {
+  char itin[SC_ITIN_LEN], why[BN_NOTE];
+  *changed = 0;
+  if (!*itin0) return SC_OK; /* a smooth map: nothing to watch */
+  itinerary_at(b, period, u, itin, sizeof itin);
+  *changed = strcmp(itin, itin0) != 0;
+  if (!*changed) return SC_OK;
+  snprintf(why, sizeof why,
+           "the itinerary changes between %.10g and %.10g (%.40s to %.40s): "
+           "the map is not smooth there; ",
+           uprev[b->n], u[b->n], itin0, itin);
+  return add_end(b, bi, period, uprev, why, "not passed");
+}
+
 /* The loop of one segment from its corrected start: points, special
  * points, its end row. */
 static int segment_loop(sc_branchn *b, sc_branch *br, int bi, int period,
                         sc_msg *msg) {
   size_t n = b->n;
   double uprev[BN_MAXN + 1];
-  int st = add_point(b, bi, period, sc_branch_point(br), msg);
+  char itin0[SC_ITIN_LEN];
+  if (!itinerary_at(b, period, sc_branch_point(br), itin0, sizeof itin0))
+    itin0[0] = '\0'; /* smooth: its itinerary is not watched */
+  int st = add_point(b, bi, period, sc_branch_point(br), msg), changed = 0;
   while (st == SC_OK) {
     sc_msg m2 = {{0}};
     unsigned long nrej = sc_branch_nrejected_special(br);
     memcpy(uprev, sc_branch_point(br), (n + 1) * sizeof *uprev);
     int rc = sc_branch_step(br, &m2);
     const double *u = sc_branch_point(br);
-    if (rc == SC_CONTINUE || rc == SC_SPECIAL || rc == SC_END)
+    if (rc == SC_CONTINUE || rc == SC_SPECIAL || rc == SC_END) {
+      st = itinerary_changed(b, bi, period, itin0, uprev, u, &changed);
+      if (st || changed) break;
       st = add_point(b, bi, period, u, msg);
+    }
     if (!st && sc_branch_nrejected_special(br) > nrej)
       st = rejected_special(b, br, bi, period, uprev, msg);
     if (st) break;
