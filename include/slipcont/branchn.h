@@ -131,7 +131,10 @@ SC_API int sc_branchn_alloc(sc_map *m, const sc_branchn_spec *spec,
  * reports), the flip's, the NS system's (|kappa| < 1: NS with its angle,
  * else a neutral saddle NN), the branch point's.  Coefficients from
  * sc_nf_fold(), sc_nf_flip(), sc_nf_ns() on g's exact jet.  Multipliers
- * from the m Jacobians along the orbit (sc_product_eigs()).
+ * from the m Jacobians along the orbit (sc_product_eigs()).  On an event
+ * map (an evaluation with slip phases) a segment ends, with an EP row
+ * that says so, where the itinerary of f^m changes: the map is not
+ * smooth there, and n-dimensional borders are not located.
  * @return SC_OK (every segment ended: see the EP notes); SC_ENOCONV or
  *         SC_EINVAL when the start is on no orbit; SC_ECALLBACK if
  *         progress stopped the run; SC_ENOMEM.
