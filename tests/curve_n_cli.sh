@@ -132,6 +132,17 @@ check "curve-ghenon-chart: every point on s = 1 - beta, alpha = s^2 + 2 s" \
 check "curve-ghenon-chart: the overlay's invariant circles in the chart's colour" \
   grep -q "p == -3 ? " "$D/curve.gp"
 check "curve-ghenon-chart: and in its key" grep -q "title 'chart: invariant circle'" "$D/curve.gp"
+# past R1 and R2 the NS curve is that of neutral saddles: dashed, and in
+# the key only where the curve has such points; a start that moved by
+# rounding only is not news in the title
+if [ -z "$plotset" ]; then
+  check "curve-ghenon-ns: the neutral saddles dashed, in the key" \
+    grep -q "title 'neutral saddle (not NS)'" out/curve-ghenon-ns/curve.gp
+  check "curve-ghenon-chart: no neutral saddles, none in the key" \
+    test "$(grep -c 'neutral saddle' "$D/curve.gp")" -eq 0
+  check "curve-ghenon-chart: a start moved by rounding is not in the title" \
+    test "$(grep -c 'start moved' "$D/curve.gp")" -eq 0
+fi
 
 # refusals: borders, multiple shooting, marks, ns of a one-dimensional map
 run_sc check "$SRC/examples/curve-ghenon-ns.ini" --set task.type=graze

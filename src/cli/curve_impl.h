@@ -41,6 +41,9 @@ int sc_cli_curve_n_check(const sc_scene *s, const char *type,
 int sc_cli_curve_n_prepare(sc_cli_run *r, sc_curve_settings *set,
                            sc_cli_curve_n **out);
 void sc_cli_curve_n_free(sc_cli_curve_n *c);
+/* Points of an NS curve traced with |kappa| > 1 (neutral saddles); 0 for
+ * other curves. */
+long sc_cli_curve_n_saddles(const sc_cli_curve_n *c);
 
 /* The trace, streamed into curve.csv and points.csv of @p c's run. */
 int sc_cli_curve_n_compute(sc_cli_run *r, sc_cli_curve_n *nd,

@@ -431,6 +431,17 @@ static int curve_compute(sc_cli_run *r, void *job) {
   return st ? st : sc_cli_commit(r, "points.csv", pf);
 }
 
+
+/* Whether the corrected start moved from the given x by more than the
+ * corrector's own tolerance (newton_atol + newton_rtol |x|): a move at
+ * the rounding level is no news for the title or the summary. */
+static int start_moved(const curve_job *j, const sc_map *m) {
+  sc_accuracy acc;
+  sc_map_solver_accuracy(m, &acc);
+  double tol = acc.newton_atol + acc.newton_rtol * fabs(j->x0);
+  return fabs(j->c.start_x - j->x0) > tol;
+}
+
 static int curve_summary(sc_cli_run *r, void *job, FILE *f) {
   const curve_job *j = job;
   const sc_curve_stats *stats = &j->stats;
@@ -452,14 +463,15 @@ static int curve_summary(sc_cli_run *r, void *job, FILE *f) {
             "tolerances, and the curve ends where the floor rises beyond "
             "(EP)\n");
   /* the start is corrected onto the curve at fixed y: where it landed */
-  if (j->c.have_start && j->c.start_x != j->x0)
+  if (j->c.have_start && start_moved(j, r->map))
     fprintf(f,
             "  start: %s = %.17g, %s = %.17g, corrected from the given %s = "
             "%.17g (moved by %.3g)\n",
             j->xn, j->c.start_x, j->yn, j->c.start_y, j->xn, j->x0,
             j->c.start_x - j->x0);
   else if (j->c.have_start)
-    fprintf(f, "  start: %s = %.17g, %s = %.17g, as given\n", j->xn,
+    fprintf(f, "  start: %s = %.17g, %s = %.17g, as given (within the "
+               "corrector's tolerance)\n", j->xn,
             j->c.start_x, j->yn, j->c.start_y);
   if (stats->border_iterate >= 0)
     fprintf(f, "  border followed: %s, %s, iterate %d of %d\n",
@@ -714,7 +726,7 @@ static int curve_plots(sc_cli_run *r, void *job) {
     sc_plot_title(m, NULL, title, sizeof title);
     sc_map_set_param(m, ix, xs, NULL);
     char moved[160] = "";
-    if (j->c.have_start && j->c.start_x != j->x0)
+    if (j->c.have_start && start_moved(j, m))
       snprintf(moved, sizeof moved, "; start moved %.3g from %s = %.10g",
                j->c.start_x - j->x0, j->xn, j->x0);
     snprintf(full, sizeof full, "%s curve, period %d (%.440s%s)",
@@ -760,10 +772,24 @@ static int curve_plots(sc_cli_run *r, void *job) {
   }
   if (!plot_overlay(body, ov)) fputs("plot ", body);
   int nalso = plot_also(body, also, present, body_names, sizeof body_names);
-  fprintf(body,
-          "'curve.csv' skip 1 using 1:2 with lines lw 2.5 lc rgb "
-          "'#1f4e9e' title '%s, period %d%s', \\\n",
-          type_names[j->ti], j->set.period, also ? " (this run)" : "");
+  if (j->ti == TYPE_NS && sc_cli_curve_n_saddles(j->nd) > 0) {
+    /* An NS curve goes on past R1 and R2 as the curve of neutral saddles
+     * (kappa outside [-1, 1]: a real pair mu, 1/mu), not a bifurcation:
+     * drawn dashed.  curve.csv: x, y, the n components, period, kappa. */
+    int kc = 2 + (int)sc_map_dim(r->map) + 2;
+    fprintf(body,
+            "'curve.csv' skip 1 using 1:(abs($%d) <= 1 ? $2 : NaN) with "
+            "lines lw 2.5 lc rgb '#1f4e9e' title 'ns, period %d%s', \\\n"
+            "     'curve.csv' skip 1 using 1:(abs($%d) > 1 ? $2 : NaN) with "
+            "lines lw 1.5 dt 2 lc rgb '#1f4e9e' title 'neutral saddle "
+            "(not NS)', \\\n",
+            kc, j->set.period, also ? " (this run)" : "", kc);
+  } else {
+    fprintf(body,
+            "'curve.csv' skip 1 using 1:2 with lines lw 2.5 lc rgb "
+            "'#1f4e9e' title '%s, period %d%s', \\\n",
+            type_names[j->ti], j->set.period, also ? " (this run)" : "");
+  }
   /* this curve's points: the kinds' own colours without other curves,
    * the curve's colour with them (then the colour tells the curve) */
   int mine[NKINDS] = {0};

@@ -205,6 +205,10 @@ int sc_cli_curve_n_prepare(sc_cli_run *r, sc_curve_settings *set,
   return sc_map_set_param(r->map, (size_t)set->ix, row.value, r->msg);
 }
 
+long sc_cli_curve_n_saddles(const sc_cli_curve_n *c) {
+  return c ? c->nsaddle : 0;
+}
+
 void sc_cli_curve_n_free(sc_cli_curve_n *c) {
   if (!c) return;
   free(c->sp);
