@@ -35,6 +35,7 @@ sc_add_test(test_vw_edges)
 # Branch starts with velocity weakening: mirror images alike.
 sc_add_test(test_vw_starts)
 sc_add_test(test_chain)
+sc_add_test(test_guard_long)
 # The chain through the program: two blocks give bk2's orbits.
 add_test(NAME chain_cli
   COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/chain_cli.sh

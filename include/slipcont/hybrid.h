@@ -101,7 +101,8 @@ typedef struct {
 /** What sc_guard_long_first_root() found. */
 typedef struct {
   int found;    /**< 1: a root in [0, tmax]; 0: none */
-  int tangent;  /**< 1: g' at the root is within rounding of 0 (a touch) */
+  int tangent;  /**< 1: g' at the root is no more than a touch's within
+                     rounding of zero can have (sqrt(2 rounding M2)) */
   double t;     /**< the root (tmax when none) */
   double slope; /**< g'(t) */
   long steps;   /**< steps taken (for benchmarks) */
@@ -123,7 +124,8 @@ SC_API void sc_guard_long_eval(const sc_guard_long *g, double t, double *g0,
  * @param skip_start 1: g(0) = 0 by construction (a slip starting on its
  *        re-stick guard) and that root is skipped; 0: a g(0) within
  *        rounding of zero is a root only where g rises through it (g'(0)
- *        > 0, or g'(0) = 0 < g''(0)).
+ *        > 0, or g'(0) = 0 < g''(0)).  A guard that starts above zero
+ *        (past its event) has its root at 0.
  * @return SC_OK (found or not: out->found); SC_EINVAL for a malformed
  *         guard (non-finite coefficients, n < 0, w <= 0) or tmax not
  *         finite and >= 0; SC_ENOCONV for a start on zero that neither

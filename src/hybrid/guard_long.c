@@ -97,18 +97,25 @@ int sc_guard_long_first_root(const sc_guard_long *g, double tmax,
     sc_guard_long_eval(g, t, &g0, &g1, NULL);
     out->steps++;
   }
+  double tsafe = t; /* g < 0 on [0, tsafe), up to rounding */
   for (;;) {
     double r0 = ulp * (z.size0 + z.size0t * t);
     if (g0 >= -r0) {
       /* within rounding of zero, from below: the root; one Newton step
-       * takes an overshoot of the last step back to the zero */
+       * takes an overshoot of the last step back to the zero, never
+       * before the last point known below it (a guard that starts above
+       * zero, past its event, has its root at once).  A touch: g' no
+       * larger than a parabola of curvature M2 has within rounding of
+       * its top, sqrt(2 r0 M2). */
       double r1 = ulp * (z.size1 + z.size1t * t);
-      if (g1 > r1 && g0 > 0) t -= g0 / g1;
-      *out = (sc_root_long){1, fabs(g1) <= r1, t, g1, out->steps};
+      if (g1 > r1 && g0 > 0) t = fmax(tsafe, t - g0 / g1);
+      int touch = fabs(g1) <= r1 + sqrt(2 * r0 * z.M2);
+      *out = (sc_root_long){1, touch, t, g1, out->steps};
       return SC_OK;
     }
     double s = safe_step(&z, g0, g1);
     if (!(t + s <= tmax)) return SC_OK; /* none up to tmax */
+    tsafe = t;
     t += s;
     sc_guard_long_eval(g, t, &g0, &g1, NULL);
     if (++out->steps > SC_GUARD_LONG_MAXSTEPS) return SC_ENOCONV;
