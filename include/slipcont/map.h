@@ -221,6 +221,59 @@ SC_API int sc_map_eval_n(sc_map *m, const double *x, unsigned flags,
 SC_API int sc_map_iterate_n(sc_map *m, const double *x, int k, unsigned flags,
                             sc_mapn_value *out, sc_msg *msg);
 
+/* ------------------------------------------------------------------ */
+/* Borders of n-dimensional maps                                       */
+
+/** 1 if the model of @p m declares borders of its n-dimensional map
+ * (eval_n_ex: sc_map_eval_n_ex() does more than sc_map_eval_n()); 0 for
+ * a smooth map and for the one-dimensional models, whose borders are
+ * sc_map_has_borders()'s. */
+SC_API int sc_map_has_borders_n(const sc_map *m);
+
+/**
+ * @brief Storage for @p cap borders of @p m's n-dimensional map: the
+ * entries and their gradients (cap x n doubles), one block per array.
+ * Memory is cap (sizeof(sc_bordern) + 8 n) bytes: bounded for every n up
+ * to SC_MAXDIM.
+ * @return SC_OK; SC_EINVAL for cap = 0; SC_ENOMEM.
+ */
+SC_API int sc_bordern_list_alloc(const sc_map *m, size_t cap,
+                                 sc_bordern_list **out, sc_msg *msg);
+/** @brief Release @p l; NULL is accepted. */
+SC_API void sc_bordern_list_free(sc_bordern_list *l);
+
+/**
+ * @brief One iterate of an n-dimensional map with its itinerary code and
+ * borders, optionally forced along @p force: the contract of
+ * sc_map_eval_ex() for a state of n components.  With @p force, @p code
+ * and @p borders all NULL, or for a smooth model, this is
+ * sc_map_eval_n().  Borders are appended to @p borders (iterate 0), each
+ * with its exact gradient in @p x and the parameters.
+ * @return as sc_map_eval_n(); SC_EINVAL for a list of another dimension,
+ *         a code the model cannot follow, or a one-dimensional model with
+ *         @p force or @p borders (its borders are sc_map_eval_ex()'s).
+ */
+SC_API int sc_map_eval_n_ex(sc_map *m, const double *x, unsigned flags,
+                            const sc_itin_code *force, sc_itin_code *code,
+                            sc_bordern_list *borders, sc_mapn_value *out,
+                            sc_msg *msg);
+
+/**
+ * @brief g = f^k at @p x as sc_map_iterate_n(), with the codes of the k
+ * iterates (@p codes: k entries, or NULL), forced along @p force (k
+ * codes, or NULL), and the borders of every iterate (sc_bordern.iterate
+ * says which), their gradients taken with respect to the x and
+ * parameters of f^k by the chain rule: a border m(x_i, p) of iterate i
+ * has dm/dx = m_x J(x_{i-1}) ... J(x_0) and dm/dp = m_p + m_x dx_i/dp.
+ * Asking for borders implies SC_EVAL_DERIV.
+ * @return as sc_map_eval_n_ex(); the message names the iterate that
+ *         failed.
+ */
+SC_API int sc_map_iterate_n_ex(sc_map *m, const double *x, int k,
+                               unsigned flags, const sc_itin_code *force,
+                               sc_itin_code *codes, sc_bordern_list *borders,
+                               sc_mapn_value *out, sc_msg *msg);
+
 /**
  * A continuous trajectory sample: time tau (dimensionless), the model's
  * state (bk2: Y1, Y2, U1, U2) and its mode (the model's own numbering; bk2: 0 stick, 1, 2 one block slips, 3 both).

@@ -241,6 +241,42 @@ typedef struct {
 
 
 /**
+ * One border of an evaluation of an n-dimensional map, with its exact
+ * gradient: as sc_border, with dm/dx (n values) in place of dm/dd.
+ *
+ * on_state = 1: the border is a surface in the state itself, m = s(x_k,
+ * p) with x_k the start of its iterate (bcnf: the switching line x = 0);
+ * the gradient of one iterate's border, before any chaining, is then the
+ * surface's normal at x_k.  A point on it is any state where m = 0: the
+ * one-dimensional d_on has no counterpart.
+ */
+typedef struct {
+  sc_border_kind kind; /**< grazing, crossing, switching, ... */
+  int iterate;         /**< iterate of f^m it belongs to, from 0 */
+  double value;        /**< m, > 0 on the side followed (as sc_border) */
+  double *dx;          /**< n values, dm/dx (x the argument of the
+                            evaluation): storage owned by the list */
+  double dp[SC_MAXPARAM]; /**< dm/dp_i, parameter order */
+  int on_state;           /**< 1: a surface in the state (above) */
+  sc_itin_code alt;       /**< as sc_border.alt */
+  char name[SC_BORDER_NAME]; /**< as sc_border.name */
+} sc_bordern;
+
+/**
+ * Where the borders of an n-dimensional evaluation go: @p cap entries
+ * whose gradients point into @p grad (cap x dim doubles), both owned by
+ * the list (sc_bordern_list_alloc() in map.h).  An evaluation appends;
+ * @p n counts every border, also those beyond @p cap.
+ */
+typedef struct {
+  sc_bordern *b; /**< cap entries; b[i].dx = grad + i dim */
+  double *grad;  /**< cap x dim doubles */
+  size_t cap;    /**< entries b holds */
+  size_t dim;    /**< state dimension n */
+  size_t n;      /**< borders of the evaluation (may exceed cap) */
+} sc_bordern_list;
+
+/**
  * The model interface.  `inst` is a model-owned block of `inst_size`
  * bytes (zeroed before init); `p` holds the parameter values in table
  * order and `opt` the option value indices.  Callbacks return SC_OK or a
@@ -299,6 +335,15 @@ typedef struct sc_model_type {
    * is the dimension.  Such a model gives eval_n (used for every n, 1
    * included) and no eval. */
   size_t (*dim_of)(const void *inst);
+  /** One iterate of an n-dimensional map with borders, following
+   * @p force (NULL: the natural itinerary), reporting the code followed
+   * into @p code (may be NULL) and appending the iterate's borders to
+   * @p borders (may be NULL; their gradients filled whatever @p flags
+   * says): the contract of eval_ex for a state of n components.  NULL
+   * for a smooth map.  See sc_map_eval_n_ex(). */
+  int (*eval_n_ex)(void *inst, const double *x, unsigned flags,
+                   const sc_itin_code *force, sc_itin_code *code,
+                   sc_bordern_list *borders, sc_mapn_value *out, sc_msg *msg);
   /** Continuous motion (see sc_map_trajectory()); NULL if none. */
   int (*trajectory)(void *inst, double d, int iterations, double dtau,
                     int (*fn)(void *, double, const double *, int),
@@ -322,6 +367,10 @@ SC_API extern const sc_model_type sc_model_ghenon;
 /** The chain of N blocks, open or in a ring (docs/chain.md); its state
  * has N - 1 components. */
 SC_API extern const sc_model_type sc_model_chain;
+/** The border-collision normal form in two dimensions: (x, y) ->
+ * (tau x + y + mu, -delta x), (tau, delta) = (tau_L, delta_L) for x <= 0
+ * and (tau_R, delta_R) for x > 0; its border x = 0 is a switching line. */
+SC_API extern const sc_model_type sc_model_bcnf;
 
 /** Number of built-in models; sc_model_get(i) lists them. */
 SC_API size_t sc_model_count(void);

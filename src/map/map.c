@@ -12,7 +12,7 @@
 
 static const sc_model_type *const builtin[] = {
     &sc_model_bk2, &sc_model_logistic, &sc_model_cubic, &sc_model_gpd,
-    &sc_model_henon, &sc_model_ghenon, &sc_model_chain};
+    &sc_model_henon, &sc_model_ghenon, &sc_model_chain, &sc_model_bcnf};
 
 size_t sc_model_count(void) { return sizeof builtin / sizeof builtin[0]; }
 

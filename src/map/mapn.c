@@ -124,8 +124,49 @@ static int eval_1d(sc_map *m, double x, unsigned flags, sc_mapn_value *out,
   return SC_OK;
 }
 
+int sc_map_has_borders_n(const sc_map *m) {
+  return m->type->eval_n && m->type->eval_n_ex != NULL;
+}
+
+int sc_bordern_list_alloc(const sc_map *m, size_t cap, sc_bordern_list **out,
+                          sc_msg *msg) {
+  *out = NULL;
+  if (cap == 0)
+    return sc_fail(msg, SC_EINVAL, "sc_bordern_list_alloc: cap = 0 (valid: "
+                                   ">= 1)");
+  size_t n = sc_map_dim(m);
+  sc_bordern_list *l = calloc(1, sizeof *l);
+  if (l) {
+    l->b = calloc(cap, sizeof *l->b);
+    l->grad = calloc(cap * n, sizeof *l->grad);
+  }
+  if (!l || !l->b || !l->grad) {
+    sc_bordern_list_free(l);
+    return sc_fail(msg, SC_ENOMEM, "sc_bordern_list_alloc: out of memory");
+  }
+  l->cap = cap;
+  l->dim = n;
+  for (size_t i = 0; i < cap; i++) l->b[i].dx = l->grad + i * n;
+  *out = l;
+  return SC_OK;
+}
+
+void sc_bordern_list_free(sc_bordern_list *l) {
+  if (!l) return;
+  free(l->b);
+  free(l->grad);
+  free(l);
+}
+
 int sc_map_eval_n(sc_map *m, const double *x, unsigned flags,
                   sc_mapn_value *out, sc_msg *msg) {
+  return sc_map_eval_n_ex(m, x, flags, NULL, NULL, NULL, out, msg);
+}
+
+int sc_map_eval_n_ex(sc_map *m, const double *x, unsigned flags,
+                     const sc_itin_code *force, sc_itin_code *code,
+                     sc_bordern_list *borders, sc_mapn_value *out,
+                     sc_msg *msg) {
   int st = check_storage(m, flags, out, msg);
   if (st) return st;
   size_t n = out->n;
@@ -137,9 +178,24 @@ int sc_map_eval_n(sc_map *m, const double *x, unsigned flags,
   if (flags & SC_EVAL_DERIV2) flags |= SC_EVAL_DERIV;
   out->nphases = 0;
   out->itinerary[0] = '\0';
-  if (!m->type->eval_n) return eval_1d(m, x[0], flags, out, msg);
+  if (code) code->n = 0;
+  if (!m->type->eval_n) {
+    if (force || borders)
+      return sc_fail(msg, SC_EINVAL,
+                     "sc_map_eval_n_ex: model %s is one-dimensional: its "
+                     "borders are sc_map_eval_ex()'s", m->type->name);
+    return eval_1d(m, x[0], flags, out, msg);
+  }
+  if (borders && borders->dim != n)
+    return sc_fail(msg, SC_EINVAL,
+                   "sc_map_eval_n_ex: border list of dimension %zu for model "
+                   "%s of %zu components", borders->dim, m->type->name, n);
   m->nevals++;
-  st = m->type->eval_n(m->inst, x, flags, out, msg);
+  if (m->type->eval_n_ex && (force || code || borders))
+    st = m->type->eval_n_ex(m->inst, x, flags, force, code, borders, out,
+                            msg);
+  else
+    st = m->type->eval_n(m->inst, x, flags, out, msg);
   if (st) return st;
   for (size_t i = 0; i < n; i++)
     if (!isfinite(out->f[i]))
@@ -307,19 +363,55 @@ static sc_mapn_value result_view(sc_map *m, unsigned flags) {
   return r;
 }
 
+/* The borders of iterate @p it appended from @p b0, functions of x_it =
+ * G(x_0, p) (G in @p out: f^it with its J and f_p), chained to x_0:
+ * dm/dx_0 = m_x G.J, dm/dp += m_x G.fp.  @p w: n doubles of scratch. */
+static void chain_borders(sc_bordern_list *bl, size_t b0, int it,
+                          const sc_mapn_value *G, double *w) {
+  size_t n = G->n, np = G->np;
+  for (size_t i = b0; i < bl->n && i < bl->cap; i++) {
+    sc_bordern *bd = &bl->b[i];
+    bd->iterate = it;
+    if (it == 0) continue;
+    for (size_t q = 0; q < np; q++) {
+      double s = 0;
+      for (size_t a = 0; a < n; a++) s += bd->dx[a] * G->fp[q * n + a];
+      bd->dp[q] += s;
+    }
+    for (size_t j = 0; j < n; j++) {
+      double s = 0;
+      for (size_t a = 0; a < n; a++) s += bd->dx[a] * G->J[a * n + j];
+      w[j] = s;
+    }
+    memcpy(bd->dx, w, n * sizeof *w);
+  }
+}
+
 int sc_map_iterate_n(sc_map *m, const double *x, int k, unsigned flags,
                      sc_mapn_value *out, sc_msg *msg) {
+  return sc_map_iterate_n_ex(m, x, k, flags, NULL, NULL, NULL, out, msg);
+}
+
+int sc_map_iterate_n_ex(sc_map *m, const double *x, int k, unsigned flags,
+                        const sc_itin_code *force, sc_itin_code *codes,
+                        sc_bordern_list *borders, sc_mapn_value *out,
+                        sc_msg *msg) {
   if (k < 1)
     return sc_fail(msg, SC_EINVAL, "sc_map_iterate_n: k = %d (valid: k >= 1)",
                    k);
   if (flags & SC_EVAL_DERIV2) flags |= SC_EVAL_DERIV;
-  int st = sc_map_eval_n(m, x, flags, out, msg);
+  if (borders) flags |= SC_EVAL_DERIV;
+  size_t b0 = borders ? borders->n : 0;
+  int st = sc_map_eval_n_ex(m, x, flags, force, codes, borders, out, msg);
   if (st) return st;
+  if (borders) chain_borders(borders, b0, 0, out, m->scratch);
   sc_mapn_value *F = m->step;
   sc_mapn_value R = result_view(m, flags);
   int nph = out->nphases;
   for (int it = 1; it < k; it++) {
-    st = sc_map_eval_n(m, out->f, flags, F, msg);
+    b0 = borders ? borders->n : 0;
+    st = sc_map_eval_n_ex(m, out->f, flags, force ? &force[it] : NULL,
+                          codes ? &codes[it] : NULL, borders, F, msg);
     if (st) {
       if (msg) {
         char tail[SC_MSG_LEN];
@@ -328,6 +420,8 @@ int sc_map_iterate_n(sc_map *m, const double *x, int k, unsigned flags,
       }
       return st;
     }
+    /* the scratch is free between compositions */
+    if (borders) chain_borders(borders, b0, it, out, m->scratch);
     compose(m, out, F, &R, flags);
     nph += F->nphases;
     if (flags & SC_EVAL_ITINERARY) {
