@@ -10,9 +10,13 @@
  *
  * A branch borrows the caller's map and changes its parameters while it
  * runs; they are restored when sc_branchn_run() returns.  One object per
- * thread.  Smooth maps only (no borders): the model's n may be 1 too,
- * though the one-dimensional models keep their own branch code
- * (orbits.h) with its discontinuity-induced bifurcations.
+ * thread.  For a model with borders of its n-dimensional map
+ * (sc_map_has_borders_n()), each segment follows the itinerary codes of
+ * its first point; a border of its orbit that changes sign between two
+ * points is located by Newton on {g(x, p) - x = 0, m(x, p) = 0} and the
+ * branch is handed over to the orbit on the other side.  The model's n
+ * may be 1 too, though the one-dimensional models keep their own branch
+ * code (orbits.h) with its discontinuity-induced bifurcations.
  */
 #ifndef SLIPCONT_BRANCHN_H
 #define SLIPCONT_BRANCHN_H
@@ -62,9 +66,20 @@ typedef enum {
                       of the NS test, not a bifurcation) */
   SC_PTN_BP,     /**< branch point: two branches cross */
   SC_PTN_EP,     /**< end of a segment, with its reason */
+  SC_PTN_GR,     /**< a border of kind SC_BORDER_GRAZING: SC_PTN_GR + the
+                      kind labels a border point (docs/maps.md, "Borders
+                      in n dimensions") */
+  SC_PTN_CS,     /**< border: crossing */
+  SC_PTN_SW,     /**< border: switching (bcnf: an orbit point on x = 0) */
+  SC_PTN_BR,     /**< border: both */
+  SC_PTN_TT,     /**< border: touch */
 } sc_branchn_label;
 
-/** "LP", "PD", "NS", "NN", "BP", "EP". */
+/** Number of labels. */
+#define SC_PTN_NLABELS (SC_PTN_TT + 1)
+
+/** "LP", "PD", "NS", "NN", "BP", "EP", and the border kinds' labels
+ * (sc_border_label()). */
 SC_API const char *sc_branchn_label_text(sc_branchn_label l);
 
 /** One accepted point. */
@@ -89,6 +104,8 @@ typedef struct {
   const double *x;   /**< n values */
   const double *re;  /**< n multipliers (as sc_branchn_point) */
   const double *im;  /**< their imaginary parts */
+  const char *border; /**< a border point: the border's name (models.h),
+                            else "" */
   double coef;       /**< LP: a; PD: b; NS: the first Lyapunov
                           coefficient d (docs/maps.md, "Normal forms");
                           NaN for NN, BP, EP or where it failed */

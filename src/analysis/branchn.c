@@ -12,6 +12,8 @@
 
 const char *sc_branchn_label_text(sc_branchn_label l) {
   static const char *const t[] = {"LP", "PD", "NS", "NN", "BP", "EP"};
+  if ((unsigned)l >= SC_PTN_GR && l < SC_PTN_NLABELS)
+    return sc_border_label((sc_border_kind)(l - SC_PTN_GR));
   return (unsigned)l <= SC_PTN_EP ? t[l] : "??";
 }
 
@@ -28,7 +30,8 @@ int sc_bn_jet(const double *x, const double *p, int order, sc_mapn_jet *jet,
   unsigned flags = order >= 2   ? SC_EVAL_DERIV2
                    : order == 1 ? SC_EVAL_DERIV
                                 : 0;
-  if (sc_map_iterate_n(c->m, x, c->period, flags, c->v, NULL))
+  if (sc_map_iterate_n_ex(c->m, x, c->period, flags, c->force, NULL, NULL,
+                          c->v, NULL))
     return 1; /* undefined or not finite: recoverable */
   size_t n = c->v->n, np = c->np;
   memcpy(jet->g, c->v->f, n * sizeof *jet->g);
@@ -73,7 +76,9 @@ int sc_bn_multipliers(sc_branchn *b, int period, const double *x, double p,
   size_t n = b->n;
   memcpy(xk, x, n * sizeof *xk);
   for (int k = 0; k < period; k++) {
-    st = sc_map_eval_n(b->m, xk, SC_EVAL_DERIV, b->v1, msg);
+    st = sc_map_eval_n_ex(b->m, xk, SC_EVAL_DERIV,
+                          b->jc.force ? &b->jc.force[k] : NULL, NULL, NULL,
+                          b->v1, msg);
     if (st) return st;
     memcpy(b->Jk + (size_t)k * n * n, b->v1->J, n * n * sizeof *b->Jk);
     memcpy(xk, b->v1->f, n * sizeof *xk);
@@ -84,7 +89,7 @@ int sc_bn_multipliers(sc_branchn *b, int period, const double *x, double p,
 /* ------------------------------------------------------------------ */
 /* Storage                                                              */
 
-static int grow(void **arr, size_t *cap, size_t need, size_t size) {
+int sc_bn_grow(void **arr, size_t *cap, size_t need, size_t size) {
   if (need <= *cap) return 0;
   size_t nc = *cap ? 2 * *cap : 64;
   while (nc < need) nc *= 2;
@@ -96,7 +101,7 @@ static int grow(void **arr, size_t *cap, size_t need, size_t size) {
 }
 
 bn_special *sc_bn_new_special(sc_branchn *b) {
-  if (grow((void **)&b->sps, &b->spcap, b->nsp + 1, sizeof *b->sps))
+  if (sc_bn_grow((void **)&b->sps, &b->spcap, b->nsp + 1, sizeof *b->sps))
     return NULL;
   bn_special *s = &b->sps[b->nsp++];
   memset(s, 0, sizeof *s);
@@ -106,7 +111,7 @@ bn_special *sc_bn_new_special(sc_branchn *b) {
 }
 
 int sc_bn_push_job(sc_branchn *b, const bn_job *j) {
-  if (grow((void **)&b->jobs, &b->jobcap, b->njobs + 1, sizeof *b->jobs))
+  if (sc_bn_grow((void **)&b->jobs, &b->jobcap, b->njobs + 1, sizeof *b->jobs))
     return SC_ENOMEM;
   b->jobs[b->njobs++] = *j;
   return SC_OK;
@@ -122,7 +127,7 @@ static void deciding(const double *re, const double *im, double *mult,
 
 static int add_point(sc_branchn *b, int branch, int period, const double *u,
                      sc_msg *msg) {
-  if (grow((void **)&b->pts, &b->ptcap, b->npts + 1, sizeof *b->pts))
+  if (sc_bn_grow((void **)&b->pts, &b->ptcap, b->npts + 1, sizeof *b->pts))
     return sc_fail(msg, SC_ENOMEM, "branch: out of memory (%zu points)",
                    b->npts);
   bn_point *pt = &b->pts[b->npts];
@@ -177,8 +182,8 @@ static int check_spec(const sc_map *m, const sc_branchn_spec *sp,
                    sc_map_type(m)->name, n, BN_MAXN);
   if (sc_map_has_borders(m))
     return sc_fail(msg, SC_EINVAL,
-                   "branch: model %s has borders (the n-dimensional branch "
-                   "is for smooth maps)",
+                   "branch: model %s has one-dimensional borders (its "
+                   "branches are orbits.h's)",
                    sc_map_type(m)->name);
   if (sp->param >= sc_map_nparam(m))
     return sc_fail(msg, SC_EINVAL, "branch: parameter index %zu (valid: < "
@@ -249,6 +254,10 @@ int sc_branchn_alloc(sc_map *m, const sc_branchn_spec *spec, sc_branchn **out,
   }
   b->jc = (bn_jet_ctx){.m = m, .v = b->v2, .period = spec->period,
                        .np = b->np};
+  if ((st = sc_bn_border_alloc(b, msg))) {
+    sc_branchn_free(b);
+    return st;
+  }
   *out = b;
   return SC_OK;
 }
@@ -263,6 +272,7 @@ void sc_branchn_free(sc_branchn *b) {
   free(b->pts);
   free(b->sps);
   free(b->jobs);
+  sc_bn_border_free(b);
   free(b);
 }
 
@@ -357,6 +367,14 @@ static int segment_loop(sc_branchn *b, sc_branch *br, int bi, int period,
     int rc = sc_branch_step(br, &m2);
     const double *u = sc_branch_point(br);
     if (rc == SC_CONTINUE || rc == SC_SPECIAL || rc == SC_END) {
+      int crossed = 0;
+      double ub[BN_MAXN + 1];
+      if (b->borders)
+        st = sc_bn_border_step(b, bi, period, uprev, u,
+                               u[n] > uprev[n] ? 1 : -1, &crossed, ub, msg);
+      /* beyond a border the orbit is not real: the segment ends at it */
+      if (!st && crossed == 1) st = add_point(b, bi, period, ub, msg);
+      if (st || crossed) break;
       st = itinerary_changed(b, bi, period, itin0, uprev, u, &changed);
       if (st || changed) break;
       st = add_point(b, bi, period, u, msg);
@@ -399,11 +417,15 @@ static int run_segment(sc_branchn *b, const bn_job *j, sc_msg *msg) {
   if (!st) st = sc_mapn_system_problem(sys, &pb, msg);
   if (st) goto out;
   int found = 1;
-  if (j->displaced) found = sc_bn_displaced_start(b, j, u, &dir, &m2) == 0;
+  if (b->borders) found = sc_bn_segment_codes(b, j, &m2) == SC_OK;
+  if (found && j->displaced)
+    found = sc_bn_displaced_start(b, j, u, &dir, &m2) == 0;
   set.direction = dir;
   set.start_free = j->displaced;
   if ((st = sc_branch_alloc(&pb, &set, &b->acc, &br, msg))) goto out;
   if (found) found = sc_branch_set(br, u, &m2) == SC_OK;
+  if (found && b->borders)
+    found = sc_bn_border_start(b, period, sc_branch_point(br), &m2) == SC_OK;
   if (!found) {
     if (bi == 0) {
       st = sc_fail(msg, SC_ENOCONV, "no period-%d orbit found from it (%s)",
@@ -479,6 +501,6 @@ int sc_branchn_special_get(const sc_branchn *b, size_t i,
       .p = r->p, .x = r->x, .re = r->re, .im = r->im, .coef = r->coef,
       .theta = r->theta, .kappa = r->kappa, .residual = r->residual,
       .error = r->error, .iterations = r->iterations, .method = r->method,
-      .note = r->note};
+      .note = r->note, .border = r->border};
   return SC_OK;
 }

@@ -26,6 +26,7 @@ typedef struct {
   double x[BN_MAXN], re[BN_MAXN], im[BN_MAXN];
   sc_location_method method;
   char note[BN_NOTE];
+  char border[SC_BORDER_NAME]; /* a border point's border, else "" */
 } bn_special;
 
 /* A segment to continue: from u (x, p) directly (dir: the sign of dp/ds),
@@ -36,6 +37,9 @@ typedef struct {
   int doubled; /* a flip's doubled branch: must not have period m / 2 */
   double u[BN_MAXN + 1], dvec[BN_MAXN + 1], h;
   char why[BN_NOTE]; /* where it comes from, for the EP notes */
+  /* a hand-over at a border: 1 + the index in codes_pool of its period
+   * codes; 0: the natural codes of the start (branchn_border.c) */
+  size_t handover;
 } bn_job;
 
 /* g = f^m of the map, for the defining systems. */
@@ -44,6 +48,7 @@ typedef struct {
   sc_mapn_value *v;
   int period;
   size_t np;
+  const sc_itin_code *force; /* the segment's codes, NULL: smooth map */
 } bn_jet_ctx;
 
 struct sc_branchn {
@@ -68,6 +73,14 @@ struct sc_branchn {
   const double **Aptr;
   sc_product_eigs_work *pw;
   int pw_period;
+  /* borders of the n-dimensional map (branchn_border.c): the segment's
+   * codes (max_period entries), the borders at the last point, at the
+   * new one and in a Newton step, the hand-over codes of the jobs */
+  int borders;
+  sc_itin_code *codes, *codes2;
+  sc_bordern_list *bl_prev, *bl_cur, *bl_tmp;
+  sc_itin_code *codes_pool;
+  size_t npool, poolcap;
 };
 
 int sc_bn_jet(const double *x, const double *p, int order, sc_mapn_jet *jet,
@@ -82,5 +95,16 @@ int sc_bn_special(sc_branchn *b, int branch, int period, const double *u,
                   const double *t, int test, sc_msg *msg);
 int sc_bn_displaced_start(sc_branchn *b, const bn_job *j, double *u,
                           int *dir, sc_msg *msg);
+int sc_bn_gauss(size_t N, double *A, double *b);
+int sc_bn_grow(void **arr, size_t *cap, size_t need, size_t size);
+/* branchn_border.c */
+int sc_bn_border_alloc(sc_branchn *b, sc_msg *msg);
+void sc_bn_border_free(sc_branchn *b);
+int sc_bn_segment_codes(sc_branchn *b, const bn_job *j, sc_msg *msg);
+int sc_bn_border_start(sc_branchn *b, int period, const double *u,
+                       sc_msg *msg);
+int sc_bn_border_step(sc_branchn *b, int branch, int period,
+                      const double *uprev, const double *u, int dir,
+                      int *crossed, double *ub, sc_msg *msg);
 
 #endif

@@ -21,7 +21,7 @@ static const double switch_scales[] = {1, 0.3, 3, 0.1};
 /* Gaussian elimination with partial pivoting on the N x N row-major A
  * (destroyed), b overwritten with the solution; -1 for a pivot at the
  * rounding level of A's largest entry. */
-static int gauss(size_t N, double *A, double *b) {
+int sc_bn_gauss(size_t N, double *A, double *b) {
   double amax = 0;
   for (size_t i = 0; i < N * N; i++) amax = fmax(amax, fabs(A[i]));
   for (size_t c = 0; c < N; c++) {
@@ -71,7 +71,7 @@ static int displaced_newton(sc_branchn *b, sc_mapn_system *sys,
     }
     for (size_t i = 0; i < n; i++) F[i] = -F[i];
     F[n] = -c;
-    if (gauss(N, A, F)) return -1;
+    if (sc_bn_gauss(N, A, F)) return -1;
     int small = 1;
     for (size_t i = 0; i < N; i++) {
       u[i] += F[i];
@@ -87,7 +87,7 @@ static int displaced_newton(sc_branchn *b, sc_mapn_system *sys,
     A[n * N + i] = j->dvec[i];
     t[i] = i == n;
   }
-  return gauss(N, A, t);
+  return sc_bn_gauss(N, A, t);
 }
 
 /* The orbit through x has a period dividing m / 2 (a doubled start that

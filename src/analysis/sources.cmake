@@ -9,7 +9,8 @@ list(APPEND SC_SOURCES src/analysis/branch_orbit.c
   src/analysis/branch_switch.c
   src/analysis/branch_marks.c
   src/analysis/branchn.c
-  src/analysis/branchn_special.c)
+  src/analysis/branchn_special.c
+  src/analysis/branchn_border.c)
 list(APPEND SC_SOURCES src/analysis/curve.c
   src/analysis/curve_border.c
   src/analysis/curven.c

@@ -286,7 +286,7 @@ int sc_brn_summary(sc_cli_run *r, const sc_brn_job *j, FILE *f) {
   size_t n = sc_map_dim(r->map), ns = sc_branchn_nspecial(b);
   fprintf(f, "  branches: %d, points: %zu, special points: %zu\n",
           sc_branchn_nbranches(b), sc_branchn_npoints(b), ns);
-  int count[SC_PTN_EP + 1] = {0}, newton = 0, failed = 0;
+  int count[SC_PTN_NLABELS] = {0}, newton = 0, failed = 0;
   sc_branchn_special sp;
   for (size_t i = 0; i < ns; i++) {
     sc_branchn_special_get(b, i, &sp);
@@ -295,7 +295,7 @@ int sc_brn_summary(sc_cli_run *r, const sc_brn_job *j, FILE *f) {
     failed += sp.method == SC_LOC_FAILED;
   }
   fputs("  by label:", f);
-  for (int l = 0; l <= SC_PTN_EP; l++)
+  for (int l = 0; l < SC_PTN_NLABELS; l++)
     if (count[l]) fprintf(f, " %s %d", sc_branchn_label_text(l), count[l]);
   fprintf(f, "\n  located by Newton on their defining systems with a residual "
              "certificate: %d; detected but NOT located: %d\n",
@@ -341,7 +341,8 @@ int sc_brn_plots(sc_cli_run *r, const sc_brn_job *j) {
   fputs("     'branch-orbits.csv' skip 2 using 1:3 with lines lw 1.5 dt 2 "
         "lc rgb '#d62728' title 'unstable'",
         f);
-  static const char *const kinds[] = {"LP", "PD", "NS", "NN", "BP"};
+  static const char *const kinds[] = {"LP", "PD", "NS", "NN", "BP",
+                                      "GR", "CS", "SW", "BR", "TT"};
   for (size_t k = 0; k < sizeof kinds / sizeof *kinds; k++) {
     int present = 0;
     sc_branchn_special sp;
