@@ -8,7 +8,7 @@ sc_add_test(test_plot)
 # overrides, outputs, the examples, and the guide's key tables.
 foreach(script cli_errors cli_refusals cli_signals cli_steps cli_outputs cli_examples cli_guide
                cli_messages cli_inputs cli_fixed_point cli_fixed_point_n cli_branch_n
-               cli_mapn)
+               cli_mapn cli_bordern)
   add_test(NAME ${script}
     COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/${script}.sh
             $<TARGET_FILE:slipcont_cli> ${PROJECT_SOURCE_DIR})

@@ -5,6 +5,7 @@ sc_add_test(test_fixed_points)
 sc_add_test(test_fixed_points_n)
 sc_add_test(test_branch)
 sc_add_test(test_branchn)
+sc_add_test(test_bordern)
 # The fixed-point and branch example scenes through the program.
 add_test(NAME branch_examples
   COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/branch_examples.sh
