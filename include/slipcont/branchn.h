@@ -129,7 +129,8 @@ typedef struct sc_branchn sc_branchn;
  * @return SC_OK; SC_EINVAL naming the field (a parameter index, an equal
  *         from and to, at outside [from, to], a period outside
  *         [1, max_period], a non-finite x0,
- *         a model of more than 16 components, a model with borders);
+ *         a model of more than 16 components, a one-dimensional
+ *         model with borders (bk2: orbits.h));
  *         SC_ENOMEM.
  */
 SC_API int sc_branchn_alloc(sc_map *m, const sc_branchn_spec *spec,
