@@ -209,10 +209,40 @@ static void check_period2(void) {
   sc_map_free(m);
 }
 
+/* The period-2 orbit L R at tau_R = -1.5 continued in mu from 0.5 to
+ * -0.5: both its points reach x = 0 at mu = 0, where it shrinks onto the
+ * fixed point x = y = 0: a SW of an orbit of minimal period 1, with no
+ * hand-over (the other side has no period-2 orbit from there). */
+static void check_period2_born(void) {
+  double mu = 0.5, tl = 0.5, dl = 0.3, dr = 0.3, tr = -1.5;
+  sc_map *m = bcnf(mu, tl, dl, tr, dr);
+  sc_msg msg;
+  double D = (1 + dl) * (1 + dr) - tl * tr;
+  double x0[2] = {mu * (1 + dr + tr) / D, -dr * mu * (1 + dl + tl) / D};
+  sc_branchn_spec sp = {.param = 0, .from = mu, .to = -0.5, .period = 2,
+                        .x0 = x0, .max_points = 500, .max_branches = 4,
+                        .max_period = 4};
+  sc_branchn *b;
+  tu_int("alloc", sc_branchn_alloc(m, &sp, &b, &msg), SC_OK);
+  tu_int("run", sc_branchn_run(b, &msg), SC_OK);
+  sc_branchn_special s;
+  if (tu_true(special(b, SC_PTN_SW, &s), "SW of the period-2 orbit found")) {
+    tu_close("its mu", s.p, 0, PT_TOL);
+    tu_close("its x", s.x[0], 0, PT_TOL);
+    tu_true(strstr(s.note, "minimal period 1") != NULL,
+            "the note says the orbit has minimal period 1: %s", s.note);
+  }
+  tu_int("no hand-over onto the fixed point traversed twice",
+         sc_branchn_nbranches(b), 1);
+  sc_branchn_free(b);
+  sc_map_free(m);
+}
+
 int main(void) {
   check_chain();
   check_mu(-1.5, 1);
   check_mu(2.5, -1);
   check_period2();
+  check_period2_born();
   return tu_finish();
 }

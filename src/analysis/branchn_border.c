@@ -324,6 +324,34 @@ static int hand_over(sc_branchn *b, int period, const sc_bordern *like,
   return sc_bn_push_job(b, &j);
 }
 
+/* Two points of a located orbit are the same where they differ by less
+ * than this many times the Newton tolerances to which it is located: a
+ * period-m orbit that shrinks onto one of lower period at the border
+ * coincides with it there to rounding, while distinct points of an orbit
+ * lie far apart on the scale of those tolerances. */
+#define SAME_POINT_TOLS 1e3
+
+/* The minimal period of the orbit of u along the segment's codes: the
+ * least divisor q of the period with f^q(x) = x. */
+static int minimal_period(sc_branchn *b, int period, const double *u) {
+  size_t n = b->n;
+  const sc_accuracy *acc = &b->acc;
+  if (sc_map_set_param(b->m, b->param, u[n], NULL)) return period;
+  for (int q = 1; q < period; q++) {
+    if (period % q) continue;
+    if (sc_map_iterate_n_ex(b->m, u, q, SC_EVAL_VALUE, b->codes, NULL, NULL,
+                            b->v1, NULL))
+      continue;
+    int same = 1;
+    for (size_t i = 0; i < n; i++)
+      same &= fabs(b->v1->f[i] - u[i]) <=
+              SAME_POINT_TOLS * (acc->newton_atol + acc->newton_rtol *
+                                 fabs(u[i]));
+    if (same) return q;
+  }
+  return period;
+}
+
 /* ------------------------------------------------------------------ */
 /* Detection along a segment                                            */
 
@@ -364,6 +392,15 @@ static int record(sc_branchn *b, int branch, int period,
                               sc_border_label(like->kind), like->iterate + 1,
                               like->name);
   if (k >= sizeof s->note) return SC_OK;
+  int q = minimal_period(b, period, fx->u);
+  if (q < period) {
+    /* the period-m orbit is born from (or dies into) the period-q orbit
+     * at the border: the other side has no period-m orbit from here */
+    snprintf(s->note + k, sizeof s->note - k,
+             "; the orbit has minimal period %d here (born at the border): "
+             "the branch ends here", q);
+    return SC_OK;
+  }
   return hand_over(b, period, like, fx->u, s->note + k, sizeof s->note - k);
 }
 
