@@ -20,10 +20,6 @@
 #define PE_LN2_HI 6.93147180369123816490e-01
 #define PE_LN2_LO 1.90821492927058770002e-10
 
-/* Workspace of dgeqrf and dorgqr per column: LAPACK's block size for
- * them is 32 (ilaenv), 64 leaves room; a smaller one only slows them. */
-#define PE_QR_BLOCK 64
-
 /* The QR cycles (see sc_product_eigs_compute) split the product where
  * the block of Q_0^T Q_m below the split has Frobenius norm at most
  * n eps: dropping it from the last factor changes that factor by at most
@@ -31,20 +27,12 @@
  * themselves. */
 #define PE_SPLIT_TOL(n) ((double)(n) * DBL_EPSILON)
 
-/* The QR cycles go on until every cluster's multipliers, estimated by the
- * products of the R_k's diagonal entries, span at most a factor
- * e^PE_SAFE_SPREAD (1e20).  MB03WD computes products of diagonal entries
- * over all factors; with each cluster's factors scaled to a geometric
- * mean of 1 they stay near the multipliers' own range, and it converges
- * when that range is small: on a random product of 256 factors of order
- * 16 it failed to converge on a cluster of 15 multipliers spanning 1e100
- * and converged once the clusters spanned at most 1e40 (measured).  One
- * cycle splits multipliers whose moduli differ by more than 1/eps, c
- * cycles by more than eps^(-1/c); a product whose factors' triangular
- * parts spread while its multipliers do not (strongly hyperbolic factors
- * turning a complex pair) never meets the test, so the cycles stop after
- * PE_MAX_CYCLES (splits down to a ratio eps^(-1/8) = 90). */
-#define PE_SAFE_SPREAD 46.0
+/* QR cycles on a cluster of 3 or more multipliers before it goes to
+ * MB03WD unsplit.  c cycles split multipliers whose moduli differ by more
+ * than a factor of about eps^(-1/c) (90 for c = 8); what stays together
+ * then lies within such ratios of its neighbours, and MB03WD, whose
+ * products of diagonal entries and 2 x 2 standardization lose accuracy
+ * only on strongly graded clusters, is given none. */
 #define PE_MAX_CYCLES 8
 
 /* SLICOT and LAPACK (Fortran 77 interface, 32-bit integers, every argument
@@ -59,11 +47,6 @@ extern void mb03wd_(const char *job, const char *compz, const int *n,
                     const int *ldz1, const int *ldz2, double *wr, double *wi,
                     double *dwork, const int *ldwork, int *info,
                     size_t job_len, size_t compz_len);
-extern void dgeqrf_(const int *m, const int *n, double *a, const int *lda,
-                    double *tau, double *work, const int *lwork, int *info);
-extern void dorgqr_(const int *m, const int *n, const int *k, double *a,
-                    const int *lda, const double *tau, double *work,
-                    const int *lwork, int *info);
 extern void dlanv2_(double *a, double *b, double *c, double *d, double *rt1r,
                     double *rt1i, double *rt2r, double *rt2i, double *cs,
                     double *sn);
@@ -88,14 +71,12 @@ struct sc_product_eigs_work {
   int n, m;
   int ns, lo;     /* the cluster in the periodic QR: size, first index */
   double *a;      /* n x n x m, column-major: the scaled factors A_k */
-  double *r;      /* n x n x m, column-major: R_k of the QR cycles */
+  double *r;      /* s x s x m, column-major: R_k of a cluster's cycle */
   double *q0, *q, *x, *wq; /* n x n each: Q_0, Q_k, A_k Q_k, Q_0^T Q_m */
-  double *qtau;   /* n, dgeqrf's reflectors */
-  double *qwork;  /* qlwork, dgeqrf and dorgqr */
-  int qlwork;
-  int *split;     /* n + 1: the clusters [split[c], split[c + 1]) */
-  xnum *rdiag;    /* n: products of the R_k's diagonal entries */
-  int nsplit;     /* number of clusters */
+  double *qtau;   /* n, the QR's reflectors */
+  int *split;     /* n + 1: a cluster's split points */
+  int *stack;     /* 2 n: clusters waiting (first index, size) */
+  int nsplit;     /* clusters the last call finished */
   int cycles;     /* QR cycles of the last call */
   double *h;      /* n x n x m, column-major: a cluster's factors, then its
                      periodic Schur form T_k (MB03VD, MB03WD) */
@@ -142,6 +123,18 @@ static double xnum_value(xnum x) {
   return ldexp(x.mant, (int)e);
 }
 
+/* v[0 .. len) times 2^e, exactly (as ldexp: only subnormal results
+ * round): one multiplication by 2^e when that is a normal number, a
+ * multiplication being several times faster than ldexp. */
+static void scale_pow2(double *v, size_t len, int e) {
+  if (e > DBL_MIN_EXP && e < DBL_MAX_EXP) {
+    double f = ldexp(1.0, e);
+    for (size_t i = 0; i < len; i++) v[i] *= f;
+  } else {
+    for (size_t i = 0; i < len; i++) v[i] = ldexp(v[i], e);
+  }
+}
+
 static double xnum_log(xnum x) {
   double e = (double)x.exp;
   return e * PE_LN2_HI + (log(fabs(x.mant)) + e * PE_LN2_LO);
@@ -156,9 +149,8 @@ void sc_product_eigs_work_free(sc_product_eigs_work *w) {
   free(w->x);
   free(w->wq);
   free(w->qtau);
-  free(w->qwork);
   free(w->split);
-  free(w->rdiag);
+  free(w->stack);
   free(w->h);
   free(w->tau);
   free(w->dwork);
@@ -183,7 +175,7 @@ int sc_product_eigs_work_alloc(size_t n, size_t m, sc_product_eigs_work **out,
                    n, m);
   /* SLICOT indexes the n x n x m array with 32-bit integers. */
   if (n > (size_t)INT_MAX / n || n * n > (size_t)INT_MAX / m ||
-      m > (size_t)INT_MAX - n || n > (size_t)INT_MAX / PE_QR_BLOCK)
+      m > (size_t)INT_MAX - n)
     return sc_fail(msg, SC_EINVAL,
                    "sc_product_eigs_work_alloc: n = %zu, m = %zu (n^2 m and "
                    "n + m at most %d)", n, m, INT_MAX);
@@ -192,7 +184,6 @@ int sc_product_eigs_work_alloc(size_t n, size_t m, sc_product_eigs_work **out,
   w->n = (int)n;
   w->m = (int)m;
   size_t nt = n > 1 ? n - 1 : 1;
-  w->qlwork = (int)(PE_QR_BLOCK * n);
   w->a = malloc(sizeof(double) * n * n * m);
   w->r = malloc(sizeof(double) * n * n * m);
   w->q0 = malloc(sizeof(double) * n * n);
@@ -200,9 +191,8 @@ int sc_product_eigs_work_alloc(size_t n, size_t m, sc_product_eigs_work **out,
   w->x = malloc(sizeof(double) * n * n);
   w->wq = malloc(sizeof(double) * n * n);
   w->qtau = malloc(sizeof(double) * n);
-  w->qwork = malloc(sizeof(double) * (size_t)w->qlwork);
   w->split = malloc(sizeof(int) * (n + 1));
-  w->rdiag = malloc(sizeof(xnum) * n);
+  w->stack = malloc(sizeof(int) * 2 * n);
   w->h = malloc(sizeof(double) * n * n * m);
   w->tau = malloc(sizeof(double) * nt * m);
   w->dwork = malloc(sizeof(double) * (n + m));
@@ -214,7 +204,7 @@ int sc_product_eigs_work_alloc(size_t n, size_t m, sc_product_eigs_work **out,
   w->zero = malloc(sizeof(int) * n);
   w->unit = malloc(sizeof(eig_unit) * n);
   if (!w->a || !w->r || !w->q0 || !w->q || !w->x || !w->wq || !w->qtau ||
-      !w->qwork || !w->split || !w->rdiag || !w->h || !w->tau || !w->dwork ||
+      !w->split || !w->stack || !w->h || !w->tau || !w->dwork ||
       !w->wr || !w->wi || !w->scale || !w->mod || !w->ang || !w->zero ||
       !w->unit)
     goto fail;
@@ -242,16 +232,14 @@ static int load_factor(sc_product_eigs_work *w, int k, const double *a) {
   }
   int e0, e1;
   frexp(amax, &e0);
-  double ss = 0;
-  for (int i = 0; i < n * n; i++) {
-    double v = ldexp(a[i], -e0);
-    ss += v * v;
-  }
-  frexp(sqrt(ss), &e1);
-  int e = e0 + e1;
   for (int i = 0; i < n; i++)
-    for (int j = 0; j < n; j++)
-      h[i + (size_t)n * j] = ldexp(a[(size_t)i * n + j], -e);
+    for (int j = 0; j < n; j++) h[i + (size_t)n * j] = a[(size_t)i * n + j];
+  scale_pow2(h, (size_t)n * n, -e0); /* entries at most 1: no overflow */
+  double ss = 0;
+  for (int i = 0; i < n * n; i++) ss += h[i] * h[i];
+  frexp(sqrt(ss), &e1);
+  scale_pow2(h, (size_t)n * n, -e1);
+  int e = e0 + e1;
   w->scale[k] = e;
   return 0;
 }
@@ -300,7 +288,8 @@ static void block_pair(sc_product_eigs_work *w, int i, long scale) {
         fmax(fmax(fabs(c[0]), fabs(c[1])), fmax(fabs(c[2]), fabs(c[3])));
     int e = 0;
     if (cmax > 0) frexp(cmax, &e);
-    for (int q = 0; q < 4; q++) b[q] = ldexp(c[q], -e);
+    for (int q = 0; q < 4; q++) b[q] = c[q];
+    scale_pow2(b, 4, -e);
     bexp += e;
   }
   det.exp += 2 * scale;
@@ -417,108 +406,163 @@ static int periodic_schur(sc_product_eigs_work *w, sc_msg *msg) {
   return SC_OK;
 }
 
-/* One QR cycle from w->q0: A_k Q_k = Q_{k+1} R_k for k = 0 .. m - 1,
- * then W = Q_0^T Q_m in w->wq.  The product is
- *   A_{m-1} ... A_0 = Q_0 (W R_{m-1}) R_{m-2} ... R_0 Q_0^T,
+/* Householder QR of the n x n column-major x in place (LAPACK's dgeqr2:
+ * reflectors I - tau v v^T with v_j = 1 below the diagonal, tau in
+ * w->qtau), then Q explicitly into q (dorg2r's backward accumulation).
+ * Written out because the factors are small: LAPACK's dgeqrf and dorgqr
+ * spent more time in their set-up (ilaenv, dnrm2's scaling) than in the
+ * arithmetic for n <= 16 (measured: twice the time of the whole cycle).
+ * The entries are at most 1 in modulus (the factors have Frobenius norm
+ * below 1, Q_k is orthogonal), so the sums of squares cannot overflow;
+ * a column below 1e-154 may underflow to a zero reflector, which leaves
+ * entries below 1e-154 ||A_k|| out of R: far below the backward error. */
+static void householder_qr(int n, double *x, double *tau, double *q) {
+  for (int j = 0; j < n; j++) {
+    double alpha = x[j + n * j], sigma = 0;
+    for (int i = j + 1; i < n; i++) sigma += x[i + n * j] * x[i + n * j];
+    tau[j] = 0;
+    if (sigma == 0) continue;
+    double norm = sqrt(alpha * alpha + sigma);
+    double beta = alpha <= 0 ? norm : -norm;
+    double f = 1 / (alpha - beta);
+    tau[j] = (beta - alpha) / beta;
+    x[j + n * j] = beta;
+    for (int i = j + 1; i < n; i++) x[i + n * j] *= f;
+    for (int c = j + 1; c < n; c++) {
+      double *xc = x + n * c;
+      double sum = xc[j];
+      for (int i = j + 1; i < n; i++) sum += x[i + n * j] * xc[i];
+      sum *= tau[j];
+      xc[j] -= sum;
+      for (int i = j + 1; i < n; i++) xc[i] -= sum * x[i + n * j];
+    }
+  }
+  memset(q, 0, sizeof(double) * (size_t)n * n);
+  for (int i = 0; i < n; i++) q[i + n * i] = 1;
+  for (int j = n - 1; j >= 0; j--) {
+    if (tau[j] == 0) continue;
+    for (int c = j; c < n; c++) {
+      double *qc = q + n * c;
+      double sum = qc[j];
+      for (int i = j + 1; i < n; i++) sum += x[i + n * j] * qc[i];
+      sum *= tau[j];
+      qc[j] -= sum;
+      for (int i = j + 1; i < n; i++) qc[i] -= sum * x[i + n * j];
+    }
+  }
+}
+
+/* One QR cycle on the cluster [lo, lo + s) of the factors in w->a (their
+ * diagonal s x s blocks F_k, leading dimension n) from w->q0:
+ * F_k Q_k = Q_{k+1} R_k for k = 0 .. m - 1 (R_k into w->r, s x s each),
+ * then W = Q_0^T Q_m in w->wq.  The cluster's product is
+ *   F_{m-1} ... F_0 = Q_0 (W R_{m-1}) R_{m-2} ... R_0 Q_0^T,
  * per factor backward stable, and W is block upper triangular to
  * rounding wherever the cycle has split the multipliers' moduli apart
  * (the cycle is one step of subspace iteration on the product). */
-static int qr_cycle(sc_product_eigs_work *w, sc_msg *msg) {
-  int n = w->n, info = 0;
-  size_t nn = (size_t)n * n;
-  memcpy(w->q, w->q0, sizeof(double) * nn);
-  for (int i = 0; i < n; i++) w->rdiag[i] = (xnum){1.0, 0};
+static void qr_cycle(sc_product_eigs_work *w, int lo, int s) {
+  int n = w->n;
+  size_t nn = (size_t)n * n, ss = (size_t)s * s;
+  memcpy(w->q, w->q0, sizeof(double) * ss);
   for (int k = 0; k < w->m; k++) {
-    const double *a = w->a + nn * k;
-    double *r = w->r + nn * k;
-    for (int j = 0; j < n; j++)
-      for (int i = 0; i < n; i++) {
-        double sum = 0;
-        for (int l = 0; l < n; l++) sum += a[i + n * l] * w->q[l + n * j];
-        w->x[i + n * j] = sum;
+    const double *a = w->a + nn * k + lo + (size_t)n * lo;
+    double *r = w->r + ss * k;
+    memset(w->x, 0, sizeof(double) * ss);
+    for (int j = 0; j < s; j++) /* x = F_k q, column by column */
+      for (int l = 0; l < s; l++) {
+        double qlj = w->q[l + s * j];
+        for (int i = 0; i < s; i++) w->x[i + s * j] += a[i + n * l] * qlj;
       }
-    dgeqrf_(&n, &n, w->x, &n, w->qtau, w->qwork, &w->qlwork, &info);
-    if (info == 0) {
-      for (int j = 0; j < n; j++)
-        for (int i = 0; i < n; i++) r[i + n * j] = i <= j ? w->x[i + n * j] : 0;
-      for (int i = 0; i < n; i++)
-        w->rdiag[i] = xnum_mul(w->rdiag[i], xnum_of(r[i + n * i]));
-      dorgqr_(&n, &n, &n, w->x, &n, w->qtau, w->qwork, &w->qlwork, &info);
-    }
-    if (info != 0)
-      return sc_fail(msg, SC_EINTERNAL, "sc_product_eigs_compute: dgeqrf or "
-                     "dorgqr refused argument %d", -info);
-    double *t = w->q;
-    w->q = w->x;
-    w->x = t;
-  }
-  for (int j = 0; j < n; j++)
-    for (int i = 0; i < n; i++) {
-      double sum = 0;
-      for (int l = 0; l < n; l++) sum += w->q0[l + n * i] * w->q[l + n * j];
-      w->wq[i + n * j] = sum;
-    }
-  return SC_OK;
-}
-
-/* The clusters of W = w->wq into split[0 .. ns]: a split at s where
- * ||W[s:, :s]||_F <= PE_SPLIT_TOL.  Returns the number of clusters. */
-static int find_splits(const sc_product_eigs_work *w, int *split) {
-  int n = w->n, ns = 0;
-  split[ns++] = 0;
-  for (int s = 1; s < n; s++) {
-    double ss = 0;
+    householder_qr(s, w->x, w->qtau, w->q);
     for (int j = 0; j < s; j++)
-      for (int i = s; i < n; i++) ss += w->wq[i + n * j] * w->wq[i + n * j];
-    if (sqrt(ss) <= PE_SPLIT_TOL(n)) split[ns++] = s;
+      for (int i = 0; i < s; i++) r[i + s * j] = i <= j ? w->x[i + s * j] : 0;
   }
-  split[ns] = n;
-  return ns;
+  for (int j = 0; j < s; j++)
+    for (int i = 0; i < s; i++) {
+      double sum = 0;
+      for (int l = 0; l < s; l++) sum += w->q0[l + s * i] * w->q[l + s * j];
+      w->wq[i + s * j] = sum;
+    }
 }
 
-/* log2 |det| / s of a cluster factor, rounded, from its triangular part
- * (|det W_cc| is 1 to rounding): the scale that makes the geometric mean
- * of the factor's eigenvalue moduli about 1, so that MB03WD's products of
- * diagonal entries stay near the multipliers' own range.  A singular
- * factor is scaled by its largest entry instead. */
-static int cluster_scale(const double *r, int n, int lo, int s, const double *f,
-                         int ldf) {
+/* The split points of W = w->wq (s x s) into w->split[0 .. c]: a split at
+ * t where ||W[t:, :t]||_F <= PE_SPLIT_TOL(n).  Returns the number c of
+ * parts. */
+static int find_splits(sc_product_eigs_work *w, int s) {
+  int c = 0, *split = w->split;
+  split[c++] = 0;
+  for (int t = 1; t < s; t++) {
+    double ss = 0;
+    for (int j = 0; j < t; j++)
+      for (int i = t; i < s; i++) ss += w->wq[i + s * j] * w->wq[i + s * j];
+    if (sqrt(ss) <= PE_SPLIT_TOL(w->n)) split[c++] = t;
+  }
+  split[c] = s;
+  return c;
+}
+
+/* The cycle's transformation written back into the cluster's blocks of
+ * w->a: F_k := R_k (k < m - 1) and, on the diagonal block d of each part,
+ * F_{m-1}[d, d] := W[d, d] R_{m-1}[d, d] (W block upper triangular after
+ * the split: what lies below its blocks is dropped, at most
+ * PE_SPLIT_TOL ||F_{m-1}||). */
+static void write_back(sc_product_eigs_work *w, int lo, int s, int parts) {
+  int n = w->n, m = w->m;
+  size_t nn = (size_t)n * n, ss = (size_t)s * s;
+  for (int k = 0; k < m - 1; k++) {
+    double *a = w->a + nn * k + lo + (size_t)n * lo;
+    const double *r = w->r + ss * k;
+    for (int j = 0; j < s; j++)
+      for (int i = 0; i < s; i++) a[i + n * j] = r[i + s * j];
+  }
+  double *a = w->a + nn * (m - 1) + lo + (size_t)n * lo;
+  const double *r = w->r + ss * (m - 1);
+  for (int q = 0; q < parts; q++) {
+    int d0 = w->split[q], d1 = w->split[q + 1];
+    for (int j = d0; j < d1; j++)
+      for (int i = d0; i < d1; i++) {
+        double v = 0;
+        for (int l = d0; l <= j; l++) v += w->wq[i + s * l] * r[l + s * j];
+        a[i + n * j] = v;
+      }
+  }
+}
+
+/* log2 |det| / s of a triangular cluster factor, rounded: the scale that
+ * makes the geometric mean of its eigenvalue moduli about 1, so that
+ * MB03WD's products of diagonal entries stay near the multipliers' own
+ * range.  The full factor (slot 0) and singular ones are scaled by their
+ * largest entry instead. */
+static int cluster_scale(const double *f, int s, int triangular) {
   xnum det = {1.0, 0};
-  for (int i = lo; i < lo + s; i++) det = xnum_mul(det, xnum_of(r[i + n * i]));
-  if (det.mant != 0) return (int)lround(xnum_log(det) / (PE_LN2_HI * s));
+  for (int i = 0; i < s && triangular; i++)
+    det = xnum_mul(det, xnum_of(f[i + s * i]));
+  if (triangular && det.mant != 0)
+    return (int)lround(xnum_log(det) / (PE_LN2_HI * s));
   double fmax_ = 0;
-  for (int j = 0; j < s; j++)
-    for (int i = 0; i < s; i++) fmax_ = fmax(fmax_, fabs(f[i + ldf * j]));
+  for (int i = 0; i < s * s; i++) fmax_ = fmax(fmax_, fabs(f[i]));
   int e = 0;
   if (fmax_ > 0) frexp(fmax_, &e);
   return e;
 }
 
-/* The multipliers of the cluster [lo, lo + s), base scale 2^scale. */
-static int cluster_eigs(sc_product_eigs_work *w, int lo, int s, long scale,
-                        sc_msg *msg) {
-  int n = w->n, m = w->m;
-  size_t nn = (size_t)n * n;
-  w->lo = lo;
-  w->ns = s;
-  for (int k = 0; k < m; k++) {
-    const double *r = w->r + nn * k;
-    double *f = w->h + (size_t)s * s * (size_t)(m - 1 - k); /* SLICOT slot */
-    for (int j = 0; j < s; j++)
-      for (int i = 0; i < s; i++) {
-        double v = r[lo + i + n * (lo + j)];
-        if (k == m - 1) { /* W_cc R_cc */
-          v = 0;
-          for (int l = 0; l <= j; l++)
-            v += w->wq[lo + i + n * (lo + l)] * r[lo + l + n * (lo + j)];
-        }
-        f[i + s * j] = v;
-      }
-    int e = cluster_scale(r, n, lo, s, f, s);
-    for (int q = 0; q < s * s; q++) f[q] = ldexp(f[q], -e);
-    scale += e;
+/* The periodic Schur form of the w->ns factors in w->h and the
+ * multipliers read from it, base scale 2^scale.  Two factors' worth of
+ * order 2 (slot 0 full, the others upper triangular) are read at once by
+ * block_pair: MB03WD would only standardize the block through the
+ * product of its factors (a rotation computed from the formed 2 x 2
+ * product and applied to the factors), which is not backward stable when
+ * the two multipliers differ much in modulus (on a random 50-factor
+ * product with multipliers 4e7 and 1e-11 it returned 4e4 and 4e-6;
+ * measured), while block_pair takes the larger from the product and the
+ * smaller from the exact determinant. */
+static int schur_read(sc_product_eigs_work *w, long scale, sc_msg *msg) {
+  int s = w->ns;
+  if (s == 2) { /* read from the factors: MB03WD would standardize it */
+    block_pair(w, 0, scale);
+    return SC_OK;
   }
-  if (s > 1) {
+  if (s > 2) {
     int status = periodic_schur(w, msg);
     if (status != SC_OK) return status;
   }
@@ -533,43 +577,87 @@ static int cluster_eigs(sc_product_eigs_work *w, int lo, int s, long scale,
   return SC_OK;
 }
 
-/* 1 if every cluster's estimated multipliers (rdiag; zeros left out: MB03WD
- * deflates exact zeros itself) span at most e^PE_SAFE_SPREAD. */
-static int clusters_safe(const sc_product_eigs_work *w) {
-  for (int c = 0; c < w->nsplit; c++) {
-    double lo = HUGE_VAL, hi = -HUGE_VAL;
-    for (int i = w->split[c]; i < w->split[c + 1]; i++) {
-      if (w->rdiag[i].mant == 0) continue;
-      double l = xnum_log(w->rdiag[i]);
-      lo = fmin(lo, l);
-      hi = fmax(hi, l);
-    }
-    if (hi - lo > PE_SAFE_SPREAD) return 0;
+/* The multipliers of the finished cluster [lo, lo + s): its blocks of
+ * w->a into SLICOT's slots of w->h (slot m - 1 - k for factor k), each
+ * scaled by a power of two, then schur_read. */
+static int cluster_eigs(sc_product_eigs_work *w, int lo, int s, long scale,
+                        sc_msg *msg) {
+  int n = w->n, m = w->m;
+  size_t nn = (size_t)n * n;
+  w->lo = lo;
+  w->ns = s;
+  w->nsplit++;
+  for (int k = 0; k < m; k++) {
+    const double *a = w->a + nn * k + lo + (size_t)n * lo;
+    double *f = w->h + (size_t)s * s * (size_t)(m - 1 - k);
+    for (int j = 0; j < s; j++)
+      for (int i = 0; i < s; i++) f[i + s * j] = a[i + n * j];
+    int e = cluster_scale(f, s, k < m - 1);
+    scale_pow2(f, (size_t)s * s, -e);
+    scale += e;
   }
-  return 1;
+  return schur_read(w, scale, msg);
 }
 
-/* n >= 2: QR cycles until the clusters are safe for MB03WD, then the
- * periodic Schur form of each cluster. */
-static int product_schur(sc_product_eigs_work *w, long scale, sc_msg *msg) {
-  int n = w->n, *split = w->split;
-  memset(w->q0, 0, sizeof(double) * (size_t)n * n);
-  for (int i = 0; i < n; i++) w->q0[i + n * i] = 1;
+/* QR cycles on the cluster [lo, lo + s) until it splits (at most
+ * PE_MAX_CYCLES; a cluster of 2 gets one, to make its factors
+ * triangular), the transformation written back.  Returns the number of
+ * parts, in w->split. */
+static int cycle_cluster(sc_product_eigs_work *w, int lo, int s) {
+  int parts = 1;
+  memset(w->q0, 0, sizeof(double) * (size_t)s * s);
+  for (int i = 0; i < s; i++) w->q0[i + s * i] = 1;
   for (int c = 0; c < PE_MAX_CYCLES; c++) {
     if (c > 0) { /* start from Q_m: the next step of the iteration */
       double *t = w->q0;
       w->q0 = w->q;
       w->q = t;
     }
-    int status = qr_cycle(w, msg);
-    if (status != SC_OK) return status;
-    w->nsplit = find_splits(w, split);
-    w->cycles = c + 1;
-    if (clusters_safe(w)) break;
+    qr_cycle(w, lo, s);
+    w->cycles++;
+    parts = find_splits(w, s);
+    if (parts > 1 || s <= 2) break;
   }
-  for (int c = 0; c < w->nsplit; c++) {
-    int status = cluster_eigs(w, split[c], split[c + 1] - split[c], scale, msg);
-    if (status != SC_OK) return status;
+  write_back(w, lo, s, parts);
+  return parts;
+}
+
+/* n >= 2: the clusters of the QR cycles, each split further by more
+ * cycles until it has 2 multipliers or stops splitting, then read
+ * (1 x 1, 2 x 2) or handed to MB03WD (3 or more).  After the first cycle
+ * every factor but the last is triangular on the clusters' blocks. */
+static int product_schur(sc_product_eigs_work *w, long scale, sc_msg *msg) {
+  int n = w->n, *stack = w->stack, top = 0;
+  w->cycles = 0;
+  w->nsplit = 0;
+  if (w->m == 1) { /* one factor: no product to split, MB03WD at once */
+    memcpy(w->h, w->a, sizeof(double) * (size_t)n * n);
+    w->lo = 0;
+    w->ns = n;
+    w->nsplit = 1;
+    return schur_read(w, scale, msg);
+  }
+  stack[top++] = 0;
+  stack[top++] = n;
+  int first = 1;
+  while (top > 0) {
+    int s = stack[--top], lo = stack[--top];
+    if (s <= 2 && !first) {
+      int status = cluster_eigs(w, lo, s, scale, msg);
+      if (status != SC_OK) return status;
+      continue;
+    }
+    first = 0;
+    int parts = cycle_cluster(w, lo, s);
+    if (parts == 1) {
+      int status = cluster_eigs(w, lo, s, scale, msg);
+      if (status != SC_OK) return status;
+      continue;
+    }
+    for (int q = parts - 1; q >= 0; q--) { /* the first part on top */
+      stack[top++] = lo + w->split[q];
+      stack[top++] = w->split[q + 1] - w->split[q];
+    }
   }
   return SC_OK;
 }

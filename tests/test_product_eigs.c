@@ -27,7 +27,9 @@
 #include "slipcont/linalg.h"
 #include "test_util.h"
 
-/* LAPACK's dgeev: the naive route, for comparison. */
+/* LAPACK's dgetrf (determinants) and dgeev (the naive route). */
+extern void dgetrf_(const int *m, const int *n, double *a, const int *lda,
+                    int *ipiv, int *info);
 extern void dgeev_(const char *jobvl, const char *jobvr, const int *n,
                    double *a, const int *lda, double *wr, double *wi,
                    double *vl, const int *ldvl, double *vr, const int *ldvr,
@@ -602,6 +604,72 @@ static void test_hyperbolic_pair(void) {
   product_free(&p);
 }
 
+/* Random factors (entries uniform in [-1, 1), rows scaled by 1 or by
+ * 0.5^i), n = 2, 3, 5, 8 and m = 2, 7, 50, 256: the multipliers are not
+ * known, but their product is the product of the factors' determinants,
+ * so sum log |mu| = sum_k log |det A_k| (LU, long double sum).  Each
+ * factor's determinant moves by its condition number (below 1e3 here)
+ * times n eps relative under the backward error, so the sums agree to
+ * about m n 1e3 eps = m n 2e-13; 1e-12 m n is asked and the largest
+ * observed difference is printed (4e-15 m n).  This check
+ * found the multipliers of MB03WD wrong by factors of up to 1e4 on such
+ * products when it was given them whole.  The naive route's sum is
+ * printed beside it and asserted to miss by more than 1 (a factor e): its
+ * small multipliers are lost, so its sum misses by thousands once m is
+ * large. */
+static void test_determinant(void) {
+  const int ns[] = {2, 3, 5, 8}, ms[] = {2, 7, 50, 256};
+  double worst = 0, naive_worst = 0;
+  for (int g = 0; g < 2; g++)
+    for (int a = 0; a < 4; a++)
+      for (int b = 0; b < 4; b++) {
+        int n = ns[a], m = ms[b], ipiv[NMAX], info = 0;
+        product p = product_new(n, m);
+        long double ldet = 0;
+        double lu[NMAX * NMAX];
+        for (int k = 0; k < m; k++) {
+          double *A = p.A + (size_t)n * n * k;
+          for (int i = 0; i < n; i++)
+            for (int j = 0; j < n; j++)
+              A[i * n + j] = rnd() * (g ? ldexp(1, -i) : 1);
+          for (int i = 0; i < n; i++)
+            for (int j = 0; j < n; j++) lu[i + n * j] = A[i * n + j];
+          dgetrf_(&n, &n, lu, &n, ipiv, &info);
+          for (int i = 0; i < n; i++) ldet += logl(fabsl(lu[i + n * i]));
+        }
+        double re[NMAX], im[NMAX], la[NMAX];
+        sc_msg msg = {{0}};
+        sc_product_eigs_work *w = NULL;
+        int st = sc_product_eigs_work_alloc((size_t)n, (size_t)m, &w, &msg);
+        if (st == SC_OK)
+          st = sc_product_eigs_compute(w, p.Ap, re, im, la, NULL, &msg);
+        sc_product_eigs_work_free(w);
+        if (!tu_true(st == SC_OK, "determinant n = %d, m = %d: status %d (%s)",
+                     n, m, st, msg.text)) {
+          product_free(&p);
+          continue;
+        }
+        long double sum = 0;
+        for (int i = 0; i < n; i++) sum += la[i];
+        double d = fabs((double)(sum - ldet));
+        worst = fmax(worst, d / (m * n));
+        tu_true(d <= 1e-12 * m * n, "determinant n = %d, m = %d, rows %s: "
+                "sum log |mu| %.15Lg, sum log |det| %.15Lg", n, m,
+                g ? "graded" : "uniform", sum, ldet);
+        if (naive_eigs(&p, re, im) == 0) {
+          long double ns_ = 0;
+          for (int i = 0; i < n; i++) ns_ += logl(hypotl(re[i], im[i]));
+          naive_worst = fmax(naive_worst, fabs((double)(ns_ - ldet)));
+        }
+        product_free(&p);
+      }
+  printf("  determinant: largest |sum log |mu| - sum log |det|| / (m n): "
+         "%.3g; the naive route's largest difference: %.3g\n", worst,
+         naive_worst);
+  tu_true(naive_worst > 1, "determinant: the naive route misses sum log |det| "
+          "by %.3g (> 1)", naive_worst);
+}
+
 /* Bad input: NULL pointers, sizes, non-finite entries. */
 static void test_errors(void) {
   double a[4] = {1, 2, 3, NAN}, re[2], im[2];
@@ -633,6 +701,7 @@ int main(void) {
   test_long(2.2, 2, 1.5);
   test_long(4, 3, 0.5);
   test_hyperbolic_pair();
+  test_determinant();
   test_errors();
   return tu_finish();
 }

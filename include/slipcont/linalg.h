@@ -173,7 +173,7 @@ typedef struct sc_product_eigs_work sc_product_eigs_work;
 
 /**
  * @brief Workspace for products of @p m factors of order @p n: about
- * 3 m n^2 + 68 n + 2 m doubles.
+ * 3 m n^2 + 6 n^2 + 2 m doubles.
  * @param n  order of the factors, n >= 1.
  * @param m  number of factors (the period of the orbit), m >= 1.
  * @return SC_OK; SC_EINVAL for n or m out of range (n, m >= 1; n^2 m and
@@ -190,14 +190,17 @@ SC_API void sc_product_eigs_work_free(sc_product_eigs_work *w);
  * @brief Eigenvalues (multipliers) of the product P = A[m-1] ... A[1] A[0]
  * of the m factors of @p w, computed without forming P.
  *
- * First QR cycles, A_k Q_k = Q_{k+1} R_k (one step of subspace iteration
- * on P per cycle, at most 8 cycles), split the product into clusters of
- * multipliers of close modulus (within a factor 1e20); each cluster's factors are then reduced
- * to periodic Hessenberg-triangular form and to periodic real Schur form
- * by the periodic QR algorithm (SLICOT MB03VD, MB03WD): orthogonal Z_k
- * with Z_{k+1}^T A[k] Z_k = T_k (Z_m = Z_0), T_k triangular but one
- * quasi-triangular, so that each multiplier is a product of diagonal
- * entries (of 2 x 2 blocks for a complex pair).  Every factor is scaled
+ * QR cycles, A_k Q_k = Q_{k+1} R_k (one step of subspace iteration on P
+ * per cycle), split the product into clusters of multipliers whose
+ * moduli differ; each cluster is split further by more cycles on its own
+ * blocks until it has one or two multipliers, which are read from the
+ * factors' diagonal (2 x 2 blocks), or stops splitting after 8 cycles
+ * (multipliers of close modulus), which then goes to the periodic QR
+ * algorithm (SLICOT MB03VD, MB03WD).  The result is a periodic real Schur
+ * form: orthogonal Z_k with Z_{k+1}^T A[k] Z_k = T_k (Z_m = Z_0), T_k
+ * triangular but one quasi-triangular, so that each multiplier is a
+ * product of diagonal entries (of 2 x 2 blocks for a complex pair).
+ * Every factor is scaled
  * by a power of two (exact) and the products are accumulated as mantissa
  * and exponent, so moduli far beyond the range of double (a 1000-factor
  * product with |mu| = 1e602 beside 1e-301) come out right in @p logabs;
@@ -232,11 +235,11 @@ SC_API int sc_product_eigs_compute(sc_product_eigs_work *w,
                                    double *im, double *logabs, double *arg,
                                    sc_msg *msg);
 
-/** QR cycles made by the last sc_product_eigs_compute() on @p w (0 for
- *  n = 1 or a zero factor; at most 8). */
+/** QR cycles made by the last sc_product_eigs_compute() on @p w, over all
+ *  clusters (0 for n = 1, m = 1 or a zero factor). */
 SC_API int sc_product_eigs_ncycles(const sc_product_eigs_work *w);
-/** Clusters the last call gave to the periodic QR algorithm (1 for
- *  n = 1, 0 for a zero factor, n when every multiplier split apart). */
+/** Clusters the last call finished: read as 1 x 1 or 2 x 2 blocks or
+ *  handed to MB03WD (1 for n = 1 or m = 1, 0 for a zero factor). */
 SC_API int sc_product_eigs_nclusters(const sc_product_eigs_work *w);
 
 /**
