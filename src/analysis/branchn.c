@@ -370,8 +370,7 @@ static int segment_loop(sc_branchn *b, sc_branch *br, int bi, int period,
       int crossed = 0;
       double ub[BN_MAXN + 1];
       if (b->borders)
-        st = sc_bn_border_step(b, bi, period, uprev, u,
-                               u[n] > uprev[n] ? 1 : -1, &crossed, ub, msg);
+        st = sc_bn_border_step(b, bi, period, uprev, u, &crossed, ub, msg);
       /* beyond a border the orbit is not real: the segment ends at it */
       if (!st && crossed == 1) st = add_point(b, bi, period, ub, msg);
       if (st || crossed) break;

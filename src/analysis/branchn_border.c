@@ -405,10 +405,9 @@ static int record(sc_branchn *b, int branch, int period,
 }
 
 int sc_bn_border_step(sc_branchn *b, int branch, int period,
-                      const double *uprev, const double *u, int dir,
-                      int *crossed, double *ub, sc_msg *msg) {
+                      const double *uprev, const double *u, int *crossed,
+                      double *ub, sc_msg *msg) {
   size_t n = b->n;
-  (void)dir;
   *crossed = 0;
   if (borders_at(b, period, u, u[n], b->codes, NULL, &b->bl_cur, NULL))
     return SC_OK; /* the corrector accepted it: this does not happen */

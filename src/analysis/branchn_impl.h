@@ -104,7 +104,7 @@ int sc_bn_segment_codes(sc_branchn *b, const bn_job *j, sc_msg *msg);
 int sc_bn_border_start(sc_branchn *b, int period, const double *u,
                        sc_msg *msg);
 int sc_bn_border_step(sc_branchn *b, int branch, int period,
-                      const double *uprev, const double *u, int dir,
-                      int *crossed, double *ub, sc_msg *msg);
+                      const double *uprev, const double *u, int *crossed,
+                      double *ub, sc_msg *msg);
 
 #endif
