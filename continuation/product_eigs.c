@@ -1,9 +1,13 @@
-/* Multipliers of a product of square matrices without forming it: the
- * periodic Hessenberg-triangular reduction and the periodic QR algorithm
- * of SLICOT (MB03VD, MB03WD), with the factors scaled by powers of two and
- * the eigenvalues read from the periodic Schur form as mantissa and
- * exponent, so that neither the product nor its eigenvalues need to lie
- * in the range of double.  docs/maps.md, "Multipliers". */
+/* Multipliers of a product of square matrices without forming it: QR
+ * cycles (subspace iteration on the product, one Householder QR per
+ * factor) split it into clusters of multipliers of different moduli, each
+ * split further on its own blocks until it holds one or two multipliers
+ * (read from the factors) or stops splitting (SLICOT's periodic
+ * Hessenberg-triangular reduction and periodic QR, MB03VD and MB03WD).
+ * The factors are scaled by powers of two and the multipliers read from
+ * the periodic Schur form as mantissa and exponent, so that neither the
+ * product nor its eigenvalues need to lie in the range of double.
+ * docs/maps.md, "Multipliers". */
 #include <float.h>
 #include <limits.h>
 #include <math.h>
