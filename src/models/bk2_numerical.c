@@ -588,10 +588,12 @@ static int phase_guards(const bk2_events *ev, int mode, int kinds[3],
   if (mode != SC_BK2_SLIP12) kinds[ng++] = 3;
   if (!ev->force) return ng;
   /* Follow the code: only the forced guard ends the phase. */
-  int want = ev->force[0];
-  int gk = BK2_GUARD_OF(want), ok = 0;
+  /* the guard is the code's event without the flag "at its maximum" (a
+   * grazing's own system), as in the exact flows */
+  int want = ev->force[0], kind = want & ~BK2_EV_ATMAX;
+  int gk = BK2_GUARD_OF(kind), ok = 0;
   for (int i = 0; i < ng; i++) ok |= kinds[i] == gk;
-  if (!ok || (BK2_IS_BOTH(want) && mode != SC_BK2_SLIP12))
+  if (!ok || (BK2_IS_BOTH(kind) && mode != SC_BK2_SLIP12))
     return sc_fail(msg, SC_EINVAL,
                    "bk2: the forced itinerary code does not fit slip mode "
                    "%d (event %d)",
@@ -601,7 +603,7 @@ static int phase_guards(const bk2_events *ev, int mode, int kinds[3],
                    "bk2: a forced root with a count of maxima: not a code "
                    "of this version");
   kinds[0] = gk;
-  *both = BK2_IS_BOTH(want);
+  *both = BK2_IS_BOTH(kind);
   return 1;
 }
 
