@@ -1,9 +1,12 @@
 /* Dense backend: LU with partial pivoting from LAPACK.  The CSC values are
  * scattered into a full column-major matrix. */
+#include <complex.h>
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "dense_impl.h"
 #include "linsolve_impl.h"
 
 /* LAPACK (Fortran 77 interface, 32-bit integers, hidden string lengths
@@ -16,6 +19,12 @@ extern void dgetrs_(const char *trans, const int *n, const int *nrhs,
 extern void dgecon_(const char *norm, const int *n, const double *a,
                     const int *lda, const double *anorm, double *rcond,
                     double *work, int *iwork, int *info, size_t norm_len);
+extern void zgetrf_(const int *m, const int *n, double complex *a,
+                    const int *lda, int *ipiv, int *info);
+extern void zgetrs_(const char *trans, const int *n, const int *nrhs,
+                    const double complex *a, const int *lda, const int *ipiv,
+                    double complex *b, const int *ldb, int *info,
+                    size_t trans_len);
 
 typedef struct {
   int n;
@@ -143,3 +152,53 @@ const sc_linsolve_type sc_linsolve_dense_type = {
     .rcond = dense_rcond,
     .pivot_ratio = dense_pivot_ratio,
 };
+
+/* Row-major small systems (dense_impl.h) ----------------------------- */
+
+/* The row-major n x n A in place as column major (its transpose). */
+static void transpose(size_t n, double *A) {
+  for (size_t i = 0; i < n; i++)
+    for (size_t j = i + 1; j < n; j++) {
+      double t = A[i * n + j];
+      A[i * n + j] = A[j * n + i];
+      A[j * n + i] = t;
+    }
+}
+
+static void ztranspose(size_t n, double complex *A) {
+  for (size_t i = 0; i < n; i++)
+    for (size_t j = i + 1; j < n; j++) {
+      double complex t = A[i * n + j];
+      A[i * n + j] = A[j * n + i];
+      A[j * n + i] = t;
+    }
+}
+
+int sc_dense_solve(size_t n, double *A, double *b, int *ipiv, double sing) {
+  if (n && n > (size_t)INT_MAX / n) return SC_EINVAL;
+  int N = (int)n, one = 1, info = 0;
+  double amax = 0;
+  for (size_t i = 0; i < n * n; i++) amax = fmax(amax, fabs(A[i]));
+  transpose(n, A);
+  dgetrf_(&N, &N, A, &N, ipiv, &info);
+  if (info) return SC_ESING;
+  for (size_t k = 0; k < n; k++)
+    if (!(fabs(A[k * n + k]) > sing * amax)) return SC_ESING;
+  dgetrs_("N", &N, &one, A, &N, ipiv, b, &N, &info, 1);
+  return info ? SC_EINTERNAL : SC_OK;
+}
+
+int sc_dense_zsolve(size_t n, double complex *A, double complex *b, int *ipiv,
+                    double sing) {
+  if (n && n > (size_t)INT_MAX / n) return SC_EINVAL;
+  int N = (int)n, one = 1, info = 0;
+  double amax = 0;
+  for (size_t i = 0; i < n * n; i++) amax = fmax(amax, cabs(A[i]));
+  ztranspose(n, A);
+  zgetrf_(&N, &N, A, &N, ipiv, &info);
+  if (info) return SC_ESING;
+  for (size_t k = 0; k < n; k++)
+    if (!(cabs(A[k * n + k]) > sing * amax)) return SC_ESING;
+  zgetrs_("N", &N, &one, A, &N, ipiv, b, &N, &info, 1);
+  return info ? SC_EINTERNAL : SC_OK;
+}

@@ -22,10 +22,8 @@ int nf_check(const sc_nf_jet *g, int need_T, const char *who, sc_msg *msg);
 int nf_eig(size_t n, const double *A, int vectors, nf_eig_t *e, sc_msg *msg);
 void nf_eig_vec(const nf_eig_t *e, const double *V, size_t j,
                 double complex *v);
-/* Gaussian elimination with partial pivoting on the n x n M (row-major,
- * overwritten); b becomes the solution.  SC_ESING below NF_SING. */
-int nf_solve(size_t n, double complex *M, double complex *b);
-/* x = (z I - A)^(-1) rhs. */
+/* x = (z I - A)^(-1) rhs; SC_ESING for a pivot of z I - A at or below
+ * NF_SING times its largest entry. */
 int nf_resolvent(size_t n, const double *A, double complex z,
                  const double complex *rhs, double complex *x);
 void nf_B(size_t n, const double *H, const double complex *u,

@@ -2,13 +2,14 @@
  * fold, a flip and a Neimark-Sacker bifurcation from its exact
  * derivatives (docs/maps.md, "Normal forms").  The critical eigenvectors
  * come from LAPACK's dgeev (right and left vectors of A); the resolvents
- * (I - A)^(-1) and (mu^2 I - A)^(-1) from Gaussian elimination on the
- * stack (n <= SC_NF_MAXDIM). */
+ * (I - A)^(-1) and (mu^2 I - A)^(-1) from LAPACK's LU (zgetrf), its work
+ * on the stack (n <= SC_NF_MAXDIM). */
 #include <complex.h>
 #include <float.h>
 #include <math.h>
 #include <string.h>
 
+#include "dense_impl.h"
 #include "nf_impl.h"
 
 extern void dgeev_(const char *jobvl, const char *jobvr, const int *n,
@@ -94,36 +95,6 @@ static int nearest_pair(const nf_eig_t *e, const double *mu) {
   return best;
 }
 
-int nf_solve(size_t n, double complex *M, double complex *b) {
-  double amax = 0;
-  for (size_t i = 0; i < n * n; i++) amax = fmax(amax, cabs(M[i]));
-  for (size_t c = 0; c < n; c++) {
-    size_t p = c;
-    for (size_t r = c + 1; r < n; r++)
-      if (cabs(M[r * n + c]) > cabs(M[p * n + c])) p = r;
-    if (!(cabs(M[p * n + c]) > NF_SING * amax)) return SC_ESING;
-    if (p != c) {
-      for (size_t j = 0; j < n; j++) {
-        double complex t = M[c * n + j];
-        M[c * n + j] = M[p * n + j], M[p * n + j] = t;
-      }
-      double complex t = b[c];
-      b[c] = b[p], b[p] = t;
-    }
-    for (size_t r = c + 1; r < n; r++) {
-      double complex f = M[r * n + c] / M[c * n + c];
-      for (size_t j = c; j < n; j++) M[r * n + j] -= f * M[c * n + j];
-      b[r] -= f * b[c];
-    }
-  }
-  for (size_t c = n; c-- > 0;) {
-    double complex s = b[c];
-    for (size_t j = c + 1; j < n; j++) s -= M[c * n + j] * b[j];
-    b[c] = s / M[c * n + c];
-  }
-  return SC_OK;
-}
-
 int nf_resolvent(size_t n, const double *A, double complex z,
                  const double complex *rhs, double complex *x) {
   double complex M[NF_N * NF_N];
@@ -131,7 +102,8 @@ int nf_resolvent(size_t n, const double *A, double complex z,
     for (size_t j = 0; j < n; j++)
       M[i * n + j] = (i == j ? z : 0) - A[i * n + j];
   memcpy(x, rhs, n * sizeof *x);
-  return nf_solve(n, M, x);
+  int ipiv[NF_N];
+  return sc_dense_zsolve(n, M, x, ipiv, NF_SING);
 }
 
 void nf_B(size_t n, const double *H, const double complex *u,

@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "analysis/branchn_impl.h"
+#include "dense_impl.h"
 
 /* Displacements of a switched start, in units of the job's h (the
  * segment's first step), in the order tried: h first; a smaller one if
@@ -18,36 +19,15 @@
 static const double switch_scales[] = {1, 0.3, 3, 0.1};
 #define NSWITCH_SCALES (sizeof switch_scales / sizeof switch_scales[0])
 
-/* Gaussian elimination with partial pivoting on the N x N row-major A
- * (destroyed), b overwritten with the solution; -1 for a pivot at the
- * rounding level of A's largest entry. */
+/* A pivot at the rounding level of the matrix's largest entry (a
+ * bordered Jacobian) carries no digit of the solution: singular. */
+#define BN_SING DBL_EPSILON
+
+/* The N x N row-major A (destroyed) solved for b (overwritten); -1 when
+ * A is singular by BN_SING. */
 int sc_bn_gauss(size_t N, double *A, double *b) {
-  double amax = 0;
-  for (size_t i = 0; i < N * N; i++) amax = fmax(amax, fabs(A[i]));
-  for (size_t c = 0; c < N; c++) {
-    size_t p = c;
-    for (size_t r = c + 1; r < N; r++)
-      if (fabs(A[r * N + c]) > fabs(A[p * N + c])) p = r;
-    if (!(fabs(A[p * N + c]) > DBL_EPSILON * amax)) return -1;
-    for (size_t j = 0; j < N && p != c; j++) {
-      double t = A[c * N + j];
-      A[c * N + j] = A[p * N + j];
-      A[p * N + j] = t;
-    }
-    double t = b[c];
-    b[c] = b[p];
-    b[p] = t;
-    for (size_t r = c + 1; r < N; r++) {
-      double f = A[r * N + c] / A[c * N + c];
-      for (size_t j = c; j < N; j++) A[r * N + j] -= f * A[c * N + j];
-      b[r] -= f * b[c];
-    }
-  }
-  for (size_t c = N; c-- > 0;) {
-    for (size_t j = c + 1; j < N; j++) b[c] -= A[c * N + j] * b[j];
-    b[c] /= A[c * N + c];
-  }
-  return 0;
+  int ipiv[BN_MAXN + 1];
+  return sc_dense_solve(N, A, b, ipiv, BN_SING) ? -1 : 0;
 }
 
 /* ------------------------------------------------------------------ */
