@@ -12,7 +12,12 @@
 /* Gaussian elimination with partial pivoting on the N x N row-major A;
  * b is overwritten with the solution.  Returns SC_ESING for a zero pivot
  * (or one below DBL_EPSILON times the largest entry: rank deficient to
- * working precision). */
+ * working precision).  It stays here rather than LAPACK's LU
+ * (dense_impl.h) because the one-dimensional curves keep their outputs bit
+ * for bit: with dgetrf every curve point and located special point of the
+ * curve examples is the same, but the Newton of a point left unlocated at
+ * a degenerate row (curve-fig58-flip2's GPD?) fails another way and
+ * writes another reason and residual. */
 static int solve(int N, double *A, double *b) {
   double amax = 0;
   for (int i = 0; i < N * N; i++)
