@@ -337,15 +337,16 @@ static int itinerary_at(sc_branchn *b, int period, const double *u,
 static int itinerary_changed(sc_branchn *b, int bi, int period,
                              const char *itin0, const double *uprev,
                              const double *u, int *changed) {
-  char itin[SC_ITIN_LEN], why[BN_NOTE];
+  char itin[SC_ITIN_LEN], why[BN_NOTE]; /* at most 150 characters of it
+                                           go into the note (add_end) */
   *changed = 0;
   if (!*itin0) return SC_OK; /* a smooth map: nothing to watch */
   itinerary_at(b, period, u, itin, sizeof itin);
   *changed = strcmp(itin, itin0) != 0;
   if (!*changed) return SC_OK;
   snprintf(why, sizeof why,
-           "the itinerary changes between %.10g and %.10g (%.40s to %.40s): "
-           "the map is not smooth there; ",
+           "the itinerary changes between %.10g and %.10g (%.32s to %.32s): "
+           "not smooth there; ",
            uprev[b->n], u[b->n], itin0, itin);
   return add_end(b, bi, period, uprev, why, "not passed");
 }
