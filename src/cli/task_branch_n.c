@@ -203,6 +203,14 @@ static int iterate_to(sc_cli_run *r, const sc_brn_job *j, const double *x,
   return SC_OK;
 }
 
+/* A branch point whose multiplier of largest modulus is within this of
+ * modulus 1 is a zero of a stability test located on the branch (an LP,
+ * PD or NS point, to the continuation's tolerance, ~1e-12): the boundary
+ * between the stable and unstable parts, whichever side rounding put it
+ * on.  An ordinary point is a step away, its multipliers typically 1e-3
+ * or more from modulus 1, so 1e-8 separates the two. */
+#define BN_PLOT_NEUTRAL 1e-8
+
 /* branch-orbits.csv: for each segment and each k < m the k-th orbit point,
  * drawn: one block per (segment, k); branch-points.csv: the special
  * points as drawn. */
@@ -228,18 +236,20 @@ static int write_plot_data(sc_cli_run *r, const sc_brn_job *j) {
     for (int k = 0; k < q; k++) {
       int prev = -1; /* the previous point's stability: a point where it
                         changes is drawn in both columns, so the lines
-                        meet */
+                        meet; a located test zero (neutral, 2) is drawn
+                        in both, so the part past it has its own style */
       for (size_t i = 0; i < np; i++) {
         sc_branchn_point_get(j->b, i, &pt);
         if (pt.branch != b || iterate_to(r, j, pt.x, pt.p, k, v, y)) continue;
         double s = shown(j, y, n);
+        int neutral = fabs(fabs(pt.multiplier) - 1) <= BN_PLOT_NEUTRAL;
         sc_csv_double(g, pt.p);
         fputc(',', g);
-        sc_csv_double(g, pt.stable || prev == 1 ? s : NAN);
+        sc_csv_double(g, pt.stable || neutral || prev == 1 ? s : NAN);
         fputc(',', g);
-        sc_csv_double(g, !pt.stable || prev == 0 ? s : NAN);
+        sc_csv_double(g, !pt.stable || neutral || prev == 0 ? s : NAN);
         fprintf(g, ",%d,%d\n", k, b);
-        prev = pt.stable;
+        prev = neutral ? 2 : pt.stable;
       }
       fputs("\n\n", g);
     }
