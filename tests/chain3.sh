@@ -1,0 +1,146 @@
+# The three-block chain's examples (docs/chain.md, "Three blocks"), each
+# claim against a computation of its own: a chart point's period against
+# the map iterated directly (orbit task), the branch's flip against the
+# multipliers of the fixed-point task on both sides, its ends against the
+# itineraries of the orbit on both sides and the sweep's periods.
+. "$(dirname "$0")/cli_common.sh"
+
+# scene NAME: the common model lines of the orbit and fixed-point runs
+scene() {
+  cat >"$TMP/$1.ini" <<'INI'
+[model]
+name = chain
+blocks = 3
+driver = frozen
+phi = 1.25
+v = 0.025
+beta3 = 3
+INI
+}
+
+run_within 120 run "$SRC/examples/chain3-chart.ini" --out "$TMP/chart" \
+  --quiet --set output.plot=no
+expect_rc "examples/chain3-chart.ini" 0
+expect_rows "chain3-chart: chart.csv" "$TMP/chart/chart.csv" 2025
+
+# The chart points to check: the three named in the example's comment
+# and the first point of each period 1..8 (alpha, beta3, period, d1,
+# iterations).
+awk -F, 'function abs(x) { return x < 0 ? -x : x }
+  NR == 1 { next }
+  (abs($1 - 2.8) < 1e-9 && abs($2 - 3) < 1e-9 && $3 == 2) ||
+  (abs($1 - 3.6) < 1e-9 && abs($2 - 3) < 1e-9 && $3 == 4) ||
+  (abs($1 - 3.9) < 1e-9 && abs($2 - 3.5) < 1e-9 && $3 == 3) { print $1, $2, $3, $4, $5; named++ }
+  $3 >= 1 && $3 <= 8 && !seen[$3]++ { print $1, $2, $3, $4, $5 }
+  END { exit named != 3 }' "$TMP/chart/chart.csv" >"$TMP/points"
+check "chain3-chart: period 2 at (2.8, 3), 4 at (3.6, 3), 3 at (3.9, 3.5)" \
+  test $? -eq 0
+check "chain3-chart: at least 8 points to check" test "$(wc -l <"$TMP/points")" -ge 8
+
+check "chain3-chart: no invariant circle in the window" \
+  grep -Eq '^ +invariant circle +0 points' "$TMP/chart/summary.txt"
+
+# Each point iterated 1000 times from the chart's d0 = (0.1, 0.2): the
+# last state repeats after p iterates (1e-9), after no fewer (1e-7 apart:
+# p is minimal), and the chart's d1 is the orbit's at the chart's count
+# of iterates (1e-12: the same evaluations; near a flip an orbit
+# converges slowly, its two halves alternating ~1e-8 at that count).
+scene orbit
+printf '[task]\nkind = orbit\nd0 = 0.1 0.2\niterations = 1000\n[output]\nplot = no\n' \
+  >>"$TMP/orbit.ini"
+bad=0
+k=0
+while read -r a b p d1 it; do
+  k=$((k + 1))
+  run_within 60 run "$TMP/orbit.ini" --out "$TMP/o$k" --quiet \
+    --set model.alpha="$a" --set model.beta3="$b"
+  awk -F, -v p="$p" -v d1="$d1" -v it="$it" 'function abs(x) { return x < 0 ? -x : x }
+    NR > 1 { x[$1] = $2; y[$1] = $3; n = $1 }
+    END { if (abs(x[n] - x[n - p]) > 1e-9 || abs(y[n] - y[n - p]) > 1e-9) exit 1
+      for (q = 1; q < p; q++)
+        if (abs(x[n] - x[n - q]) + abs(y[n] - y[n - q]) < 1e-7) exit 1
+      exit abs(x[it] - d1) > 1e-12 }' "$TMP/o$k/orbit.csv" ||
+    { echo "period $p at alpha $a, beta3 $b: not so when iterated"; bad=1; }
+done <"$TMP/points"
+check "chain3-chart: $k points' periods confirmed by iterating the map" test $bad -eq 0
+
+run_within 120 run "$SRC/examples/chain3-sweep.ini" --out "$TMP/sweep" \
+  --quiet --set output.plot=no
+expect_rc "examples/chain3-sweep.ini" 0
+run_within 120 run "$SRC/examples/chain3-branch.ini" --out "$TMP/branch" \
+  --quiet --set output.plot=no
+expect_rc "examples/chain3-branch.ini" 0
+
+# The branch's rows: label, alpha, multiplier, method
+awk -F, 'NR > 1 { print $1, $3, $7, $15 }' "$TMP/branch/points.csv" >"$TMP/rows"
+pd=$(awk '$1 == "PD" { print $2 }' "$TMP/rows")
+check "chain3-branch: one flip near alpha 3.1955 with multiplier -1 (1e-9), found in arclength only" \
+  awk 'function abs(x) { return x < 0 ? -x : x }
+    $1 == "PD" { n++; if (abs($2 - 3.1955) < 1e-3 && abs($3 + 1) < 1e-9 &&
+                         $4 == "not-located") ok++ }
+    END { exit !(n == 1 && ok == 1) }' "$TMP/rows"
+check "chain3-branch: its two ends at itinerary changes, alpha 3.1557 and 4.1614" \
+  awk 'function abs(x) { return x < 0 ? -x : x }
+    $1 == "EP" && (abs($2 - 3.1557) < 1e-4 || abs($2 - 4.1614) < 1e-4) { n++ }
+    END { exit n != 2 }' "$TMP/rows"
+
+# The flip by brute force: the period-4 orbit's multiplier from the
+# fixed-point task below -1 at 3.185, above at 3.205, and its linear
+# interpolation at -1 within 1e-3 of the branch's PD.
+scene fp
+printf '[task]\nkind = fixed-point\nperiod = 4\nd0 = 0.1435 0.3552\n[output]\nplot = no\n' \
+  >>"$TMP/fp.ini"
+for a in 3.185 3.205; do
+  run_within 60 run "$TMP/fp.ini" --out "$TMP/fp$a" --quiet --set model.alpha=$a
+  expect_rc "period 4 at alpha = $a" 0
+done
+check "chain3-branch: the flip, multiplier -1 crossed between 3.185 and 3.205 near the PD" \
+  awk -F, -v pd="${pd:-0}" 'function abs(x) { return x < 0 ? -x : x }
+    FNR == 2 { m[++k] = $2; if ($1 != 4) exit 1 }
+    END { if (k != 2 || !(m[1] < -1 && m[2] > -1)) exit 1
+      a = 3.185 + 0.02 * (-1 - m[1]) / (m[2] - m[1])
+      exit abs(a - pd) > 1e-3 }' "$TMP/fp3.185/orbits.csv" "$TMP/fp3.205/orbits.csv"
+
+# The drawing agrees: below the flip (unstable by the fixed-point task at
+# 3.185) the branch is drawn dashed, above it solid, the flip in both.
+check "chain3-branch: branch-orbits.csv unstable below the flip, stable above" \
+  awk -F, -v pd="${pd:-0}" 'NR <= 2 || NF < 5 { next }
+    $1 + 0 < pd && !($2 == "nan" && $3 != "nan") { bad = 1 }
+    $1 + 0 > pd && !($2 != "nan" && $3 == "nan") { bad = 1 }
+    $1 + 0 == pd && !($2 != "nan" && $3 != "nan") { bad = 1 }
+    { n++ } END { exit bad || n < 40 }' "$TMP/branch/branch-orbits.csv"
+
+# The period-4 orbit is lost at the branch's upper end: the sweep's last
+# period-4 value is below 4.1614, its next value above, with no period.
+check "chain3-sweep: period 2 up to 3.03, period 4 from 3.29 to 4.16, lost at the branch's end" \
+  awk -F, 'function abs(x) { return x < 0 ? -x : x }
+    NR == 1 { next }
+    { per[$1] = $4 }
+    END { for (s in per) { a = s + 0
+        if (a < 3.03 && per[s] != 2) exit 1
+        if (a > 3.29 && a < 4.16 && per[s] != 4) exit 1
+        if (a > 4.1614 && per[s] == 4) exit 1 }
+      exit 0 }' "$TMP/sweep/sweep.csv"
+
+# The period-8 orbits of the sweep between 3.2 and 3.26 coexist with the
+# stable period-4 orbit of the branch: they are not the flip's.
+check "chain3-sweep: period 8 at some alpha in (3.2, 3.26), where the branch's period 4 is stable" \
+  awk -F, 'FNR == 1 { f++; next }
+    f == 1 && $1 > 3.2 && $1 < 3.26 && $4 == 8 { p8++ }
+    f == 2 && $1 > 3.2 && $1 < 3.26 { nb++; if ($6 != "yes") bad = 1 }
+    END { exit !(p8 > 0 && nb > 0 && !bad) }' "$TMP/sweep/sweep.csv" "$TMP/branch/branch.csv"
+
+# The period-2 orbit's branch bends at alpha = 2.936 (sweep.png): the
+# second iterate's slip starts at block 1 below it, at block 3 above.
+scene orb2
+printf '[task]\nkind = orbit\nd0 = 0.197 0.305\niterations = 300\n[output]\nplot = no\n' \
+  >>"$TMP/orb2.ini"
+for a in 2.93 2.945; do
+  run_within 60 run "$TMP/orb2.ini" --out "$TMP/orb$a" --quiet --set model.alpha=$a
+done
+check "chain3-sweep: period 2 slips 1-12-123-12-1 at 2.93, 3-23-123-23-3 at 2.945" \
+  sh -c 'tail -n 3 "$1" | grep -q "^[0-9]*,.*,2\$" &&
+         tail -n 3 "$1" | grep -q ",1-12-123-12-1\$" &&
+         tail -n 3 "$2" | grep -q ",3-23-123-23-3\$"' _ \
+  "$TMP/orb2.93/orbit.csv" "$TMP/orb2.945/orbit.csv"
+finish
