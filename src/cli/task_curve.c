@@ -710,6 +710,45 @@ static int plot_also(FILE *f, const char *also, int *present, char *names,
   return ia;
 }
 
+/* The plot command's entries for this curve's points, and with other
+ * curves (@p nalso of them) the key's markers of every kind in
+ * @p present, which gains this curve's kinds. */
+static void plot_own_points(FILE *body, const curve_job *j, int nalso,
+                            int *present) {
+  /* this curve's points: the kinds' own colours without other curves,
+   * the curve's colour with them (then the colour tells the curve) */
+  int mine[NKINDS] = {0};
+  for (size_t i = 0; i < j->c.nsp; i++) {
+    int k = kind_of(j->c.sp[i].label, strlen(j->c.sp[i].label));
+    if (k >= 0) mine[k] = 1;
+  }
+  mine[NKINDS - 1] = 1; /* EP: the curve's ends */
+  for (size_t k = 0; k < NKINDS; k++) {
+    if (!mine[k]) continue;
+    present[k] = 1;
+    int pt;
+    const char *rgb, *what;
+    sc_plot_point_style(point_kinds[k], &pt, &rgb, &what);
+    char key[96] = "notitle";
+    if (!nalso) snprintf(key, sizeof key, "title '%s %s'", point_kinds[k], what);
+    fprintf(body,
+            "     'points.csv' skip 1 using 2:(lab('%s')) with points pt %d "
+            "ps %s lc rgb '%s' %s, \\\n",
+            point_kinds[k], pt, nalso ? "1.6" : "2", nalso ? "#1f4e9e" : rgb,
+            key);
+  }
+  /* with several curves the key tells the kinds by marker alone */
+  for (size_t k = 0; nalso && k < NKINDS; k++) {
+    if (!present[k]) continue;
+    int pt;
+    const char *what;
+    sc_plot_point_style(point_kinds[k], &pt, NULL, &what);
+    fprintf(body, "     keyentry with points pt %d ps 1.4 lc rgb '#333333' "
+                  "title '%s %s', \\\n",
+            pt, point_kinds[k], what);
+  }
+}
+
 static int curve_plots(sc_cli_run *r, void *job) {
   const curve_job *j = job;
   const sc_scene *s = r->scene;
@@ -790,38 +829,7 @@ static int curve_plots(sc_cli_run *r, void *job) {
             "'#1f4e9e' title '%s, period %d%s', \\\n",
             type_names[j->ti], j->set.period, also ? " (this run)" : "");
   }
-  /* this curve's points: the kinds' own colours without other curves,
-   * the curve's colour with them (then the colour tells the curve) */
-  int mine[NKINDS] = {0};
-  for (size_t i = 0; i < j->c.nsp; i++) {
-    int k = kind_of(j->c.sp[i].label, strlen(j->c.sp[i].label));
-    if (k >= 0) mine[k] = 1;
-  }
-  mine[NKINDS - 1] = 1; /* EP: the curve's ends */
-  for (size_t k = 0; k < NKINDS; k++) {
-    if (!mine[k]) continue;
-    present[k] = 1;
-    int pt;
-    const char *rgb, *what;
-    sc_plot_point_style(point_kinds[k], &pt, &rgb, &what);
-    char key[96] = "notitle";
-    if (!nalso) snprintf(key, sizeof key, "title '%s %s'", point_kinds[k], what);
-    fprintf(body,
-            "     'points.csv' skip 1 using 2:(lab('%s')) with points pt %d "
-            "ps %s lc rgb '%s' %s, \\\n",
-            point_kinds[k], pt, nalso ? "1.6" : "2", nalso ? "#1f4e9e" : rgb,
-            key);
-  }
-  /* with several curves the key tells the kinds by marker alone */
-  for (size_t k = 0; nalso && k < NKINDS; k++) {
-    if (!present[k]) continue;
-    int pt;
-    const char *what;
-    sc_plot_point_style(point_kinds[k], &pt, NULL, &what);
-    fprintf(body, "     keyentry with points pt %d ps 1.4 lc rgb '#333333' "
-                  "title '%s %s', \\\n",
-            pt, point_kinds[k], what);
-  }
+  plot_own_points(body, j, nalso, present);
   fputs("     NaN notitle\n", body);
   fclose(body);
   if (nalso) {
