@@ -101,6 +101,26 @@ check "chain3-branch: the flip, multiplier -1 crossed between 3.185 and 3.205 ne
       a = 3.185 + 0.02 * (-1 - m[1]) / (m[2] - m[1])
       exit abs(a - pd) > 1e-3 }' "$TMP/fp3.185/orbits.csv" "$TMP/fp3.205/orbits.csv"
 
+# Below the flip the orbit from its point settles on period 8 (1e-7
+# after 3000 iterates), its two halves apart by a width that grows away
+# from the flip (0.014 at 3.18, 0.038 at 3.17): a supercritical flip,
+# seen by iteration where its coefficient is not available.
+scene orb8
+printf '[task]\nkind = orbit\nd0 = 0.1435 0.3552\niterations = 3000\n[output]\nplot = no\n' \
+  >>"$TMP/orb8.ini"
+for a in 3.18 3.17; do
+  run_within 60 run "$TMP/orb8.ini" --out "$TMP/orb8-$a" --quiet --set model.alpha=$a
+done
+check "chain3-branch: below the flip a stable period-8 orbit, its halves parting away from it" \
+  awk -F, 'function abs(x) { return x < 0 ? -x : x }
+    FNR == 1 { f++; next }
+    { x[f, $1] = $2; y[f, $1] = $3; n = $1 }
+    END { for (k = 1; k <= 2; k++) {
+        if (abs(x[k, n] - x[k, n - 8]) + abs(y[k, n] - y[k, n - 8]) > 1e-7) exit 1
+        w[k] = abs(x[k, n] - x[k, n - 4]) + abs(y[k, n] - y[k, n - 4]) }
+      exit !(w[1] > 1e-3 && w[2] > 2 * w[1] && w[2] < 0.1) }' \
+  "$TMP/orb8-3.18/orbit.csv" "$TMP/orb8-3.17/orbit.csv"
+
 # The drawing agrees: below the flip (unstable by the fixed-point task at
 # 3.185) the branch is drawn dashed, above it solid, the flip in both.
 check "chain3-branch: branch-orbits.csv unstable below the flip, stable above" \
