@@ -24,8 +24,7 @@ int sc_cli_read_head(const char *path, const char *what, char *line,
   return SC_OK;
 }
 
-/* Split a CSV line in place into at most max fields. */
-static int split(char *line, char **f, int max) {
+int sc_cli_csv_split(char *line, char **f, int max) {
   int n = 0;
   line[strcspn(line, "\r\n")] = '\0';
   for (char *p = line; n < max;) {
@@ -47,7 +46,8 @@ static int read_row(FILE *f, const char *path, long n, sc_cli_points_row *row,
   char *line = NULL, *h[16], *v[16];
   size_t cap = 0;
   int col[5] = {-1, -1, -1, -1, -1}, colb = -1, colm = -1;
-  int nh = getline(&line, &cap, f) > 0 ? split(line, h, 16) : 0;
+  int nh =
+      getline(&line, &cap, f) > 0 ? sc_cli_csv_split(line, h, 16) : 0;
   for (int i = 0; i < nh; i++) {
     for (int k = 0; k < 5; k++)
       if (strcmp(h[i], names[k]) == 0) col[k] = i;
@@ -73,7 +73,7 @@ static int read_row(FILE *f, const char *path, long n, sc_cli_points_row *row,
     free(line);
     return SC_EINVAL;
   }
-  int nv = split(line, v, 16), st = SC_OK;
+  int nv = sc_cli_csv_split(line, v, 16), st = SC_OK;
   long per = 0;
   for (int k = 0; k < 5; k++)
     if (col[k] >= nv) st = SC_EINVAL;

@@ -30,20 +30,6 @@ typedef struct {
   int period;
 } nrow;
 
-/* Split a CSV line in place into at most max fields. */
-static int split(char *line, char **f, int max) {
-  int n = 0;
-  line[strcspn(line, "\r\n")] = '\0';
-  for (char *p = line; n < max;) {
-    f[n++] = p;
-    char *c = strchr(p, ',');
-    if (!c) break;
-    *c = '\0';
-    p = c + 1;
-  }
-  return n;
-}
-
 /* Most columns of a points.csv row read here. */
 #define NCOLS 64
 
@@ -59,10 +45,10 @@ static int find_cols(const sc_map *m, char *head, int *col, int *colk,
   if (!ms) return SC_ENOMEM;
   sc_csv_state_header(ms, m, "");
   fclose(ms);
-  split(names, sn, (int)n);
+  sc_cli_csv_split(names, sn, (int)n);
   static const char *const fixed[4] = {"label", "parameter", "value",
                                        "period"};
-  int nh = split(head, h, NCOLS), st = SC_OK;
+  int nh = sc_cli_csv_split(head, h, NCOLS), st = SC_OK;
   for (size_t k = 0; k < 4 + n; k++) col[k] = -1;
   *colk = -1;
   for (int i = 0; i < nh; i++) {
@@ -115,7 +101,7 @@ static int read_row(const sc_map *m, const char *spec, nrow *row, char *why,
              path, N, rows);
     st = SC_EINVAL;
   }
-  int nv = st ? 0 : split(line, v, NCOLS);
+  int nv = st ? 0 : sc_cli_csv_split(line, v, NCOLS);
   for (size_t k = 0; !st && k < 4 + n; k++)
     if (col[k] >= nv ||
         (k == 2 && (sc_parse_double(v[col[k]], &row->value) ||

@@ -288,6 +288,10 @@ void sc_cli_signals_done(void);
  * sc_input_open() (a regular file of bounded size, never blocking), in a
  * task's check so that bad ones are refused before anything is made. */
 
+/** Split the CSV line @p line in place (its line end cut) into at most
+ * @p max fields @p f; returns their number. */
+int sc_cli_csv_split(char *line, char **f, int max);
+
 /** A row of a branch task's points.csv. */
 typedef struct {
   char label[16];  /**< LP, PD, GR, ..., EP */
