@@ -647,8 +647,12 @@ int sc_mapn_system_init(sc_mapn_system *s, const double *u, sc_msg *msg) {
   int n = (int)s->n, rc = jet_at(s, u, 2);
   if (rc)
     return sc_fail(msg, SC_ECALLBACK,
-                   "sc_mapn_system_init: the map failed at the point (%d)",
-                   rc);
+                   "sc_mapn_system_init: the map or its first or second "
+                   "derivatives could not be evaluated there (%s)",
+                   rc > 0 ? "a non-finite value: a model without second "
+                            "derivatives, or a point where the map is not "
+                            "smooth"
+                          : "the evaluation failed");
   const double *X = s->B;
   if (s->d.kind == SC_MAPN_NS) ns_matrix(s, u[n]);
   else {
@@ -688,8 +692,12 @@ int sc_mapn_system_update(sc_mapn_system *s, const double *u, sc_msg *msg) {
   int rc = jet_at(s, u, 2);
   if (rc)
     return sc_fail(msg, SC_ECALLBACK,
-                   "sc_mapn_system_update: the map failed at the point (%d)",
-                   rc);
+                   "sc_mapn_system_update: the map or its first or second "
+                   "derivatives could not be evaluated there (%s)",
+                   rc > 0 ? "a non-finite value: a model without second "
+                            "derivatives, or a point where the map is not "
+                            "smooth"
+                          : "the evaluation failed");
   if (s->d.kind == SC_MAPN_NS) {
     ns_matrix(s, u[n]);
     if (bordered(s, 2)) goto sing;

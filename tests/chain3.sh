@@ -79,6 +79,8 @@ check "chain3-branch: one flip near alpha 3.1955 with multiplier -1 (1e-9), foun
     $1 == "PD" { n++; if (abs($2 - 3.1955) < 1e-3 && abs($3 + 1) < 1e-9 &&
                          $4 == "not-located") ok++ }
     END { exit !(n == 1 && ok == 1) }' "$TMP/rows"
+check "chain3-branch: the flip's note says why it is not located (no second derivatives)" \
+  grep -q "^PD,.*not located: .*a model without second derivatives" "$TMP/branch/points.csv"
 check "chain3-branch: its two ends at itinerary changes, alpha 3.1557 and 4.1614" \
   awk 'function abs(x) { return x < 0 ? -x : x }
     $1 == "EP" && (abs($2 - 3.1557) < 1e-4 || abs($2 - 4.1614) < 1e-4) { n++ }
