@@ -241,7 +241,31 @@ static void test_styles(void) {
             "curves %d and %d differ in colour", k, k + 1);
 }
 
+/* A title names the parameters that act: the chain's thresholds of the
+ * blocks it has, bk2's phi with Coulomb friction and not gamma. */
+static void test_title_params(void) {
+  sc_map *m;
+  sc_msg msg;
+  char t[512];
+  sc_map_alloc("chain", NULL, &m, &msg);
+  sc_map_set_option(m, "blocks", "3", &msg);
+  sc_plot_title(m, NULL, t, sizeof t);
+  tu_true(strstr(t, "beta3 =") && !strstr(t, "beta4") && !strstr(t, "beta5"),
+          "three blocks: beta3, not beta4 or beta5: '%s'", t);
+  sc_map_set_option(m, "blocks", "5", &msg);
+  sc_plot_title(m, NULL, t, sizeof t);
+  tu_true(strstr(t, "beta4 =") && strstr(t, "beta5 ="),
+          "five blocks: beta4 and beta5: '%s'", t);
+  sc_map_free(m);
+  sc_map_alloc("bk2", NULL, &m, &msg);
+  sc_plot_title(m, NULL, t, sizeof t);
+  tu_true(strstr(t, "phi =") && !strstr(t, "gamma"),
+          "bk2, Coulomb: phi, not gamma: '%s'", t);
+  sc_map_free(m);
+}
+
 int main(void) {
+  test_title_params();
   test_text_box();
   test_accuracy_figure();
   test_crowded();

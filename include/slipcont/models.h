@@ -36,7 +36,8 @@ typedef struct {
   const char *symbol; /**< plot label (gnuplot text), NULL: the name */
   /** NULL, or "option=value": the parameter acts only with that option
    * value (bk2: gamma with friction=velocity-weakening, phi with
-   * friction=coulomb); plot titles leave it out otherwise. */
+   * friction=coulomb), or "option>=N" for a whole-number option (chain:
+   * beta4 with blocks>=4); plot titles leave it out otherwise. */
   const char *only_with;
 } sc_param_info;
 

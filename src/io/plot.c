@@ -42,18 +42,21 @@ void sc_plot_head(FILE *f, const char *png, const char *title,
 }
 
 /* Whether parameter p acts with the map's options (only_with
- * "option=value"). */
+ * "option=value", or "option>=N" for a whole-number option). */
 static int param_acts(const sc_map *m, const sc_param_info *p) {
   if (!p->only_with) return 1;
   const char *eq = strchr(p->only_with, '=');
   if (!eq) return 1;
+  int at_least = eq > p->only_with && eq[-1] == '>';
   char opt[64];
-  size_t n = (size_t)(eq - p->only_with);
+  size_t n = (size_t)(eq - p->only_with) - (size_t)at_least;
   if (n >= sizeof opt) return 1;
   memcpy(opt, p->only_with, n);
   opt[n] = '\0';
   const char *v = sc_map_get_option(m, opt);
-  return !v || strcmp(v, eq + 1) == 0;
+  if (!v) return 1;
+  if (at_least) return atol(v) >= atol(eq + 1);
+  return strcmp(v, eq + 1) == 0;
 }
 
 char *sc_plot_title_except(const sc_map *m, const char *skip1,

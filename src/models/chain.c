@@ -35,10 +35,12 @@ static const sc_param_info chain_params[CHAIN_NPARAM] = {
      "friction=velocity-weakening"},
     {"beta2", 1, 0, 1e6, 1, 0, "static threshold of block 2 (block 1's is 1)",
      NULL, NULL},
-    {"beta3", 1, 0, 1e6, 1, 0, "static threshold of block 3", NULL, NULL},
-    {"beta4", 1, 0, 1e6, 1, 0, "static threshold of block 4", NULL, NULL},
+    {"beta3", 1, 0, 1e6, 1, 0, "static threshold of block 3", NULL,
+     "blocks>=3"},
+    {"beta4", 1, 0, 1e6, 1, 0, "static threshold of block 4", NULL,
+     "blocks>=4"},
     {"beta5", 1, 0, 1e6, 1, 0, "static threshold of block 5 (blocks past 5: 1)",
-     NULL, NULL},
+     NULL, "blocks>=5"},
 };
 
 static const sc_option_info chain_options[] = {
