@@ -30,6 +30,7 @@
 #include <stdlib.h>
 
 #include "slipcont/period.h"
+#include "period_impl.h"
 
 /* Iterates in one block of the settling test: at least this many, a
  * whole number of cycles. */
@@ -73,21 +74,26 @@ struct sc_period {
   long sdone;
 };
 
+int sc_period_check_args(const char *who, int max_period, int confirm,
+                         double rtol, sc_msg *msg) {
+  if (max_period < 1 || max_period > SC_PERIOD_MAX)
+    return sc_fail(msg, SC_EINVAL, "%s: max-period = %d (valid: 1..%d)", who,
+                   max_period, SC_PERIOD_MAX);
+  if (confirm < 1 || confirm > SC_PERIOD_MAX_CONFIRM)
+    return sc_fail(msg, SC_EINVAL, "%s: confirm = %d (valid: 1..%d)", who,
+                   confirm, SC_PERIOD_MAX_CONFIRM);
+  if (!(rtol >= DBL_EPSILON && rtol <= SC_PERIOD_MAX_RTOL))
+    return sc_fail(msg, SC_EINVAL, "%s: period-rtol = %g (valid: [%g, %g])",
+                   who, rtol, DBL_EPSILON, SC_PERIOD_MAX_RTOL);
+  return SC_OK;
+}
+
 int sc_period_alloc(int max_period, int confirm, double rtol,
                     sc_period **out, sc_msg *msg) {
   *out = NULL;
-  if (max_period < 1 || max_period > SC_PERIOD_MAX)
-    return sc_fail(msg, SC_EINVAL,
-                   "sc_period_alloc: max-period = %d (valid: 1..%d)",
-                   max_period, SC_PERIOD_MAX);
-  if (confirm < 1 || confirm > SC_PERIOD_MAX_CONFIRM)
-    return sc_fail(msg, SC_EINVAL,
-                   "sc_period_alloc: confirm = %d (valid: 1..%d)", confirm,
-                   SC_PERIOD_MAX_CONFIRM);
-  if (!(rtol >= DBL_EPSILON && rtol <= SC_PERIOD_MAX_RTOL))
-    return sc_fail(msg, SC_EINVAL,
-                   "sc_period_alloc: period-rtol = %g (valid: [%g, %g])",
-                   rtol, DBL_EPSILON, SC_PERIOD_MAX_RTOL);
+  int st = sc_period_check_args("sc_period_alloc", max_period, confirm, rtol,
+                                msg);
+  if (st) return st;
   sc_period *pd = calloc(1, sizeof *pd);
   if (!pd) goto fail;
   pd->maxp = max_period;

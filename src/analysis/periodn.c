@@ -14,6 +14,7 @@
 #include <string.h>
 
 #include "slipcont/period.h"
+#include "period_impl.h"
 
 /* Iterates in one block of the settling test, and blocks compared: the
  * values of period.c (SETTLE_BLOCK, SETTLE_BLOCKS), for the same rule. */
@@ -42,18 +43,9 @@ int sc_periodn_alloc(size_t dim, int max_period, int confirm, double rtol,
   if (dim < 1 || dim > SC_MAXDIM)
     return sc_fail(msg, SC_EINVAL, "sc_periodn_alloc: dim = %zu (valid: 1..%d)",
                    dim, SC_MAXDIM);
-  if (max_period < 1 || max_period > SC_PERIOD_MAX)
-    return sc_fail(msg, SC_EINVAL,
-                   "sc_periodn_alloc: max-period = %d (valid: 1..%d)",
-                   max_period, SC_PERIOD_MAX);
-  if (confirm < 1 || confirm > SC_PERIOD_MAX_CONFIRM)
-    return sc_fail(msg, SC_EINVAL,
-                   "sc_periodn_alloc: confirm = %d (valid: 1..%d)", confirm,
-                   SC_PERIOD_MAX_CONFIRM);
-  if (!(rtol >= DBL_EPSILON && rtol <= SC_PERIOD_MAX_RTOL))
-    return sc_fail(msg, SC_EINVAL,
-                   "sc_periodn_alloc: period-rtol = %g (valid: [%g, %g])",
-                   rtol, DBL_EPSILON, SC_PERIOD_MAX_RTOL);
+  int st = sc_period_check_args("sc_periodn_alloc", max_period, confirm,
+                                rtol, msg);
+  if (st) return st;
   sc_periodn *pd = calloc(1, sizeof *pd);
   if (!pd) goto fail;
   pd->dim = dim;

@@ -124,3 +124,9 @@ int sc_cli_points_row_read(const char *spec, sc_cli_points_row *row,
   fclose(f);
   return st;
 }
+
+void sc_cli_put_state(FILE *f, const double *x, size_t n) {
+  fputc('(', f);
+  for (size_t c = 0; c < n; c++) fprintf(f, "%s%.17g", c ? ", " : "", x[c]);
+  fputc(')', f);
+}

@@ -281,12 +281,6 @@ int sc_brn_write(sc_cli_run *r, const sc_brn_job *j) {
 /* ------------------------------------------------------------------ */
 /* Summary, plot, report                                                */
 
-static void put_state(FILE *f, const double *x, size_t n) {
-  fputc('(', f);
-  for (size_t c = 0; c < n; c++) fprintf(f, "%s%.17g", c ? ", " : "", x[c]);
-  fputc(')', f);
-}
-
 static const char *coef_name(sc_branchn_label l) {
   return l == SC_PTN_LP ? "a" : l == SC_PTN_PD ? "b" : "d";
 }
@@ -316,7 +310,7 @@ int sc_brn_summary(sc_cli_run *r, const sc_brn_job *j, FILE *f) {
     sc_branchn_special_get(b, i, &sp);
     fprintf(f, "  %s  %s = %.17g  x = ", sc_branchn_label_text(sp.label),
             j->pname, sp.p);
-    put_state(f, sp.x, n);
+    sc_cli_put_state(f, sp.x, n);
     fprintf(f, "  period %d\n      ", sp.period);
     if (sp.method != SC_LOC_NONE)
       fprintf(f, "%s: residual %.3g, error %.3g; ",

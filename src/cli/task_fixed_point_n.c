@@ -191,13 +191,6 @@ int sc_fpn_write(sc_cli_run *r, const sc_fpn_job *j) {
   return st;
 }
 
-/* "(a, b, ...)": a state for the summary. */
-static void put_state(FILE *f, const double *x, size_t n) {
-  fputc('(', f);
-  for (size_t c = 0; c < n; c++) fprintf(f, "%s%.17g", c ? ", " : "", x[c]);
-  fputc(')', f);
-}
-
 /* What the starts of period m gave, failures grouped by reason. */
 static void starts_line(FILE *f, const sc_orbitn_stats *s) {
   size_t nf = 0;
@@ -232,14 +225,14 @@ int sc_fpn_summary(sc_cli_run *r, const sc_fpn_job *j, FILE *f) {
           nstable);
   if (sp->start) {
     fputs("  start: d0 = ", f);
-    put_state(f, sp->start, n);
+    sc_cli_put_state(f, sp->start, n);
     fputs(" alone\n", f);
   } else {
     fprintf(f, "  starts a period: %zu grid points (%zu per axis) of the box ",
             ngrid, sp->steps);
-    put_state(f, sp->from, n);
+    sc_cli_put_state(f, sp->from, n);
     fputs(" .. ", f);
-    put_state(f, sp->to, n);
+    sc_cli_put_state(f, sp->to, n);
     fprintf(f, ", %zu attractor points (after %ld iterates)\n", nattr,
             sp->transient);
   }
@@ -258,7 +251,7 @@ int sc_fpn_summary(sc_cli_run *r, const sc_fpn_job *j, FILE *f) {
       sc_orbitn_set_get(j->set, i, &o);
       if (o.period != m) continue;
       fputs("    x = ", f);
-      put_state(f, o.x, n);
+      sc_cli_put_state(f, o.x, n);
       fprintf(f, ", multiplier %.17g (%s), residual %.3g\n", o.multiplier,
               o.stable ? "stable" : "unstable", o.residual);
     }

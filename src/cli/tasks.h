@@ -325,6 +325,10 @@ int sc_cli_read_head(const char *path, const char *what, char *line,
  * main, sc_cli_note(), the summary step and sc_cli_csv_text() apply it,
  * so a task need not.
  */
+/** Write the state @p x of @p n components as "(a, b, ...)" in full
+ * precision, as the n-dimensional tasks' summaries show it. */
+void sc_cli_put_state(FILE *f, const double *x, size_t n);
+
 char *sc_cli_user_text(char *text);
 
 /** Replace ',' by ';' and control characters by ' ' so that @p text can
