@@ -101,6 +101,37 @@ static void against_scan(void) {
   }
 }
 
+/* A march stopped at several tmax and resumed (sc_guard_long_advance())
+ * takes the same steps to the same root as one search: the five
+ * frequencies of against_scan, and a start on zero that is skipped. */
+static void resumed(void) {
+  const double w[5] = {1, sqrt(2), sqrt(3), sqrt(5), sqrt(7)};
+  const double a[5] = {0.21, -0.13, 0.08, 0.11, -0.05};
+  const double b[5] = {-0.17, 0.09, -0.12, 0.04, 0.1};
+  const double ws[1] = {1}, as[1] = {0}, bs[1] = {-1};
+  for (int k = 0; k < 7; k++) {
+    /* k < 6: the scan's guards; k = 6: -sin t from zero, root pi */
+    sc_guard_long g = {-0.45 + 0.04 * k, 0.002 * k, 5, w, a, b};
+    int skip = k == 6;
+    if (skip) g = (sc_guard_long){0, 0, 1, ws, as, bs};
+    sc_root_long one, r = {0};
+    tu_int("one search", sc_guard_long_first_root(&g, 40, skip, &one), SC_OK);
+    sc_guard_long_march m = {.stage = SC_MARCH_NEW};
+    double lims[6] = {0, 1e-3, 0.7, 3, 3, 40};
+    for (int i = 0; i < 6; i++) {
+      tu_int("a stage", sc_guard_long_advance(&g, lims[i], skip, &m, &r),
+             SC_OK);
+      if (!r.found) tu_true(r.t == lims[i], "stage %d: none up to %g", i, lims[i]);
+      else tu_true(r.t <= lims[i], "stage %d: root %g within %g", i, r.t, lims[i]);
+    }
+    tu_true(r.found == one.found && r.t == one.t && r.slope == one.slope &&
+                r.tangent == one.tangent && r.steps == one.steps,
+            "guard %d: resumed march = one search (found %d/%d, t %.17g/%.17g, "
+            "steps %ld/%ld)", k, r.found, one.found, r.t, one.t, r.steps,
+            one.steps);
+  }
+}
+
 static void refusals(void) {
   double w0[1] = {0}, a1[1] = {1}, wn[1] = {1}, an[1] = {NAN};
   sc_guard_long g = {-1, 0, 1, w0, a1, a1};
@@ -119,6 +150,7 @@ static void refusals(void) {
 int main(void) {
   closed_forms();
   against_scan();
+  resumed();
   refusals();
   return tu_finish();
 }

@@ -136,6 +136,43 @@ SC_API void sc_guard_long_eval(const sc_guard_long *g, double t, double *g0,
 SC_API int sc_guard_long_first_root(const sc_guard_long *g, double tmax,
                                     int skip_start, sc_root_long *out);
 
+/** Where a resumable march stands (sc_guard_long_march.stage). */
+enum {
+  SC_MARCH_NEW = 0, /**< not started: set this before the first call */
+  SC_MARCH_TO,      /**< g still to be evaluated at t */
+  SC_MARCH_AT,      /**< g0, g1 are g, g' at t */
+  SC_MARCH_DONE     /**< over: the root in root */
+};
+
+/**
+ * A march of sc_guard_long_first_root() that can be stopped at one tmax
+ * and resumed to a later one with the same guard: the state between two
+ * sc_guard_long_advance() calls.  Several guards marched side by side,
+ * each only as far as the earliest root found so far, take the same
+ * steps as each marched alone.
+ */
+typedef struct {
+  int stage;        /**< SC_MARCH_NEW before the first call */
+  double t;         /**< the march's point */
+  double tsafe;     /**< g < 0 on [0, tsafe) up to rounding */
+  double g0, g1;    /**< g, g' at t (stage SC_MARCH_AT) */
+  long steps;       /**< steps so far */
+  sc_root_long root;/**< the root (stage SC_MARCH_DONE) */
+} sc_guard_long_march;
+
+/**
+ * @brief sc_guard_long_first_root() in stages: march @p g from where @p m
+ * stands up to @p tmax (the guard must be the same at every call; its
+ * arrays may be rebuilt; tmax no smaller than at the call before).
+ * Found or not, the result is what
+ * sc_guard_long_first_root(g, tmax, skip_start) would give, steps
+ * included; a root once found is returned again by later calls.
+ * @return as sc_guard_long_first_root().
+ */
+SC_API int sc_guard_long_advance(const sc_guard_long *g, double tmax,
+                                 int skip_start, sc_guard_long_march *m,
+                                 sc_root_long *out);
+
 /** Most steps of one sc_guard_long_first_root() search: a guard of
  * period 2 pi needs tens per period far from its roots, so this covers
  * horizons of tens of thousands of periods; beyond, the search stops with

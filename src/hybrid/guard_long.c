@@ -75,30 +75,57 @@ static double safe_step(const long_bounds *z, double g0, double g1) {
   return g1 > 0 ? -g0 / g1 : HUGE_VAL;
 }
 
-int sc_guard_long_first_root(const sc_guard_long *g, double tmax,
-                             int skip_start, sc_root_long *out) {
-  *out = (sc_root_long){0, 0, tmax, NAN, 0};
-  long_bounds z;
-  if (!g || long_bounds_make(g, &z) || !isfinite(tmax) || tmax < 0)
-    return SC_EINVAL;
+/* The start: g(0), and a start on zero handled (a root at 0, or the
+ * first time g can come back to zero).  Returns 1 when the march is over
+ * (a root at 0 in m->root), 0 to march on, or a status < 0. */
+static int march_start(const sc_guard_long *g, const long_bounds *z,
+                       int skip_start, sc_guard_long_march *m) {
   const double ulp = LONG_ROUND_ULPS * DBL_EPSILON;
-  double t = 0, g0, g1, g2;
-  sc_guard_long_eval(g, 0, &g0, &g1, &g2);
-  if (fabs(g0) <= ulp * z.size0) {
-    double r1 = ulp * z.size1;
+  double g2;
+  sc_guard_long_eval(g, 0, &m->g0, &m->g1, &g2);
+  m->t = m->tsafe = 0;
+  m->stage = SC_MARCH_AT;
+  if (fabs(m->g0) <= ulp * z->size0) {
+    double r1 = ulp * z->size1, g1 = m->g1;
     if (!skip_start && (g1 > r1 || (fabs(g1) <= r1 && g2 > 0))) {
-      *out = (sc_root_long){1, fabs(g1) <= r1, 0, g1, 0};
-      return SC_OK;
+      m->root = (sc_root_long){1, fabs(g1) <= r1, 0, g1, 0};
+      m->stage = SC_MARCH_DONE;
+      return 1;
     }
-    double s = leave_zero(&z, g1, g2, r1);
+    double s = leave_zero(z, g1, g2, r1);
     if (!(s > 0)) return SC_ENOCONV;
-    t = s;
-    if (t > tmax) return SC_OK;
-    sc_guard_long_eval(g, t, &g0, &g1, NULL);
-    out->steps++;
+    m->t = m->tsafe = s;
+    m->stage = SC_MARCH_TO; /* g to be evaluated there */
   }
-  double tsafe = t; /* g < 0 on [0, tsafe), up to rounding */
+  return 0;
+}
+
+int sc_guard_long_advance(const sc_guard_long *g, double tmax, int skip_start,
+                          sc_guard_long_march *m, sc_root_long *out) {
+  long_bounds z;
+  if (!g || !m || long_bounds_make(g, &z) || !isfinite(tmax) || tmax < 0)
+    return SC_EINVAL;
+  if (m->stage == SC_MARCH_NEW) {
+    m->steps = 0;
+    int st = march_start(g, &z, skip_start, m);
+    if (st < 0) return st;
+  }
+  if (m->stage == SC_MARCH_DONE) {
+    *out = m->root;
+    out->steps = m->steps;
+    return SC_OK;
+  }
+  *out = (sc_root_long){0, 0, tmax, NAN, m->steps};
+  const double ulp = LONG_ROUND_ULPS * DBL_EPSILON;
+  if (m->stage == SC_MARCH_TO) {
+    if (m->t > tmax) return SC_OK;
+    sc_guard_long_eval(g, m->t, &m->g0, &m->g1, NULL);
+    out->steps = ++m->steps;
+    m->stage = SC_MARCH_AT;
+  }
+  /* g < 0 on [0, m->tsafe), up to rounding */
   for (;;) {
+    double t = m->t, g0 = m->g0, g1 = m->g1;
     double r0 = ulp * (z.size0 + z.size0t * t);
     if (g0 >= -r0) {
       /* within rounding of zero, from below: the root; one Newton step
@@ -108,16 +135,25 @@ int sc_guard_long_first_root(const sc_guard_long *g, double tmax,
        * larger than a parabola of curvature M2 has within rounding of
        * its top, sqrt(2 r0 M2). */
       double r1 = ulp * (z.size1 + z.size1t * t);
-      if (g1 > r1 && g0 > 0) t = fmax(tsafe, t - g0 / g1);
+      if (g1 > r1 && g0 > 0) t = fmax(m->tsafe, t - g0 / g1);
       int touch = fabs(g1) <= r1 + sqrt(2 * r0 * z.M2);
-      *out = (sc_root_long){1, touch, t, g1, out->steps};
+      m->root = (sc_root_long){1, touch, t, g1, m->steps};
+      m->stage = SC_MARCH_DONE;
+      *out = m->root;
       return SC_OK;
     }
     double s = safe_step(&z, g0, g1);
     if (!(t + s <= tmax)) return SC_OK; /* none up to tmax */
-    tsafe = t;
-    t += s;
-    sc_guard_long_eval(g, t, &g0, &g1, NULL);
-    if (++out->steps > SC_GUARD_LONG_MAXSTEPS) return SC_ENOCONV;
+    m->tsafe = t;
+    m->t = t + s;
+    sc_guard_long_eval(g, m->t, &m->g0, &m->g1, NULL);
+    out->steps = ++m->steps;
+    if (m->steps > SC_GUARD_LONG_MAXSTEPS) return SC_ENOCONV;
   }
+}
+
+int sc_guard_long_first_root(const sc_guard_long *g, double tmax,
+                             int skip_start, sc_root_long *out) {
+  sc_guard_long_march m = {.stage = SC_MARCH_NEW};
+  return sc_guard_long_advance(g, tmax, skip_start, &m, out);
 }
