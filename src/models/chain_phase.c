@@ -23,6 +23,12 @@
 /* Two roots within this many event tolerances (atol + rtol t) are one
  * instant, as bk2 ties them (twice its tie tolerance). */
 #define CHAIN_TIE_TOLS 2.0
+/* The first round of the side-by-side march reaches one turn of a mode
+ * of frequency 1 (the slowest there is): most phases end within it; each
+ * round after reaches this many times further, so a phase that lasts T
+ * costs its guards at most their march to about this times T. */
+#define CHAIN_FIRST_REACH CHAIN_TWO_PI
+#define CHAIN_REACH_GROWTH 4.0
 
 /* --- runs and their modal data ------------------------------------- */
 
@@ -244,49 +250,88 @@ static void linear_threshold(const sc_guard_long *g, int j, chain_search *S) {
          r / g->c1);
 }
 
-/* Search g up to the earliest root so far (plus a tie window, where a
- * root known as well as that one is at its instant), or the horizon. */
-static int search_guard(chain_inst *c, const sc_guard_long *g, int skip,
-                        int kind, int block, chain_search *S, sc_msg *msg) {
-  if (never_zero(g)) return SC_OK;
-  double lim = S->H;
+/* How far the guards are marched: the earliest root so far plus a tie
+ * window (where a root known as well as that one is at its instant), or
+ * the round's reach L while there is none; never past the horizon. */
+static double search_lim(const chain_inst *c, const chain_search *S,
+                         double L) {
   if (S->best < HUGE_VAL)
-    lim = fmin(lim, S->best + tie_window(c, S->best) + 2 * S->best_u);
+    return fmin(S->H, S->best + tie_window(c, S->best) + 2 * S->best_u);
+  return fmin(S->H, L);
+}
+
+/* The guard of block b: a stuck block's threshold, a slipping block's
+ * re-stick; returns whether it has sinusoids (a threshold may not). */
+static int guard_of(chain_inst *c, int b, sc_guard_long *g) {
+  if (c->slip[b]) {
+    restick_guard(c, b, g);
+    return 1;
+  }
+  return threshold_guard(c, b, g);
+}
+
+/* March block b's guard (rebuilt: the same terms) from where m stands up
+ * to lim, and record its root. */
+static int advance_guard(chain_inst *c, int b, sc_guard_long_march *m,
+                         double lim, chain_search *S, sc_msg *msg) {
+  sc_guard_long g;
+  int kind = c->slip[b] ? CHAIN_RESTICK : CHAIN_THRESHOLD;
+  guard_of(c, b, &g);
   sc_root_long r;
-  int st = sc_guard_long_first_root(g, lim, skip, &r);
+  int st = sc_guard_long_advance(&g, lim, kind == CHAIN_RESTICK && c->fresh[b],
+                                 m, &r);
   /* the guards are built from finite parameters, so a refused one has
    * overflowed: a state far too large (Newton's steps can go there) */
   if (st)
     return sc_fail(msg, st == SC_EINVAL ? SC_ENONFINITE : st,
                    "chain: the %s guard of block %d could not be searched "
                    "(%s)",
-                   kind == CHAIN_RESTICK ? "re-stick" : "threshold", block + 1,
+                   kind == CHAIN_RESTICK ? "re-stick" : "threshold", b + 1,
                    st == SC_EINVAL ? "its terms overflow: a state too large"
                                    : "a start on zero, or too many steps");
-  if (r.found)
-    record(S, kind, block, r.t, r.slope, root_spread(g, r.t, r.slope));
+  /* found once: a march over is not advanced again */
+  if (r.found) record(S, kind, b, r.t, r.slope, root_spread(&g, r.t, r.slope));
   return SC_OK;
 }
 
-/* Every guard of the phase, the cheap ones first so that their roots
- * bound the others' searches: linear thresholds, thresholds next to a
- * run, re-sticks of blocks that slipped before, fresh blocks' re-sticks
- * (their guard starts on zero: that root is skipped). */
+/* Every guard of the phase.  Thresholds of blocks between stuck ones are
+ * linear: their roots come first, in closed form.  The others are
+ * marched side by side (sc_guard_long_advance()) in rounds reaching
+ * CHAIN_FIRST_REACH, then CHAIN_REACH_GROWTH times further each round,
+ * until a root is found; then every guard only up to that root's instant.
+ * A guard that never fires before the phase ends is so marched no
+ * further than the phase's end, not to the horizon.  Each guard's root
+ * is the one a search of it alone finds. */
 static int search_all(chain_inst *c, chain_search *S, sc_msg *msg) {
   sc_guard_long g;
-  int N = c->N, st = SC_OK;
+  sc_guard_long_march mk[CHAIN_MAXBLOCKS];
+  int N = c->N, list[CHAIN_MAXBLOCKS], nl = 0, st = SC_OK;
+  double reached[CHAIN_MAXBLOCKS];
+  /* thresholds (linear ones recorded), then re-sticks of blocks that
+   * slipped before, then fresh blocks' (their start on zero skipped) */
   for (int j = 0; j < N; j++)
-    if (!c->slip[j] && !threshold_guard(c, j, &g)) linear_threshold(&g, j, S);
-  for (int j = 0; j < N && !st; j++)
-    if (!c->slip[j] && threshold_guard(c, j, &g))
-      st = search_guard(c, &g, 0, CHAIN_THRESHOLD, j, S, msg);
-  for (int pass = 0; pass < 2 && !st; pass++)
-    for (int b = 0; b < N && !st; b++)
+    if (!c->slip[j]) {
+      if (!threshold_guard(c, j, &g)) linear_threshold(&g, j, S);
+      else if (!never_zero(&g)) list[nl++] = j;
+    }
+  for (int pass = 0; pass < 2; pass++)
+    for (int b = 0; b < N; b++)
       if (c->slip[b] && c->fresh[b] == pass) {
         restick_guard(c, b, &g);
-        st = search_guard(c, &g, pass, CHAIN_RESTICK, b, S, msg);
+        if (!never_zero(&g)) list[nl++] = b;
       }
-  return st;
+  for (int i = 0; i < nl; i++) mk[i].stage = SC_MARCH_NEW, reached[i] = -1;
+  for (double L = CHAIN_FIRST_REACH;; L *= CHAIN_REACH_GROWTH) {
+    int final = S->best < HUGE_VAL;
+    for (int i = 0; i < nl && !st; i++) {
+      double lim = search_lim(c, S, L);
+      if (mk[i].stage == SC_MARCH_DONE || reached[i] >= lim) continue;
+      st = advance_guard(c, list[i], &mk[i], lim, S, msg);
+      reached[i] = lim;
+    }
+    /* with a root found in this round: one more, up to its instant */
+    if (st || final || (S->best == HUGE_VAL && L >= S->H)) return st;
+  }
 }
 
 /* --- the state at the event and its sensitivities -------------------- */
