@@ -21,8 +21,9 @@ extern "C" {
 
 /** Most parameters a model may declare. */
 #define SC_MAXPARAM 8
-/** Most string options a model may declare. */
-#define SC_MAXOPTION 4
+/** Most string options a model may declare (chain: blocks, topology,
+ * driver, friction, flows). */
+#define SC_MAXOPTION 5
 
 /** One parameter of a model. */
 typedef struct {

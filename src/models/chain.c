@@ -1,5 +1,6 @@
 /* The N-block chain (docs/chain.md): the Burridge-Knopoff chain of N
- * equal blocks, open or closed in a ring, with Coulomb friction, as an
+ * equal blocks, open or closed in a ring, with Coulomb friction (or velocity
+ * weakening, whose phases chain_vw.c integrates), as an
  * (N - 1)-dimensional event map from one global stick phase (GSP) to the
  * next.  This file holds the model's table, its setup (the eigenbases of
  * the runs' coupling matrices, by LAPACK's dsyev), the onset of a slip
@@ -28,11 +29,12 @@ static const sc_param_info chain_params[CHAIN_NPARAM] = {
     {"alpha", 3, 0, 1e6, 1, 0, "coupling spring / driver spring", NULL, NULL},
     {"phi", 1.25, 1, 1e6, 1, 0,
      "static / kinetic friction ratio (kinetic friction T_i / phi)", NULL,
-     NULL},
+     "friction=coulomb"},
     {"v", 0.025, 0, 1e3, 0, 0, "driver velocity", "V", NULL},
     {"gamma", 1, 0, 1e6, 0, 0,
-     "velocity weakening (a friction law still to come; no effect)", NULL,
-     "friction=velocity-weakening"},
+     "velocity weakening: K_i = T_i / (1 + gamma |U_i - W|) (friction = "
+     "velocity-weakening only)",
+     NULL, "friction=velocity-weakening"},
     {"beta2", 1, 0, 1e6, 1, 0, "static threshold of block 2 (block 1's is 1)",
      NULL, NULL},
     {"beta3", 1, 0, 1e6, 1, 0, "static threshold of block 3", NULL,
@@ -50,8 +52,11 @@ static const sc_option_info chain_options[] = {
      "free ends, or block N coupled to block 1 (N >= 3)", 0, 0},
     {"driver", {"moving", "frozen", NULL},
      "the driver keeps moving during slips, or stops", 0, 0},
-    {"friction", {"coulomb", NULL},
-     "kinetic friction T_i / phi (closed-form flows)", 0, 0},
+    {"friction", {"coulomb", "velocity-weakening", NULL},
+     "kinetic friction: T_i / phi (coulomb), or T_i / (1 + gamma |U_i - W|) "
+     "(velocity-weakening, numerical flows)", 0, 0},
+    {"flows", {"exact", "numerical", NULL},
+     "closed-form flows, or GSL odeiv2 integration", 0, 0},
 };
 
 /* --- bases ------------------------------------------------------------ */
@@ -134,6 +139,7 @@ static void chain_release(void *inst) {
   }
   c->fresh = NULL; /* in slip's block */
   c->alloc_N = 0;
+  chain_num_release(c);
 }
 
 /* The buffers of a chain of c->N blocks (after release of any others). */
@@ -172,22 +178,43 @@ static int chain_setup(void *inst, const double *p, const int *opt,
   if (ring && N < 3)
     return sc_fail(msg, SC_EINVAL,
                    "chain: topology = ring needs blocks >= 3 (blocks = %d)", N);
+  if (opt[O_FRICTION] == 1 && opt[O_DRIVER] == 1)
+    return sc_fail(msg, SC_EINVAL,
+                   "chain: friction = velocity-weakening with driver = frozen "
+                   "is ill posed (a slip cannot start): use driver = moving");
+  if ((opt[O_FLOWS] == 1 || opt[O_FRICTION] == 1) &&
+      acc->precision == SC_PRECISION_QUAD)
+    return sc_fail(msg, SC_EINVAL,
+                   "chain: precision = quad needs flows = exact (the "
+                   "numerical flows are double only)");
   int rebuild = N != c->alloc_N || ring != c->ring;
   c->ring = ring;
   c->N = N;
   c->frozen = opt[O_DRIVER] == 1;
+  c->vw = opt[O_FRICTION] == 1;
+  c->numerical = opt[O_FLOWS] == 1 || c->vw;
   c->alpha = p[P_ALPHA], c->phi = p[P_PHI], c->v = p[P_V];
+  c->gamma = p[P_GAMMA];
   c->Vs = c->frozen ? 0 : c->v;
   c->acc = *acc;
   for (int i = 0; i < N; i++) {
     c->T[i] = i == 0 ? 1 : i < CHAIN_PARAM_BLOCKS ? p[P_BETA2 + i - 1] : 1;
     c->K[i] = c->T[i] / c->phi;
   }
-  if (!rebuild) return SC_OK;
-  chain_release(c);
-  int st = chain_alloc(c, msg);
-  if (st) chain_release(c);
+  int st = SC_OK;
+  if (rebuild) {
+    chain_release(c);
+    st = chain_alloc(c, msg);
+    if (st) chain_release(c);
+  }
+  if (!st && c->numerical) st = chain_num_setup(c, msg);
+  if (!st && !c->numerical) chain_num_release(c);
   return st;
+}
+
+static double chain_precision(const void *inst) {
+  const chain_inst *c = inst;
+  return c->numerical ? chain_num_precision(c) : 0;
 }
 
 static size_t chain_dim_of(const void *inst) {
@@ -302,7 +329,8 @@ static int chain_eval_n(void *inst, const double *d, unsigned flags,
   out->itinerary[0] = '\0';
   for (int ph = 0; ph < c->acc.max_events; ph++) {
     if (flags & SC_EVAL_ITINERARY) itin_add(c, out->itinerary);
-    int nev = 0, st = chain_phase(c, deriv, ev, &nev, msg);
+    int nev = 0, st = c->numerical ? chain_phase_num(c, deriv, ev, &nev, msg)
+                                   : chain_phase(c, deriv, ev, &nev, msg);
     if (st) return st;
     out->nphases++;
     for (int i = 0; i < N; i++) c->fresh[i] = 0;
@@ -346,4 +374,5 @@ const sc_model_type sc_model_chain = {
     .release = chain_release,
     .eval_n = chain_eval_n,
     .dim_of = chain_dim_of,
+    .precision = chain_precision,
 };

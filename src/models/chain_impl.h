@@ -17,7 +17,10 @@ enum { P_ALPHA, P_PHI, P_V, P_GAMMA, P_BETA2, CHAIN_NPARAM = P_BETA2 + 4 };
  * the others have threshold 1 (docs/chain.md, "Parameters"). */
 #define CHAIN_PARAM_BLOCKS 5
 /* Options in table order. */
-enum { O_BLOCKS, O_TOPOLOGY, O_DRIVER, O_FRICTION };
+enum { O_BLOCKS, O_TOPOLOGY, O_DRIVER, O_FRICTION, O_FLOWS };
+
+/* The numerical flows' workspace (chain_vw.c). */
+typedef struct chain_num chain_num;
 
 /* Shapes of a run's coupling matrix L (docs/chain.md, "Exact flows"):
  * a path whose two ends are coupled to stuck blocks (degree 2 at both
@@ -44,7 +47,10 @@ typedef struct {
 
 typedef struct {
   int N, ring, frozen;
-  double alpha, phi, v, Vs;
+  int vw;        /* friction = velocity-weakening */
+  int numerical; /* flows = numerical (always with velocity weakening) */
+  double alpha, phi, v, Vs, gamma;
+  chain_num *num; /* the numerical flows' workspace, NULL for exact ones */
   double T[CHAIN_MAXBLOCKS], K[CHAIN_MAXBLOCKS];
   sc_accuracy acc;
   int alloc_N;        /* blocks the buffers below were sized for */
@@ -110,5 +116,17 @@ int chain_basis_of(chain_inst *c, int shape, int m, size_t *used,
  * Returns SC_OK or a negative status (SC_EUNDEF: no event). */
 int chain_phase(chain_inst *c, int deriv, chain_event *ev, int *nev,
                 sc_msg *msg);
+
+/* The numerical flows (chain_vw.c, docs/chain.md "Velocity weakening"):
+ * chain_num_setup() (re)makes c->num for c->N blocks and c->acc's ODE
+ * tolerances; chain_num_release() frees it; chain_phase_num() is
+ * chain_phase() by integration of the same equations with the friction
+ * law of c->vw, the sensitivities by the variational equations;
+ * chain_num_precision() is how well it knows f. */
+int chain_num_setup(chain_inst *c, sc_msg *msg);
+void chain_num_release(chain_inst *c);
+int chain_phase_num(chain_inst *c, int deriv, chain_event *ev, int *nev,
+                    sc_msg *msg);
+double chain_num_precision(const chain_inst *c);
 
 #endif

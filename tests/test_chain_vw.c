@@ -1,0 +1,527 @@
+/* The chain's numerical flows (docs/chain.md, "Velocity weakening"): two
+ * blocks under velocity weakening against bk2's velocity-weakening map;
+ * Coulomb friction through the integrator against the exact flows; three
+ * blocks against an integration of its own at a much tighter tolerance;
+ * the derivatives against differences; the limit gamma -> 0; the
+ * refusals; the three-block example's known answer. */
+#define _POSIX_C_SOURCE 200809L
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_odeiv2.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "slipcont/map.h"
+#include "test_util.h"
+
+#define MAXN 4
+
+static unsigned long long rng_state = 1;
+static void seed(unsigned long long s) { rng_state = s * 2654435761ULL + 1; }
+static double uni(double lo, double hi) {
+  rng_state ^= rng_state >> 12;
+  rng_state ^= rng_state << 25;
+  rng_state ^= rng_state >> 27;
+  unsigned long long r = rng_state * 2685821657736338717ULL;
+  return lo + (hi - lo) * ((double)(r >> 11) / 9007199254740992.0);
+}
+
+static sc_map *map_new(const char *model, const char *preset) {
+  sc_map *m = NULL;
+  sc_msg msg;
+  sc_accuracy acc;
+  sc_accuracy_preset(&acc, preset, &msg);
+  if (sc_map_alloc(model, &acc, &m, &msg))
+    tu_true(0, "%s: %s", model, msg.text);
+  return m;
+}
+
+static void opt(sc_map *m, const char *name, const char *value) {
+  sc_msg msg;
+  if (sc_map_set_option(m, name, value, &msg))
+    tu_true(0, "%s = %s: %s", name, value, msg.text);
+}
+
+static sc_map *chain_new(int N, const char *topology, const char *friction,
+                         const char *flows, const char *preset) {
+  sc_map *m = map_new("chain", preset);
+  char nb[24];
+  snprintf(nb, sizeof nb, "%d", N);
+  opt(m, "blocks", nb);
+  opt(m, "topology", topology);
+  opt(m, "friction", friction);
+  opt(m, "flows", flows);
+  return m;
+}
+
+static void set(sc_map *m, const char *name, double x) {
+  sc_msg msg;
+  if (sc_map_set_param_by_name(m, name, x, &msg))
+    tu_true(0, "set %s = %g: %s", name, x, msg.text);
+}
+
+/* --- two blocks are bk2 ---------------------------------------------- */
+
+/* Both integrate the same equations at the preset's tolerance (1e-13 at
+ * precise) with different steps (bk2 limits them by the slip's own
+ * fastest period, the chain by the chain's bound), so f agrees to the
+ * maps' promise, 10 (atol + rtol) = 2e-12 at precise; 1e-9 leaves room
+ * for a slip's growth of errors near grazing.  The derivatives carry the
+ * event times' 1 / slope: 1e-6 relative. */
+static const double BK2_F_TOL = 1e-9;
+static const double BK2_D_TOL = 1e-6;
+
+static void check_bk2(const char *friction, const char *driver, int npoints,
+                      int near_dstar) {
+  sc_map *b = map_new("bk2", "precise");
+  sc_map *c = chain_new(2, "open", friction, "numerical", "precise");
+  opt(b, "friction", friction);
+  opt(b, "flows", "numerical");
+  opt(b, "driver", driver);
+  opt(c, "driver", driver);
+  int vw = strcmp(friction, "coulomb") != 0;
+  const char *bn[5] = {"alpha", "beta", "v", "gamma", "phi"};
+  const char *cn[5] = {"alpha", "beta2", "v", "gamma", "phi"};
+  int bi[5], ci[5];
+  for (int k = 0; k < 5; k++) {
+    bi[k] = sc_map_param_index(b, bn[k]);
+    ci[k] = sc_map_param_index(c, cn[k]);
+  }
+  double ef = 0, ed = 0;
+  int nitin = 0, nstatus = 0, ndone = 0;
+  seed(4711 + (unsigned)vw + 7 * (unsigned)near_dstar);
+  sc_msg msg, m2;
+  for (int k = 0; k < npoints; k++) {
+    double p[5] = {uni(0.5, 5), uni(0.5, 3), uni(0.01, 0.1), uni(0.2, 3),
+                   uni(1.1, 2.1)};
+    for (int q = 0; q < 5; q++) {
+      set(b, bn[q], p[q]);
+      set(c, cn[q], p[q]);
+    }
+    double ds = (p[1] - 1) / (1 + 2 * p[0]);
+    double d = near_dstar ? ds + uni(-1, 1) * pow(10, -uni(6, 12))
+                          : uni(-1, 1);
+    sc_map_value bv, cv;
+    unsigned fl = SC_EVAL_DERIV | SC_EVAL_ITINERARY;
+    int s1 = sc_map_eval(b, d, fl, &bv, &msg);
+    int s2 = sc_map_eval(c, d, fl, &cv, &m2);
+    if (s1 || s2) {
+      if (s1 != s2 && nstatus++ < 3)
+        tu_true(0, "bk2 %s %s d = %.17g: status %d (%s), chain %d (%s)",
+                friction, driver, d, s1, s1 ? msg.text : "", s2,
+                s2 ? m2.text : "");
+      continue;
+    }
+    ndone++;
+    if (strcmp(bv.itinerary, cv.itinerary)) {
+      if (nitin++ < 3)
+        tu_true(0, "bk2 %s %s d = %.17g: itinerary %s, chain %s", friction,
+                driver, d, bv.itinerary, cv.itinerary);
+      continue;
+    }
+    ef = fmax(ef, fabs(bv.f - cv.f));
+    ed = fmax(ed, fabs(bv.dfdd - cv.dfdd) / fmax(1, fabs(bv.dfdd)));
+    for (int q = 0; q < 5; q++)
+      ed = fmax(ed, fabs(bv.dfdp[bi[q]] - cv.dfdp[ci[q]]) /
+                        fmax(1, fabs(bv.dfdp[bi[q]])));
+  }
+  printf("bk2 against chain, %s, driver %s%s: %d points, max |df| %.3g, "
+         "max derivative difference %.3g\n",
+         friction, driver, near_dstar ? ", within 1e-6 of d*" : "", ndone, ef,
+         ed);
+  tu_true(ndone >= npoints * 9 / 10, "%d of %d points evaluated", ndone,
+          npoints);
+  tu_int("itineraries that differ from bk2's", nitin, 0);
+  tu_int("statuses that differ from bk2's", nstatus, 0);
+  tu_close("max |f_chain - f_bk2|", ef, 0, BK2_F_TOL);
+  tu_close("max derivative difference (relative)", ed, 0, BK2_D_TOL);
+  sc_map_free(b);
+  sc_map_free(c);
+}
+
+/* --- Coulomb friction through the integrator ---------------------------- */
+
+/* The same equations in closed form and integrated at the precise
+ * preset's 1e-13: f within the numerical map's promise (2e-12) and some
+ * room for the growth of errors over several phases (1e-9, as against
+ * bk2); the derivatives within 1e-6 of their scale. */
+static void check_exact(int N, int ring, const char *driver, int npoints) {
+  const char *topo = ring ? "ring" : "open";
+  sc_map *e = chain_new(N, topo, "coulomb", "exact", "precise");
+  sc_map *m = chain_new(N, topo, "coulomb", "numerical", "precise");
+  opt(e, "driver", driver);
+  opt(m, "driver", driver);
+  sc_mapn_value *a, *b;
+  sc_msg msg;
+  unsigned fl = SC_EVAL_DERIV | SC_EVAL_ITINERARY;
+  sc_mapn_value_alloc(e, fl, &a, &msg);
+  sc_mapn_value_alloc(m, fl, &b, &msg);
+  size_t n = (size_t)N - 1, np = sc_map_nparam(m);
+  seed(99 + 10 * (unsigned)N + (unsigned)ring);
+  double ef = 0, ed = 0;
+  int ndone = 0, nitin = 0, nstatus = 0;
+  for (int k = 0; k < npoints; k++) {
+    double p[3] = {uni(0.5, 4), uni(1.1, 2), uni(0.005, 0.1)};
+    const char *pn[3] = {"alpha", "phi", "v"};
+    for (int q = 0; q < 3; q++) {
+      set(e, pn[q], p[q]);
+      set(m, pn[q], p[q]);
+    }
+    for (int i = 1; i < N; i++) {
+      char nm[24];
+      snprintf(nm, sizeof nm, "beta%d", i + 1);
+      double t = uni(0.6, 2);
+      set(e, nm, t);
+      set(m, nm, t);
+    }
+    double d[MAXN];
+    for (size_t i = 0; i < n; i++) d[i] = uni(-0.5, 0.5);
+    int s1 = sc_map_eval_n(e, d, fl, a, &msg);
+    int s2 = sc_map_eval_n(m, d, fl, b, &msg);
+    if (s1 || s2) {
+      nstatus += s1 != s2;
+      continue;
+    }
+    if (strcmp(a->itinerary, b->itinerary)) {
+      if (nitin++ < 3)
+        tu_true(0, "N %d %s %s point %d: itinerary %s exact, %s numerical",
+                N, topo, driver, k, a->itinerary, b->itinerary);
+      continue;
+    }
+    ndone++;
+    double scale = 1;
+    for (size_t i = 0; i < n * n; i++) scale = fmax(scale, fabs(a->J[i]));
+    for (size_t i = 0; i < n * np; i++) scale = fmax(scale, fabs(a->fp[i]));
+    for (size_t i = 0; i < n; i++) ef = fmax(ef, fabs(a->f[i] - b->f[i]));
+    for (size_t i = 0; i < n * n; i++)
+      ed = fmax(ed, fabs(a->J[i] - b->J[i]) / scale);
+    for (size_t i = 0; i < n * np; i++)
+      ed = fmax(ed, fabs(a->fp[i] - b->fp[i]) / scale);
+  }
+  printf("N = %d %s %s, Coulomb: numerical against exact flows, %d points, "
+         "max |df| %.3g, max derivative difference %.3g\n",
+         N, topo, driver, ndone, ef, ed);
+  tu_true(ndone >= npoints * 4 / 5, "%d of %d points compared", ndone,
+          npoints);
+  tu_int("itineraries that differ", nitin, 0);
+  tu_int("statuses that differ", nstatus, 0);
+  tu_close("max |f_numerical - f_exact|", ef, 0, BK2_F_TOL);
+  tu_close("max derivative difference / scale", ed, 0, BK2_D_TOL);
+  sc_mapn_value_free(a);
+  sc_mapn_value_free(b);
+  sc_map_free(e);
+  sc_map_free(m);
+}
+
+/* --- an integration of its own ------------------------------------------ */
+
+/* The chain's equations written again from docs/chain.md for GSL's rk8pd:
+ * Y_i' = U_i, U_i' = K_i(U_i) - S_i while block i slips, K_i = T_i / (1 +
+ * gamma |U_i - W|); Y_i' = W, U_i' = 0 while it sticks. */
+typedef struct {
+  int N, ring;
+  double alpha, gamma, W, T[MAXN];
+  int slip[MAXN];
+} ref_sys;
+
+static double ref_spring(const ref_sys *s, const double *Y, int i) {
+  double f = Y[i];
+  for (int k = -1; k <= 1; k += 2) {
+    int n = i + k;
+    if (s->ring) n = (n + s->N) % s->N;
+    else if (n < 0 || n >= s->N) continue;
+    f += s->alpha * (Y[i] - Y[n]);
+  }
+  return f;
+}
+
+static int ref_rhs(double t, const double y[], double dy[], void *p) {
+  (void)t;
+  const ref_sys *s = p;
+  for (int i = 0; i < s->N; i++) {
+    double K = s->T[i] / (1 + s->gamma * fabs(y[s->N + i] - s->W));
+    dy[i] = s->slip[i] ? y[s->N + i] : s->W;
+    dy[s->N + i] = s->slip[i] ? K - ref_spring(s, y, i) : 0;
+  }
+  return GSL_SUCCESS;
+}
+
+/* The guard of block i: U_i - W slipping, S_i - T_i stuck. */
+static double ref_guard(const ref_sys *s, const double *y, int i) {
+  return s->slip[i] ? y[s->N + i] - s->W : ref_spring(s, y, i) - s->T[i];
+}
+
+/* rk8pd at 1e-13 (the map is compared at the default preset's 1e-10),
+ * steps no longer than 0.01 (a guard cannot cross zero twice unseen:
+ * frequencies <= sqrt(1 + 4 alpha) ~ 4.2 here), iterates of 40 phases
+ * or more left out (a slip chaotic within itself: two correct
+ * computations part after a few dozen phases). */
+static const double REF_EPS = 1e-13;
+static const double REF_HMAX = 0.01;
+#define REF_MAX_PHASES 40
+
+static void ref_flow(ref_sys *s, const double *y0, double h, double *y) {
+  gsl_odeiv2_system sys = {ref_rhs, NULL, (size_t)(2 * s->N), s};
+  gsl_odeiv2_driver *d = gsl_odeiv2_driver_alloc_y_new(
+      &sys, gsl_odeiv2_step_rk8pd, fmin(h, REF_HMAX) / 4, REF_EPS, REF_EPS);
+  double t = 0;
+  memcpy(y, y0, (size_t)(2 * s->N) * sizeof *y);
+  if (h > 0) gsl_odeiv2_driver_apply(d, &t, h, y);
+  gsl_odeiv2_driver_free(d);
+}
+
+/* The time in (0, h] where guard i of the step from y0 reaches zero, by
+ * bisection on re-integrations. */
+static double ref_locate(ref_sys *s, const double *y0, double h, int i) {
+  double lo = 0, hi = h, y[2 * MAXN];
+  for (int it = 0; it < 60 && hi - lo > 1e-16 * (1 + hi); it++) {
+    double mid = 0.5 * (lo + hi);
+    ref_flow(s, y0, mid, y);
+    if (ref_guard(s, y, i) >= 0) hi = mid;
+    else lo = mid;
+  }
+  return hi;
+}
+
+/* f(d) by integration, and the itinerary as the chain writes it. */
+static int ref_map(ref_sys *s, const double *d, double *f, char *itin) {
+  int N = s->N, armed[MAXN];
+  double y[2 * MAXN], yo[2 * MAXN], gap[MAXN], gmin = HUGE_VAL;
+  y[0] = 0;
+  for (int i = 1; i < N; i++) y[i] = y[i - 1] + d[i - 1];
+  for (int i = 0; i < N; i++) {
+    gap[i] = s->T[i] - ref_spring(s, y, i);
+    gmin = fmin(gmin, gap[i]);
+  }
+  for (int i = 0; i < N; i++) {
+    y[i] += gmin; /* S_i grows with a common shift of the positions */
+    y[N + i] = s->W;
+    s->slip[i] = gap[i] == gmin;
+    armed[i] = !s->slip[i];
+  }
+  itin[0] = '\0';
+  gsl_odeiv2_system sys = {ref_rhs, NULL, (size_t)(2 * N), s};
+  for (int phase = 0;; phase++) {
+    if (phase == REF_MAX_PHASES) return -2;
+    if (phase) strcat(itin, "-");
+    for (int i = 0; i < N; i++)
+      if (s->slip[i]) snprintf(itin + strlen(itin), 12, "%d", i + 1);
+    gsl_odeiv2_evolve *ev = gsl_odeiv2_evolve_alloc((size_t)(2 * N));
+    gsl_odeiv2_control *ct = gsl_odeiv2_control_y_new(REF_EPS, REF_EPS);
+    gsl_odeiv2_step *st =
+        gsl_odeiv2_step_alloc(gsl_odeiv2_step_rk8pd, (size_t)(2 * N));
+    double t = 0, h = 1e-3, th = 0;
+    int hit = -1;
+    while (hit < 0 && t < 1000) {
+      double t0 = t;
+      memcpy(yo, y, sizeof y);
+      gsl_odeiv2_evolve_apply(ev, ct, st, &sys, &t, t0 + REF_HMAX, &h, y);
+      for (int i = 0; i < N; i++) {
+        double g = ref_guard(s, y, i);
+        if (!armed[i] && g < 0) armed[i] = 1;
+        else if (armed[i] && g >= 0 && ref_guard(s, yo, i) < 0) {
+          double tl = ref_locate(s, yo, t - t0, i);
+          if (hit < 0 || tl < th) hit = i, th = tl;
+        }
+      }
+      if (hit >= 0) ref_flow(s, yo, th, y);
+    }
+    gsl_odeiv2_evolve_free(ev);
+    gsl_odeiv2_control_free(ct);
+    gsl_odeiv2_step_free(st);
+    if (hit < 0) return -1;
+    if (s->slip[hit]) {
+      s->slip[hit] = 0;
+      y[N + hit] = s->W;
+      int left = 0;
+      for (int i = 0; i < N; i++) left += s->slip[i];
+      if (!left) break;
+    } else {
+      s->slip[hit] = 1;
+      armed[hit] = 0;
+    }
+  }
+  for (int i = 0; i + 1 < N; i++) f[i] = y[i + 1] - y[i];
+  return 0;
+}
+
+/* The default preset integrates at 1e-10 and promises f to 10 (atol +
+ * rtol) = 2e-9 (sc_map_precision()); the reference is a thousand times
+ * tighter. */
+static void check_integration(int N, int ring, int npoints) {
+  const char *topo = ring ? "ring" : "open";
+  sc_map *m = chain_new(N, topo, "velocity-weakening", "numerical", "default");
+  sc_mapn_value *v;
+  sc_msg msg;
+  sc_mapn_value_alloc(m, SC_EVAL_ITINERARY, &v, &msg);
+  seed(1000 * (unsigned)N + 10 * (unsigned)ring);
+  double emax = 0, prec = sc_map_precision(m);
+  int ndone = 0, nitin = 0, nlong = 0;
+  for (int k = 0; k < npoints; k++) {
+    ref_sys s = {N, ring, uni(0.5, 4), uni(0.2, 3), uni(0.005, 0.1), {1}, {0}};
+    set(m, "alpha", s.alpha);
+    set(m, "gamma", s.gamma);
+    set(m, "v", s.W);
+    for (int i = 1; i < N; i++) {
+      char nm[24];
+      snprintf(nm, sizeof nm, "beta%d", i + 1);
+      s.T[i] = uni(0.6, 2);
+      set(m, nm, s.T[i]);
+    }
+    double d[MAXN], f[MAXN];
+    char itin[512];
+    for (int i = 0; i + 1 < N; i++) d[i] = uni(-0.5, 0.5);
+    int s1 = sc_map_eval_n(m, d, SC_EVAL_ITINERARY, v, &msg);
+    int s2 = ref_map(&s, d, f, itin);
+    if (s2 == -2 || (!s1 && v->nphases >= REF_MAX_PHASES)) {
+      nlong++;
+      continue;
+    }
+    if (s1 || s2) {
+      tu_true(s1 && s2, "N %d %s point %d: chain status %d (%s), integration "
+              "%d (%s)", N, topo, k, s1, s1 ? msg.text : "", s2,
+              s2 ? "" : itin);
+      continue;
+    }
+    ndone++;
+    if (strcmp(itin, v->itinerary)) {
+      if (nitin++ < 3)
+        tu_true(0, "N %d %s point %d: itinerary %s, integration %s", N, topo,
+                k, v->itinerary, itin);
+      continue;
+    }
+    for (int i = 0; i + 1 < N; i++) emax = fmax(emax, fabs(f[i] - v->f[i]));
+  }
+  printf("N = %d %s, velocity weakening, default preset: %d points (%d left "
+         "out: %d phases or more), max |f - f_integrated| %.3g (promise "
+         "%.3g)\n",
+         N, topo, ndone, nlong, REF_MAX_PHASES, emax, prec);
+  tu_true(ndone >= npoints * 4 / 5, "%d of %d points compared", ndone,
+          npoints);
+  tu_int("itineraries that differ from the integration's", nitin, 0);
+  tu_close("max |f - f_integrated|", emax, 0, prec);
+  sc_mapn_value_free(v);
+  sc_map_free(m);
+}
+
+/* --- derivatives against differences ----------------------------------- */
+
+/* Central differences with h = 1e-6 of f integrated at the precise
+ * preset, whose promise is 2e-12: its error over 2h is ~1e-6; truncation
+ * h^2 |f'''| / 6 reaches ~1e-6 on slips of twenty phases (h = 1e-5 gave
+ * 1.4e-3 there, falling as h^2).  1e-5 relative to the derivatives'
+ * scale. */
+static const double FD_H = 1e-6;
+static const double FD_TOL = 1e-5;
+
+static void check_derivatives(int N, int ring) {
+  sc_map *m = chain_new(N, ring ? "ring" : "open", "velocity-weakening",
+                        "numerical", "precise");
+  size_t n = (size_t)N - 1, np = sc_map_nparam(m);
+  sc_mapn_value *v, *a, *b;
+  sc_msg msg;
+  sc_mapn_value_alloc(m, SC_EVAL_DERIV | SC_EVAL_ITINERARY, &v, &msg);
+  sc_mapn_value_alloc(m, SC_EVAL_ITINERARY, &a, &msg);
+  sc_mapn_value_alloc(m, SC_EVAL_ITINERARY, &b, &msg);
+  seed(31 + (unsigned)N + (unsigned)ring);
+  double p0[8];
+  set(m, "alpha", 2.385);
+  set(m, "gamma", 1.37);
+  set(m, "v", 0.037);
+  for (int i = 1; i < N; i++) {
+    char nm[24];
+    snprintf(nm, sizeof nm, "beta%d", i + 1);
+    set(m, nm, uni(0.8, 1.6));
+  }
+  for (size_t q = 0; q < np; q++) p0[q] = sc_map_get_param(m, q);
+  double emax = 0, gmax = 0;
+  int ndone = 0, pg = sc_map_param_index(m, "gamma");
+  for (int k = 0; k < 20; k++) {
+    double d[MAXN], x[MAXN];
+    for (size_t i = 0; i < n; i++) d[i] = uni(-0.4, 0.4);
+    if (sc_map_eval_n(m, d, SC_EVAL_DERIV | SC_EVAL_ITINERARY, v, &msg))
+      continue;
+    double fd[(MAXN + 8) * MAXN], ex[(MAXN + 8) * MAXN], scale = 1;
+    int smooth = 1;
+    for (size_t c = 0; c < n + np && smooth; c++) {
+      for (int sgn = -1; sgn <= 1; sgn += 2) {
+        sc_mapn_value *w = sgn < 0 ? b : a;
+        memcpy(x, d, n * sizeof *d);
+        if (c < n) x[c] += sgn * FD_H;
+        else sc_map_set_param(m, c - n, p0[c - n] + sgn * FD_H, &msg);
+        int st = sc_map_eval_n(m, x, SC_EVAL_ITINERARY, w, &msg);
+        if (c >= n) sc_map_set_param(m, c - n, p0[c - n], &msg);
+        /* a difference across a border is no test of the derivative */
+        if (st || strcmp(w->itinerary, v->itinerary)) smooth = 0;
+      }
+      for (size_t i = 0; i < n && smooth; i++) {
+        fd[c * n + i] = (a->f[i] - b->f[i]) / (2 * FD_H);
+        ex[c * n + i] = c < n ? v->J[i * n + c] : v->fp[(c - n) * n + i];
+        scale = fmax(scale, fabs(ex[c * n + i]));
+      }
+    }
+    if (!smooth) continue;
+    ndone++;
+    for (size_t i = 0; i < (n + np) * n; i++)
+      emax = fmax(emax, fabs(fd[i] - ex[i]) / scale);
+    for (size_t i = 0; i < n; i++)
+      gmax = fmax(gmax, fabs(ex[(n + (size_t)pg) * n + i]));
+  }
+  printf("N = %d %s, velocity weakening: %d points, max relative |J, f_p - "
+         "differences| %.3g (largest |df/dgamma| %.3g)\n",
+         N, ring ? "ring" : "open", ndone, emax, gmax);
+  tu_true(ndone >= 10, "derivatives N %d: %d smooth points of 20", N, ndone);
+  tu_true(gmax > 1e-3, "f depends on gamma (|df/dgamma| up to %g)", gmax);
+  tu_close("max |exact - differences| / scale", emax, 0, FD_TOL);
+  sc_mapn_value_free(v);
+  sc_mapn_value_free(a);
+  sc_mapn_value_free(b);
+  sc_map_free(m);
+}
+
+/* --- refusals ----------------------------------------------------------- */
+
+static void check_refusals(void) {
+  sc_map *m = chain_new(3, "open", "coulomb", "exact", "default");
+  sc_msg msg;
+  opt(m, "driver", "frozen");
+  tu_true(sc_map_set_option(m, "friction", "velocity-weakening", &msg) ==
+                  SC_EINVAL &&
+              strstr(msg.text, "driver = moving"),
+          "velocity weakening with the driver frozen refused: %s", msg.text);
+  tu_true(strcmp(sc_map_get_option(m, "friction"), "coulomb") == 0,
+          "refused: friction stays coulomb (%s)",
+          sc_map_get_option(m, "friction"));
+  sc_accuracy acc;
+  sc_accuracy_preset(&acc, "default", &msg);
+  acc.precision = SC_PRECISION_QUAD;
+  opt(m, "flows", "numerical");
+  tu_true(sc_map_set_accuracy(m, &acc, &msg) == SC_EINVAL &&
+              strstr(msg.text, "flows = exact"),
+          "quad with numerical flows refused: %s", msg.text);
+  tu_true(sc_map_precision(m) > 0, "numerical flows: precision %g > 0",
+          sc_map_precision(m));
+  opt(m, "flows", "exact");
+  tu_true(sc_map_precision(m) == 0, "exact flows: precision %g",
+          sc_map_precision(m));
+  sc_map_free(m);
+}
+
+int main(void) {
+  gsl_set_error_handler_off();
+  check_refusals();
+  check_bk2("velocity-weakening", "moving", 300, 0);
+  check_bk2("velocity-weakening", "moving", 100, 1);
+  check_bk2("coulomb", "moving", 100, 0);
+  check_bk2("coulomb", "frozen", 100, 0);
+  for (int N = 3; N <= MAXN; N++)
+    for (int ring = 0; ring <= 1; ring++) {
+      check_exact(N, ring, "moving", 40);
+      check_exact(N, ring, "frozen", 40);
+    }
+  for (int ring = 0; ring <= 1; ring++) check_integration(3, ring, 40);
+  check_integration(4, 0, 20);
+  check_derivatives(3, 0);
+  check_derivatives(3, 1);
+  return tu_finish();
+}
