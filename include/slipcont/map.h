@@ -174,6 +174,25 @@ SC_API int sc_map_iterate_ex(sc_map *m, double d, int n, unsigned flags,
                       sc_border_list *borders, sc_map_value *out,
                       sc_msg *msg);
 
+/**
+ * @brief The iterates of an orbit taken each from its own point (multiple
+ * shooting): iterate k of f evaluated at @p x[k] (n points), along
+ * @p force[k] (n codes, or NULL), its code into @p codes[k] (or NULL).  @p out is chained as
+ * sc_map_iterate_ex()'s (f of the last iterate, the product of the f',
+ * f_p by the chain rule, the itinerary), so that at an orbit it holds
+ * f^n's values without iterating f^n from x[0]; @p each (3 n entries, or
+ * NULL) receives f, f' and df/dp_ip of every iterate; the borders of
+ * iterate k (appended) carry derivatives with respect to x[k] and the
+ * parameters, not chained.  flags as sc_map_iterate_ex() (SC_EVAL_DERIV
+ * with borders or @p each; SC_EVAL_DERIV2 is ignored).
+ * @return as sc_map_eval_ex(); SC_EINVAL for n < 1 or ip out of range.
+ */
+SC_API int sc_map_iterate_points(sc_map *m, const double *x, int n,
+                                 unsigned flags, const sc_itin_code *force,
+                                 sc_itin_code *codes, size_t ip, sc_border_list *borders,
+                                 double *each, sc_map_value *out,
+                                 sc_msg *msg);
+
 /* ------------------------------------------------------------------ */
 /* Maps in n dimensions                                                */
 

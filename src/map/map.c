@@ -488,6 +488,51 @@ int sc_map_iterate_ex(sc_map *m, double d, int n, unsigned flags,
   return SC_OK;
 }
 
+int sc_map_iterate_points(sc_map *m, const double *x, int n,
+                          unsigned flags, const sc_itin_code *force,
+                          sc_itin_code *codes, size_t ip, sc_border_list *borders, double *each,
+                          sc_map_value *out, sc_msg *msg) {
+  if (n < 1 || ip >= m->type->nparam)
+    return sc_fail(msg, SC_EINVAL,
+                   "sc_map_iterate_points: n = %d, ip = %zu (valid: n >= 1, "
+                   "ip < %zu)",
+                   n, ip, m->type->nparam);
+  sc_map_value one;
+  size_t np = m->type->nparam;
+  if (borders || each) flags |= SC_EVAL_DERIV;
+  flags &= ~(unsigned)SC_EVAL_DERIV2; /* second derivatives: not chained */
+  memset(out, 0, sizeof *out);
+  out->dfdd = 1;
+  out->neutral = 1;
+  for (int k = 0; k < n; k++) {
+    size_t b0 = borders ? borders->n : 0;
+    int st = sc_map_eval_ex(m, x[k], flags, force ? &force[k] : NULL,
+                            codes ? &codes[k] : NULL, borders, &one, msg);
+    if (st) return st;
+    for (size_t i = b0; borders && i < borders->n && i < borders->cap; i++)
+      borders->b[i].iterate = k;
+    if (each) {
+      each[3 * k] = one.f;
+      each[3 * k + 1] = one.dfdd;
+      each[3 * k + 2] = one.dfdp[ip];
+    }
+    if (flags & SC_EVAL_DERIV) {
+      for (size_t i = 0; i < np; i++)
+        out->dfdp[i] = one.dfdd * out->dfdp[i] + one.dfdp[i];
+      out->dfdd *= one.dfdd;
+    }
+    if (flags & SC_EVAL_ITINERARY) {
+      if (k) sc_map_itin_append(out->itinerary, "|");
+      sc_map_itin_append(out->itinerary, one.itinerary);
+    }
+    out->neutral = out->neutral && one.neutral;
+    out->nphases += one.nphases;
+  }
+  out->f = one.f;
+  if (out->neutral && (flags & SC_EVAL_DERIV)) out->dfdd = 1;
+  return SC_OK;
+}
+
 int sc_map_iterate(sc_map *m, double d, int n, unsigned flags,
                    sc_map_value *out, sc_msg *msg) {
   return sc_map_iterate_ex(m, d, n, flags, NULL, NULL, NULL, out, msg);
