@@ -160,21 +160,29 @@ static void newton_2d(sc_orbit_branch *b, int period, const sc_itin_code *codes,
  * orbit started on it along codes3 (the codes rotated to its iterate),
  * or along its natural codes where `natural`; its point d_on(p) into
  * *don. */
+int sc_ob_d_on(sc_orbit_branch *b, const sc_border *like, double p,
+               double *don, double *don_p) {
+  size_t ip = b->sp.param;
+  /* d_on(p): the border of any one iterate at p says where it is */
+  sc_border_list *l = &b->bl_tmp;
+  sc_map_value v;
+  if (sc_ob_set_p(b->m, ip, p) ||
+      sc_map_eval_ex(b->m, like->d_on, SC_EVAL_VALUE, NULL, NULL,
+                     (l->n = 0, l), &v, NULL))
+    return SC_EUNDEF;
+  *don_p = NAN;
+  *don = NAN;
+  for (size_t i = 0; i < l->n && i < l->cap; i++)
+    if (l->b[i].on_state) *don = l->b[i].d_on, *don_p = l->b[i].d_on_dp[ip];
+  return isfinite(*don) ? SC_OK : SC_EUNDEF;
+}
+
 static int on_state_G(sc_orbit_branch *b, int period, const sc_border *like,
                       double p, int natural, double *G, double *Gp,
                       double *don, sc_map_value *v) {
   size_t ip = b->sp.param;
-  /* d_on(p): the border of any one iterate at p says where it is */
-  sc_border_list *l = &b->bl_tmp;
-  if (sc_ob_set_p(b->m, ip, p) ||
-      sc_map_eval_ex(b->m, like->d_on, SC_EVAL_VALUE, NULL, NULL,
-                     (l->n = 0, l), v, NULL))
-    return SC_EUNDEF;
-  double don_p = NAN;
-  *don = NAN;
-  for (size_t i = 0; i < l->n && i < l->cap; i++)
-    if (l->b[i].on_state) *don = l->b[i].d_on, don_p = l->b[i].d_on_dp[ip];
-  if (!isfinite(*don)) return SC_EUNDEF;
+  double don_p;
+  if (sc_ob_d_on(b, like, p, don, &don_p)) return SC_EUNDEF;
   int st = sc_map_iterate_ex(b->m, *don, period, SC_EVAL_DERIV,
                              natural ? NULL : b->codes3, NULL, NULL, v, NULL);
   if (st) return st;
@@ -286,6 +294,10 @@ static const sc_itin_code *defining_codes(sc_orbit_branch *b, int period,
   return c;
 }
 
+static void check_located(sc_orbit_branch *b, int period,
+                          const sc_itin_code *codes, const sc_border *like,
+                          double pa, double pb, border_fix *fx);
+
 void sc_ob_locate_border(sc_orbit_branch *b, int period,
                          const sc_itin_code *codes, const sc_border *like,
                          double pa, double da, double ma, double pb,
@@ -296,7 +308,31 @@ void sc_ob_locate_border(sc_orbit_branch *b, int period,
     newton_on_state(b, period, codes, like, pa, ma, pb, mb, fx);
   else
     newton_2d(b, period, codes, like, pa, da, ma, pb, db, mb, fx);
-  if (!fx->ok) return;
+  if (fx->ok) check_located(b, period, codes, like, pa, pb, fx);
+}
+
+/* A border of the segment located from the point ua (multiple shooting:
+ * m + 1 entries, S->ms_start) or from the interpolation between (pa, da,
+ * ma) and (pb, db, mb) (single shooting). */
+static void locate_seg(sc_orbit_branch *b, segment *S, const sc_border *like,
+                       double pa, double da, double ma, double pb, double db,
+                       double mb, border_fix *fx) {
+  if (!S->ms) {
+    sc_ob_locate_border(b, S->period, b->codes, like, pa, da, ma, pb, db, mb,
+                        fx);
+    return;
+  }
+  memset(fx, 0, sizeof *fx);
+  const sc_itin_code *codes = defining_codes(b, S->period, b->codes, like);
+  sc_ob_ms_locate(b, S, codes, like, S->ms_start, fx);
+  if (fx->ok) check_located(b, S->period, codes, like, pa, pb, fx);
+}
+
+/* The checks of a located border point: inside the bracket [pa, pb] and
+ * the task's interval, of the segment's minimal period. */
+static void check_located(sc_orbit_branch *b, int period,
+                          const sc_itin_code *codes, const sc_border *like,
+                          double pa, double pb, border_fix *fx) {
   /* It must lie between the two points that bracket the sign change. */
   double lo = fmin(pa, pb), hi = fmax(pa, pb);
   double w = BRACKET_SLACK * (hi - lo) + BISECTION_REACH * (1 + fabs(pa));
@@ -320,8 +356,8 @@ void sc_ob_locate_border(sc_orbit_branch *b, int period,
              fx->p, fmin(b->sp.from, b->sp.to), fmax(b->sp.from, b->sp.to));
     return;
   }
-  double *o = b->seed;
-  if (!like->on_state) {
+  double *o = fx->orb ? fx->orb : b->seed;
+  if (!like->on_state && !fx->orb) {
     if (sc_ob_set_p(b->m, b->sp.param, fx->p) ||
         sc_ob_iterate_orbit_forced(b, fx->d0, period, codes, o)) {
       fx->ok = 0;
@@ -358,11 +394,19 @@ special_rec *sc_ob_record_border(sc_orbit_branch *b, int branch, int period,
     if (fx->degenerate) r->residual = fmax(r->residual, fx->noise);
     r->error = fx->step;
     r->iterations = fx->iterations;
-    snprintf(r->note, sizeof r->note,
-             "%s of iterate %d: %s; Newton on {f^%d(d) = d, border = 0}, %d "
-             "iterations, residual %.2g",
-             sc_point_label_text(l), bd->iterate + 1, bd->name, period,
-             fx->iterations, r->residual);
+    if (fx->orb)
+      snprintf(r->note, sizeof r->note,
+               "%s of iterate %d: %s; Newton on {x_(k+1) = f(x_k), k < %d "
+               "(multiple shooting); border = 0}, %d iterations, residual "
+               "%.2g",
+               sc_point_label_text(l), bd->iterate + 1, bd->name, period,
+               fx->iterations, r->residual);
+    else
+      snprintf(r->note, sizeof r->note,
+               "%s of iterate %d: %s; Newton on {f^%d(d) = d, border = 0}, "
+               "%d iterations, residual %.2g",
+               sc_point_label_text(l), bd->iterate + 1, bd->name, period,
+               fx->iterations, r->residual);
     if (fx->degenerate) {
       r->method = SC_LOC_DEGENERATE;
       size_t n = strlen(r->note);
@@ -392,6 +436,10 @@ special_rec *sc_ob_record_border(sc_orbit_branch *b, int branch, int period,
  * here: locating the other borders of a step reuses their scratch. */
 static int border_orbit(sc_orbit_branch *b, int period, const sc_border *like,
                         const border_fix *fx, double *orb) {
+  if (fx->orb) {
+    memcpy(orb, fx->orb, (size_t)period * sizeof *orb);
+    return sc_ob_set_p(b->m, b->sp.param, fx->p);
+  }
   const sc_itin_code *codes = defining_codes(b, period, b->codes, like);
   if (sc_ob_set_p(b->m, b->sp.param, fx->p)) return SC_EINVAL;
   if (!like->on_state)
@@ -412,9 +460,11 @@ int sc_ob_border_crossed(sc_orbit_branch *b, segment *S, const double *u) {
   if (!b->ctx.force) return 0;
   int period = S->period;
   sc_map_value v;
-  if (sc_ob_set_p(b->m, b->sp.param, u[1]) ||
-      sc_ob_orbit_borders(b, u[0], period, b->codes, NULL, &b->bl_cur, &v,
-                          NULL))
+  const double *uf = S->ms ? sc_branch_point(S->br) : NULL;
+  if (S->ms ? sc_ob_ms_eval(b, b->codes, period, uf, &b->bl_cur, &v, NULL, NULL)
+            : sc_ob_set_p(b->m, b->sp.param, u[1]) ||
+                  sc_ob_orbit_borders(b, u[0], period, b->codes, NULL,
+                                      &b->bl_cur, &v, NULL))
     return 0; /* the corrector accepted it, so this does not happen */
   int dir = u[1] > S->last_p ? 1 : -1;
   border_fix best = {0}, fx;
@@ -429,15 +479,27 @@ int sc_ob_border_crossed(sc_orbit_branch *b, segment *S, const double *u) {
     if (!a || !(a->value > 0)) continue;
     nchanged++;
     sc_border like = *c;
-    sc_ob_locate_border(b, period, b->codes, &like, S->last_p, S->last_d,
-                        a->value, u[1], u[0], c->value, &fx);
+    if (S->ms) { /* the start: the interpolation at the border's zero */
+      double t = a->value / (a->value - c->value);
+      if (!(t >= 0 && t <= 1)) t = 0.5;
+      for (int k = 0; k <= period; k++)
+        S->ms_start[k] = S->ms_last[k] + t * (uf[k] - S->ms_last[k]);
+    }
+    locate_seg(b, S, &like, S->last_p, S->last_d, a->value, u[1], u[0],
+               c->value, &fx);
     if (!fx.ok) {
       if (!nfail) bfail = like, snprintf(whyfail, sizeof whyfail, "%s", fx.why);
       nfail++;
       continue;
     }
     double dist = fabs(fx.p - S->last_p);
-    if (dist < dist_best) dist_best = dist, best = fx, bbest = like;
+    if (dist < dist_best) {
+      dist_best = dist, best = fx, bbest = like;
+      if (fx.orb) {
+        memcpy(S->ms_best, fx.orb, (size_t)(period + 1) * sizeof *fx.orb);
+        best.orb = S->ms_best;
+      }
+    }
   }
   if (!nchanged) return 0;
   special_rec *r;
@@ -494,18 +556,23 @@ int sc_ob_locate_ahead(sc_orbit_branch *b, segment *S, int dir) {
        * parameter), so no rate predicts it: Newton from A itself, within
        * the reach ahead */
       if (!(x->value > 0)) continue;
-      sc_ob_locate_border(b, period, b->codes, &like, S->last_p, S->last_d, 0,
-                          S->last_p + dir * reach, S->last_d, -1, &fx);
+      if (S->ms)
+        memcpy(S->ms_start, S->ms_last, (size_t)(period + 1) * sizeof(double));
+      locate_seg(b, S, &like, S->last_p, S->last_d, 0,
+                 S->last_p + dir * reach, S->last_d, -1, &fx);
     } else {
-      double rate = x->dd * S->last_td + x->dp[ip] * S->last_t;
+      /* multiple shooting: x->dd is with respect to its own iterate */
+      double xt = S->ms ? S->ms_tan[x->iterate] : S->last_td;
+      double rate = x->dd * xt + x->dp[ip] * S->last_t;
       double ds = x->value > 0 && rate < 0 ? -x->value / rate : HUGE_VAL;
       if (!(ds <= reach)) continue;
       /* the far end mirrored at twice the predicted zero: the linear
        * interpolation starts Newton at the prediction */
       double dpar = S->last_t * ds, dd = S->last_td * ds;
-      sc_ob_locate_border(b, period, b->codes, &like, S->last_p, S->last_d,
-                          x->value, S->last_p + 2 * dpar, S->last_d + 2 * dd,
-                          -x->value, &fx);
+      for (int k = 0; S->ms && k <= period; k++)
+        S->ms_start[k] = S->ms_last[k] + ds * S->ms_tan[k];
+      locate_seg(b, S, &like, S->last_p, S->last_d, x->value,
+                 S->last_p + 2 * dpar, S->last_d + 2 * dd, -x->value, &fx);
     }
     /* A border in the state is met tangentially: the orbit point sits
      * within rounding of it over a stretch of the parameter (its
@@ -514,8 +581,13 @@ int sc_ob_locate_ahead(sc_orbit_branch *b, segment *S, int dir) {
     double behind = (x->on_state ? BISECTION_REACH : BEHIND_REL) *
                     (1 + fabs(S->last_p));
     if (!fx.ok || (fx.p - S->last_p) * dir < -behind) continue;
-    if (!best.ok || fabs(fx.p - S->last_p) < fabs(best.p - S->last_p))
+    if (!best.ok || fabs(fx.p - S->last_p) < fabs(best.p - S->last_p)) {
       best = fx, bbest = like;
+      if (fx.orb) {
+        memcpy(S->ms_best, fx.orb, (size_t)(period + 1) * sizeof *fx.orb);
+        best.orb = S->ms_best;
+      }
+    }
   }
   if (!best.ok) return 0;
   special_rec *r =

@@ -113,6 +113,8 @@ typedef struct {
   double slope;   /* G'(p) at the solution */
   double noise;   /* the rounding level of G there */
   char why[200];
+  double *orb;    /* multiple shooting: the located orbit (m points), in
+                     the segment's scratch; NULL for single shooting */
 } border_fix;
 
 /* One segment being continued (branch_segment.c). */
@@ -125,6 +127,20 @@ typedef struct {
   double p_first, dmin_first, prev_p;
   int moved;
   unsigned long nrej; /* rejected LP/PD locations seen so far */
+  /* Multiple shooting (branch_ms.c): the continued point is u = (x_0,
+   * ..., x_{m-1}, p) instead of (d, p).  ms = 0: single shooting. */
+  int ms;
+  struct sc_orbit_branch *ob; /* the branch (the callbacks' context) */
+  double u2[2];    /* (x_0, p) of the current point: what the rest reads */
+  double t2[2];    /* (dx_0/ds, dp/ds) of the current tangent */
+  double *ms_last; /* m + 1: the last accepted point */
+  double *ms_tan;  /* m + 1: its tangent */
+  double *ms_try;  /* m + 1: a border's Newton point */
+  double *ms_best; /* m + 1: the nearest border's located point */
+  double *ms_start; /* m + 1: a border's Newton start */
+  double *ms_rhs, *ms_mat; /* m + 1, (m + 1)^2: its Newton system */
+  double *ms_val;  /* scratch for the evaluation: f, f', f_p per iterate */
+  sc_linsolve *ms_ls; /* dense (m + 1)^2 for the borders' Newton */
 } segment;
 
 /* branch_orbit.c: records, jobs and orbits ------------------------- */
@@ -185,6 +201,32 @@ double sc_ob_hmax(const sc_orbit_branch *b);
 int sc_ob_run_segment(sc_orbit_branch *b, const job *jb, int branch,
                       sc_msg *msg);
 
+/* branch_ms.c: segments by multiple shooting ---------------------- */
+
+/* Whether a segment of a model with borders whose period-`period` orbit
+ * has multiplier `mult` is continued by multiple shooting (the switch
+ * criterion, see branch_ms.c). */
+int sc_ob_ms_wanted(const sc_orbit_branch *b, int period, double mult);
+/* The continuation problem of the multiple-shooting system on b->ctx's
+ * codes and the segment's scratch; SC_OK or SC_ENOMEM. */
+int sc_ob_ms_problem(sc_orbit_branch *b, segment *S, sc_cont_problem *pb,
+                     sc_msg *msg);
+void sc_ob_ms_free(segment *S);
+/* The orbit at u (m + 1 entries) along the segment's codes, each
+ * iterate from its own point: v as f^m chained (f of the last iterate,
+ * multiplier the product, itinerary), the borders into bl when not NULL
+ * (each border's dd is then with respect to its own iterate's point);
+ * each: f, f', f_p per iterate (3 m), or NULL; out: the codes followed
+ * (codes NULL: the natural ones), or NULL. */
+int sc_ob_ms_eval(sc_orbit_branch *b, const sc_itin_code *codes, int period,
+                  const double *u, sc_border_list *bl, sc_map_value *v,
+                  double *each, sc_itin_code *out);
+/* Newton on {x_{k+1} - f(x_k) = 0, border `like` = 0} in (x, p) from ua
+ * (m + 1 entries), the orbit into S->ms_try; fx as
+ * sc_ob_locate_border's but for the bracket checks. */
+void sc_ob_ms_locate(sc_orbit_branch *b, segment *S, const sc_itin_code *codes,
+                     const sc_border *like, const double *ua, border_fix *fx);
+
 /* branch_marks.c: user points ------------------------------------- */
 
 /* The marks passed on the step from the segment's last point to u
@@ -206,6 +248,10 @@ special_rec *sc_ob_record_border(sc_orbit_branch *b, int branch, int period,
 /* A border changed sign since the last accepted point: 1 located and
  * handed over, 2 none located (fall back), 0 none changed sign. */
 int sc_ob_border_crossed(sc_orbit_branch *b, segment *S, const double *u);
+/* The point d_on(p) on a border in the state (like) and its derivative
+ * in the parameter; SC_OK or SC_EUNDEF. */
+int sc_ob_d_on(sc_orbit_branch *b, const sc_border *like, double p,
+               double *don, double *don_p);
 /* Where the corrector stopped: the nearest border ahead located and
  * handed over (1), or 0. */
 int sc_ob_locate_ahead(sc_orbit_branch *b, segment *S, int dir);

@@ -61,6 +61,44 @@ double sc_ob_hmax(const sc_orbit_branch *b) {
                         : fabs(b->sp.to - b->sp.from) / HMAX_AUTO_STEPS;
 }
 
+/* The current point as (d, p) = (x_0, p), and its tangent likewise:
+ * with multiple shooting the point is (x_0, ..., x_{m-1}, p). */
+static const double *seg_point(segment *S) {
+  const double *u = sc_branch_point(S->br);
+  if (!S->ms) return u;
+  S->u2[0] = u[0], S->u2[1] = u[S->period];
+  return S->u2;
+}
+
+static const double *seg_tangent(segment *S) {
+  const double *t = sc_branch_tangent(S->br);
+  if (!S->ms) return t;
+  S->t2[0] = t[0], S->t2[1] = t[S->period];
+  return S->t2;
+}
+
+/* The current point is the reference of the next step: with multiple
+ * shooting its orbit and tangent are kept. */
+static void seg_keep(segment *S) {
+  if (!S->ms) return;
+  size_t n = ((size_t)S->period + 1) * sizeof(double);
+  memcpy(S->ms_last, sc_branch_point(S->br), n);
+  memcpy(S->ms_tan, sc_branch_tangent(S->br), n);
+}
+
+/* f^m's value at the current point u (d, p) along the segment's codes:
+ * with multiple shooting each iterate from its own point. */
+static int seg_value(sc_orbit_branch *b, segment *S, const double *u,
+                     sc_map_value *v) {
+  if (S->ms)
+    return sc_ob_ms_eval(b, b->codes, S->period, sc_branch_point(S->br), NULL,
+                         v, NULL, NULL);
+  sc_ob_set_p(b->m, b->sp.param, u[1]);
+  return sc_map_iterate_ex(b->m, u[0], S->period,
+                           SC_EVAL_DERIV | SC_EVAL_ITINERARY, b->ctx.force,
+                           NULL, NULL, v, NULL);
+}
+
 /* g = f^m for the continuation layer: along the segment's codes (forced),
  * or on the piece of itinerary ctx->itin only when codes cannot be
  * forced (leaving it is a recoverable failure, so such a segment never
@@ -116,6 +154,30 @@ static int joins(sc_orbit_branch *b, int branch, int period, double p,
   return -1;
 }
 
+/* The orbit of a multiple-shooting segment's start jb: shot (multiple)
+ * from the iterates of jb->d, into b->orbit with the parameter after it;
+ * its codes (b->codes), borders (b->bl_prev) and value (v) those of its
+ * points, each iterate from its own: iterating f^m from d would carry
+ * the error the switch is about.  1, or 0 where shooting fails (the
+ * segment is then continued by single shooting, as before). */
+static int ms_start_orbit(sc_orbit_branch *b, int period, const job *jb,
+                          sc_map_value *v) {
+  sc_shoot_result res;
+  if (sc_ob_iterate_orbit(b, jb->d, period, b->seed) ||
+      sc_ob_shoot_at(b, period, jb->p, b->seed, &res) != SC_OK)
+    return 0;
+  b->orbit[period] = jb->p;
+  sc_map_value w;
+  if (sc_ob_ms_eval(b, NULL, period, b->orbit, &b->bl_prev, &w, NULL,
+                    b->codes2))
+    return 0;
+  for (int i = 0; i < period; i++)
+    if (b->codes2[i].n <= 0) return 0;
+  memcpy(b->codes, b->codes2, (size_t)period * sizeof *b->codes);
+  *v = w;
+  return 1;
+}
+
 /* The start: the codes of the orbit at the first point (forced from now
  * on where the model has them), the continuation problem and its start
  * (moved further along when the start next to a located point fails). */
@@ -135,6 +197,8 @@ static int segment_start(sc_orbit_branch *b, segment *S, sc_cont_problem *pb,
                                    SC_EVAL_DERIV | SC_EVAL_ITINERARY, &v, msg);
   if (st) return st;
   for (int i = 0; forced && i < period; i++) forced = b->codes[i].n > 0;
+  int ms = forced && sc_ob_ms_wanted(b, period, v.dfdd) &&
+           ms_start_orbit(b, period, jb, &v);
   b->ctx = (g_ctx){.m = m, .param = b->sp.param, .period = period,
                    .force = forced ? b->codes : NULL,
                    .lock = sc_map_has_borders(m) && !forced};
@@ -143,7 +207,10 @@ static int segment_start(sc_orbit_branch *b, segment *S, sc_cont_problem *pb,
                            .kind = SC_MAP1D_FIXED, .np = sc_map_nparam(m),
                            .ifree = {(int)b->sp.param, 0}};
   for (size_t i = 0; i < sys->np; i++) sys->p[i] = sc_map_get_param(m, i);
-  if ((st = sc_map1d_problem(sys, pb, msg))) return st;
+  /* an orbit that amplifies the map's error beyond what single shooting
+   * resolves is continued by multiple shooting (branch_ms.c) */
+  st = ms ? sc_ob_ms_problem(b, S, pb, msg) : sc_map1d_problem(sys, pb, msg);
+  if (st) return st;
   sc_cont_settings *set = &S->set;
   sc_cont_settings_default(set);
   set->hmax = sc_ob_hmax(b);
@@ -165,7 +232,8 @@ static int segment_start(sc_orbit_branch *b, segment *S, sc_cont_problem *pb,
   set->start_free = 1;
   if ((st = sc_branch_alloc(pb, set, &b->acc, &S->br, msg)))
     return st;
-  double u0[2] = {jb->d, jb->p};
+  double u0s[2] = {jb->d, jb->p}, *u0 = S->ms ? S->ms_start : u0s;
+  if (S->ms) memcpy(u0, b->orbit, ((size_t)period + 1) * sizeof *u0);
   st = sc_branch_set(S->br, u0, msg);
   /* A start just beyond a located point may sit where the orbit is
    * nearly singular (f' grows like |d - d*|^(-1/2) near a switching):
@@ -188,8 +256,13 @@ static int segment_start(sc_orbit_branch *b, segment *S, sc_cont_problem *pb,
         strcmp(res.itinerary, b->ctx.itin) != 0 ||
         sc_ob_minimal_period(b, b->orbit, period, NULL) != period)
       continue;
-    u0[0] = b->orbit[0];
-    u0[1] = p1;
+    if (S->ms) {
+      memcpy(u0, b->orbit, (size_t)period * sizeof *u0);
+      u0[period] = p1;
+    } else {
+      u0[0] = b->orbit[0];
+      u0[1] = p1;
+    }
     st = sc_branch_set(S->br, u0, msg);
   }
   if (st) {
@@ -200,9 +273,13 @@ static int segment_start(sc_orbit_branch *b, segment *S, sc_cont_problem *pb,
     return SC_END;
   }
   /* the borders at the corrected start are the reference */
-  const double *u = sc_branch_point(S->br);
-  if (b->ctx.force && sc_ob_set_p(m, b->sp.param, u[1]) == SC_OK)
+  const double *u = seg_point(S);
+  if (S->ms)
+    sc_ob_ms_eval(b, b->codes, period, sc_branch_point(S->br), &b->bl_prev,
+                  &v, NULL, NULL);
+  else if (b->ctx.force && sc_ob_set_p(m, b->sp.param, u[1]) == SC_OK)
     sc_ob_orbit_borders(b, u[0], period, b->codes, NULL, &b->bl_prev, &v, NULL);
+  seg_keep(S);
   S->last_p = u[1], S->last_d = u[0], S->last_t = jb->direction;
   S->last_td = 0;
   S->last_mult = v.dfdd;
@@ -219,7 +296,11 @@ static int segment_accept(sc_orbit_branch *b, segment *S, const double *u) {
   sc_ob_set_p(m, b->sp.param, u[1]);
   double dmin = u[0];
   int have_orbit =
-      !sc_ob_iterate_orbit_forced(b, u[0], period, b->ctx.force, b->orb_c);
+      S->ms ? (memcpy(b->orb_c, sc_branch_point(S->br),
+                      (size_t)period * sizeof *b->orb_c),
+               1)
+            : !sc_ob_iterate_orbit_forced(b, u[0], period, b->ctx.force,
+                                          b->orb_c);
   if (have_orbit)
     for (int k = 1; k < period; k++) dmin = fmin(dmin, b->orb_c[k]);
   /* A period-m segment whose orbit has fallen to a divisor of m has
@@ -250,9 +331,7 @@ static int segment_accept(sc_orbit_branch *b, segment *S, const double *u) {
     return 1;
   }
   sc_map_value v;
-  sc_ob_set_p(m, b->sp.param, u[1]);
-  if (sc_map_iterate_ex(m, u[0], period, SC_EVAL_DERIV | SC_EVAL_ITINERARY,
-                        b->ctx.force, NULL, NULL, &v, NULL) == SC_OK) {
+  if (seg_value(b, S, u, &v) == SC_OK) {
     sc_ob_add_point(b, S->branch, period, u[1], u[0], &v, dmin);
     S->last_mult = v.dfdd;
   }
@@ -298,17 +377,14 @@ static int segment_accept(sc_orbit_branch *b, segment *S, const double *u) {
  * between it and the last point: then that border ends the segment and
  * the fold or flip, on the smooth extension beyond it, is not real). */
 static int segment_special(sc_orbit_branch *b, segment *S) {
-  sc_map *m = b->m;
   int period = S->period;
-  const double *us = sc_branch_point(S->br);
+  const double *us = seg_point(S);
   int bc = sc_ob_border_crossed(b, S, us);
   if (bc == 2) sc_ob_fall_back(b, S, S->jb, NULL);
   if (bc) return 1;
   int test = sc_branch_location(S->br)->test;
   sc_map_value v;
-  sc_ob_set_p(m, b->sp.param, us[1]);
-  sc_map_iterate_ex(m, us[0], period, SC_EVAL_DERIV | SC_EVAL_ITINERARY,
-                    b->ctx.force, NULL, NULL, &v, NULL);
+  seg_value(b, S, us, &v);
   sc_point_label l = test == 0 ? SC_PT_LP : SC_PT_PD;
   special_rec *r =
       sc_ob_add_special(b, l, S->branch, period, us[1], us[0], v.dfdd,
@@ -341,6 +417,7 @@ static int segment_special(sc_orbit_branch *b, segment *S) {
   b->bl_prev = b->bl_cur;
   b->bl_cur = t;
   S->last_p = us[1], S->last_d = us[0];
+  seg_keep(S);
   return 0;
 }
 
@@ -373,11 +450,12 @@ int sc_ob_run_segment(sc_orbit_branch *b, const job *jb, int branch,
   int st = segment_start(b, &S, &pb, &sys, msg);
   if (st == SC_END || st) {
     sc_branch_free(S.br);
+    sc_ob_ms_free(&S);
     return st == SC_END ? SC_OK : st;
   }
   int period = S.period;
   for (;;) {
-    const double *u = sc_branch_point(S.br);
+    const double *u = seg_point(&S);
     int bc = sc_ob_border_crossed(b, &S, u);
     if (bc == 2) {
       sc_ob_fall_back(b, &S, jb, msg);
@@ -391,10 +469,12 @@ int sc_ob_run_segment(sc_orbit_branch *b, const job *jb, int branch,
     b->bl_cur = t;
     S.last_p = u[1];
     S.last_d = u[0];
-    S.last_t = sc_branch_tangent(S.br)[1];
-    S.last_td = sc_branch_tangent(S.br)[0];
+    S.last_t = seg_tangent(&S)[1];
+    S.last_td = seg_tangent(&S)[0];
+    seg_keep(&S);
     if (b->sp.progress && b->sp.progress(b->sp.progress_ctx, b->npts)) {
       sc_branch_free(S.br);
+      sc_ob_ms_free(&S);
       return sc_fail(msg, SC_ECALLBACK, "branch: stopped by the caller");
     }
     st = sc_branch_step(S.br, msg);
@@ -405,7 +485,7 @@ int sc_ob_run_segment(sc_orbit_branch *b, const job *jb, int branch,
       continue;
     }
     if (st == SC_END) {
-      const double *ue = sc_branch_point(S.br);
+      const double *ue = seg_point(&S);
       int bce = sc_ob_border_crossed(b, &S, ue);
       if (bce == 2) sc_ob_fall_back(b, &S, jb, msg);
       if (bce) break;
@@ -431,5 +511,6 @@ int sc_ob_run_segment(sc_orbit_branch *b, const job *jb, int branch,
     break;
   }
   sc_branch_free(S.br);
+  sc_ob_ms_free(&S);
   return SC_OK;
 }

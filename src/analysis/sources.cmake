@@ -8,6 +8,7 @@ list(APPEND SC_SOURCES src/analysis/branch_orbit.c
   src/analysis/branch_border.c
   src/analysis/branch_switch.c
   src/analysis/branch_marks.c
+  src/analysis/branch_ms.c
   src/analysis/branchn.c
   src/analysis/branchn_special.c
   src/analysis/branchn_border.c)
