@@ -507,6 +507,70 @@ static void check_refusals(void) {
   sc_map_free(m);
 }
 
+/* --- gamma -> 0 ---------------------------------------------------------- */
+
+/* K_i = T_i / (1 + gamma |U_i - W|) tends to T_i as gamma -> 0: Coulomb's
+ * law with kinetic force equal to the threshold, the exact map's limit
+ * phi -> 1, where f depends on phi - 1 to second order (a block that
+ * comes loose starts at its moving equilibrium).  Against the exact
+ * Coulomb map at phi = 1 + 1e-8 (precise), on a line of d: gamma = 0
+ * within the numerical map's promise (2e-12), gamma = 1e-4 and 1e-5 with
+ * an error that falls with gamma (like gamma^1.5, as bk2's in
+ * tests/test_bk2.c), all with the same itineraries. */
+static void check_coulomb_limit(int ring) {
+  const char *topo = ring ? "ring" : "open";
+  const double gam[3] = {0, 1e-4, 1e-5};
+  sc_map *all[4];
+  all[0] = chain_new(3, topo, "coulomb", "exact", "precise");
+  set(all[0], "phi", 1 + 1e-8);
+  for (int k = 1; k < 4; k++) {
+    all[k] = chain_new(3, topo, "velocity-weakening", "numerical", "precise");
+    set(all[k], "gamma", gam[k - 1]);
+  }
+  sc_mapn_value *v[4];
+  sc_msg msg;
+  for (int k = 0; k < 4; k++) {
+    set(all[k], "alpha", 2.9);
+    set(all[k], "v", 0.025);
+    set(all[k], "beta2", 1.3);
+    set(all[k], "beta3", 1.7);
+    sc_mapn_value_alloc(all[k], SC_EVAL_ITINERARY, &v[k], &msg);
+  }
+  double e[3] = {0, 0, 0};
+  int n = 0, differ = 0;
+  for (int i = 0; i <= 24; i++) {
+    double d[2] = {-0.4 + 0.8 * i / 24 + 1e-3, 0.3 - 0.5 * i / 24};
+    int st = 0;
+    for (int k = 0; k < 4; k++)
+      st |= sc_map_eval_n(all[k], d, SC_EVAL_ITINERARY, v[k], &msg);
+    if (st) continue;
+    n++;
+    int same = 1;
+    for (int k = 1; k < 4; k++) same &= !strcmp(v[0]->itinerary, v[k]->itinerary);
+    if (!same) {
+      differ++;
+      continue;
+    }
+    for (int k = 0; k < 3; k++)
+      for (int q = 0; q < 2; q++)
+        e[k] = fmax(e[k], fabs(v[k + 1]->f[q] - v[0]->f[q]));
+  }
+  printf("N = 3 %s, velocity weakening against Coulomb at phi = 1 + 1e-8: "
+         "%d points, max |df| %.3g at gamma 0, %.3g at 1e-4, %.3g at 1e-5\n",
+         topo, n, e[0], e[1], e[2]);
+  tu_true(n >= 20 && differ == 0, "gamma -> 0, %s: %d points, %d "
+          "itineraries differ", topo, n, differ);
+  tu_close("|f(gamma 0) - f(Coulomb, phi -> 1)|", e[0], 0,
+           sc_map_precision(all[1]));
+  tu_close("|f(gamma 1e-5) - f(Coulomb, phi -> 1)|", e[2], 0, 2e-9);
+  tu_true(e[1] >= 10 * e[2], "the error falls with gamma (%.3g -> %.3g)",
+          e[1], e[2]);
+  for (int k = 0; k < 4; k++) {
+    sc_mapn_value_free(v[k]);
+    sc_map_free(all[k]);
+  }
+}
+
 int main(void) {
   gsl_set_error_handler_off();
   check_refusals();
@@ -523,5 +587,7 @@ int main(void) {
   check_integration(4, 0, 20);
   check_derivatives(3, 0);
   check_derivatives(3, 1);
+  check_coulomb_limit(0);
+  check_coulomb_limit(1);
   return tu_finish();
 }
