@@ -50,3 +50,9 @@ add_test(NAME chain3
   COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/chain3.sh
           $<TARGET_FILE:slipcont_cli> ${PROJECT_SOURCE_DIR})
 set_tests_properties(chain3 PROPERTIES TIMEOUT 300)
+# The three-block chain under velocity weakening: the example's cascade
+# against the orbit and flip of tests/test_chain_vw.c (about 3 s).
+add_test(NAME chain3_vw
+  COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/chain3_vw.sh
+          $<TARGET_FILE:slipcont_cli> ${PROJECT_SOURCE_DIR})
+set_tests_properties(chain3_vw PROPERTIES TIMEOUT 300)

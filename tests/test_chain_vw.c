@@ -571,6 +571,96 @@ static void check_coulomb_limit(int ring) {
   }
 }
 
+/* --- the three-block example's flip --------------------------------------- */
+
+/* examples/chain3-vw-sweep.ini: the open chain of three blocks, alpha =
+ * 3.5, beta3 = 3, V = 0.025, gamma swept.  Its period-1 orbit loses
+ * stability in a flip at gamma = CHAIN3_VW_FLIP (docs/chain.md, "Velocity
+ * weakening"; tests/chain3_vw.sh holds the sweep's periods to it): the
+ * fixed point solved by Newton with the map's J (residual <= 1e-11), and
+ * det(J + I) = 0 by the secant method in gamma, each step on the fixed
+ * point of its gamma; there J has the multiplier -1 (to 1e-8), its other
+ * inside the unit circle; the orbit's slip at gamma = 0.2 is a full
+ * one from block 3 to block 1. */
+#define CHAIN3_VW_FLIP 0.21446
+/* The period-1 orbit at gamma = 0.2 (d1, to ten digits: the sweep's d1
+ * there, tests/chain3_vw.sh). */
+#define CHAIN3_VW_D1 0.1355455871
+/* How far from the documented value (five digits) the flip may be. */
+static const double FLIP_DOC_TOL = 1e-5;
+
+/* The fixed point near d by Newton on f(d) - d with J; its J into J. */
+static double fixed_point(sc_map *m, sc_mapn_value *v, double *d, double *J) {
+  sc_msg msg;
+  double res = HUGE_VAL;
+  for (int it = 0; it < 20; it++) {
+    if (sc_map_eval_n(m, d, SC_EVAL_DERIV, v, &msg)) return HUGE_VAL;
+    double r0 = v->f[0] - d[0], r1 = v->f[1] - d[1];
+    res = fmax(fabs(r0), fabs(r1));
+    double a = v->J[0] - 1, b = v->J[1], c = v->J[2], e = v->J[3] - 1;
+    memcpy(J, v->J, 4 * sizeof *J);
+    if (res < 1e-13) break;
+    double det = a * e - b * c;
+    d[0] -= (e * r0 - b * r1) / det;
+    d[1] -= (a * r1 - c * r0) / det;
+  }
+  return res;
+}
+
+static void check_example_flip(void) {
+  sc_map *m = chain_new(3, "open", "velocity-weakening", "numerical",
+                        "precise");
+  sc_mapn_value *v;
+  sc_msg msg;
+  sc_mapn_value_alloc(m, SC_EVAL_DERIV | SC_EVAL_ITINERARY, &v, &msg);
+  set(m, "alpha", 3.5);
+  set(m, "beta3", 3);
+  set(m, "v", 0.025);
+  set(m, "gamma", 0.2);
+  double d[2] = {0.1, 0.2}, J[4], res = 0;
+  for (int k = 0; k < 600; k++) {
+    sc_map_eval_n(m, d, 0, v, &msg);
+    d[0] = v->f[0], d[1] = v->f[1];
+  }
+  res = fixed_point(m, v, d, J);
+  printf("three blocks, alpha 3.5, beta3 3, gamma 0.2: the period-1 orbit "
+         "at d = (%.12f, %.12f), residual %.3g\n", d[0], d[1], res);
+  tu_close("period-1 orbit at gamma 0.2: d1 (docs/chain.md)", d[0],
+           CHAIN3_VW_D1, 1e-10);
+  sc_map_eval_n(m, d, SC_EVAL_ITINERARY, v, &msg);
+  tu_true(strcmp(v->itinerary, "3-23-123-12-1") == 0,
+          "period-1 orbit at gamma 0.2: its slip %s (3-23-123-12-1)",
+          v->itinerary);
+  /* secant on h(gamma) = det(J + I) */
+  double g[2] = {0.21, 0.22}, h[2];
+  for (int k = 0; k < 2; k++) {
+    set(m, "gamma", g[k]);
+    res = fmax(res, fixed_point(m, v, d, J));
+    h[k] = (J[0] + 1) * (J[3] + 1) - J[1] * J[2];
+  }
+  for (int it = 0; it < 30 && fabs(g[1] - g[0]) > 1e-12; it++) {
+    double gn = g[1] - h[1] * (g[1] - g[0]) / (h[1] - h[0]);
+    g[0] = g[1], h[0] = h[1], g[1] = gn;
+    set(m, "gamma", gn);
+    res = fmax(res, fixed_point(m, v, d, J));
+    h[1] = (J[0] + 1) * (J[3] + 1) - J[1] * J[2];
+  }
+  double tr = J[0] + J[3], det = J[0] * J[3] - J[1] * J[2];
+  double disc = sqrt(fmax(0, tr * tr - 4 * det));
+  double l1 = 0.5 * (tr - disc), l2 = 0.5 * (tr + disc);
+  printf("three blocks, alpha 3.5, beta3 3: flip of the period-1 orbit at "
+         "gamma = %.10f, d = (%.10f, %.10f), multipliers %.10f, %.10f, "
+         "Newton residual <= %.3g\n",
+         g[1], d[0], d[1], l1, l2, res);
+  tu_close("fixed points: max Newton residual", res, 0, 1e-11);
+  tu_close("flip: multiplier", l1, -1, 1e-8);
+  tu_true(fabs(l2) < 1, "flip: the other multiplier %g inside", l2);
+  tu_close("flip's gamma (docs/chain.md)", g[1], CHAIN3_VW_FLIP,
+           FLIP_DOC_TOL);
+  sc_mapn_value_free(v);
+  sc_map_free(m);
+}
+
 int main(void) {
   gsl_set_error_handler_off();
   check_refusals();
@@ -589,5 +679,6 @@ int main(void) {
   check_derivatives(3, 1);
   check_coulomb_limit(0);
   check_coulomb_limit(1);
+  check_example_flip();
   return tu_finish();
 }
