@@ -1,8 +1,9 @@
 # The three-block chain's examples (docs/chain.md, "Three blocks"), each
 # claim against a computation of its own: a chart point's period against
-# the map iterated directly (orbit task), the branch's flip against the
-# multipliers of the fixed-point task on both sides, its ends against the
-# itineraries of the orbit on both sides and the sweep's periods.
+# the map iterated directly (orbit task), the branch's flips against the
+# multipliers of the fixed-point task on both sides, its borders against
+# the itineraries of the orbit on both sides and a closed form, and the
+# sweep's periods.
 . "$(dirname "$0")/cli_common.sh"
 
 # scene NAME: the common model lines of the orbit and fixed-point runs
@@ -71,20 +72,81 @@ run_within 120 run "$SRC/examples/chain3-branch.ini" --out "$TMP/branch" \
   --quiet --set output.plot=no
 expect_rc "examples/chain3-branch.ini" 0
 
-# The branch's rows: label, alpha, multiplier, method
-awk -F, 'NR > 1 { print $1, $3, $7, $15 }' "$TMP/branch/points.csv" >"$TMP/rows"
-pd=$(awk '$1 == "PD" { print $2 }' "$TMP/rows")
-check "chain3-branch: one flip near alpha 3.1955 with multiplier -1 (1e-9), found in arclength only" \
+# The branch's rows: label, alpha, multiplier, residual, method
+awk -F, 'NR > 1 { print $1, $3, $7, $12, $15 }' "$TMP/branch/points.csv" >"$TMP/rows"
+pd=$(awk '$1 == "PD" && $2 > 3.1 && $2 < 3.3 { print $2 }' "$TMP/rows")
+pd2=$(awk '$1 == "PD" && $2 > 4.1 { print $2 }' "$TMP/rows")
+check "chain3-branch: flips near alpha 3.1955, 4.1656 and 3.0814 with multiplier -1 (1e-9), found in arclength only" \
   awk 'function abs(x) { return x < 0 ? -x : x }
-    $1 == "PD" { n++; if (abs($2 - 3.1955) < 1e-3 && abs($3 + 1) < 1e-9 &&
-                         $4 == "not-located") ok++ }
-    END { exit !(n == 1 && ok == 1) }' "$TMP/rows"
+    $1 == "PD" { n++; if ((abs($2 - 3.1955) < 1e-3 || abs($2 - 4.1656) < 1e-3 ||
+                          abs($2 - 3.0814) < 1e-3) && abs($3 + 1) < 1e-9 &&
+                         $5 == "not-located") ok++ }
+    END { exit !(n == 3 && ok == 3) }' "$TMP/rows"
 check "chain3-branch: the flip's note says why it is not located (no second derivatives)" \
   grep -q "^PD,.*not located: .*a model without second derivatives" "$TMP/branch/points.csv"
-check "chain3-branch: its two ends at itinerary changes, alpha 3.1557 and 4.1614" \
+# The borders, located by Newton with their residual certificates: down,
+# blocks 1 and 2 re-stick at once in the fourth phase of the third
+# iterate (BR, alpha 3.1362112258); the branch goes on past it with
+# that slip's new end (12-2) down to the switching where the third
+# iterate's blocks 1 and 3 have equal gaps (SW, alpha 3.0136089483).
+check "chain3-branch: a BR at 3.1362112258 and a SW at 3.0136089483, each by Newton with residual <= 1e-12" \
   awk 'function abs(x) { return x < 0 ? -x : x }
-    $1 == "EP" && (abs($2 - 3.1557) < 1e-4 || abs($2 - 4.1614) < 1e-4) { n++ }
-    END { exit n != 2 }' "$TMP/rows"
+    $1 == "BR" && abs($2 - 3.1362112258) < 1e-9 && $4 <= 1e-12 && $5 == "newton" { br++ }
+    $1 == "SW" && abs($2 - 3.0136089483) < 1e-9 && $4 <= 1e-12 && $5 == "newton" { sw++ }
+    END { exit !(br == 1 && sw == 1) }' "$TMP/rows"
+check "chain3-branch: the BR's note: both re-stick, the branch continues on the other side" \
+  grep -q "^BR,.*BR of iterate 3: U1 - W; U2 - W at once; phase 4 .*continues on the other side" \
+  "$TMP/branch/points.csv"
+check "chain3-branch: the upper end at alpha 4.19284 (a re-stick grazing from the side where it fires)" \
+  awk 'function abs(x) { return x < 0 ? -x : x }
+    $1 == "EP" && abs($2 - 4.19284) < 1e-5 { n++ } END { exit n != 1 }' "$TMP/rows"
+
+# The BR by brute force: the period-4 orbit found by the fixed-point task
+# at alpha 1e-11 above and below the located point, each iterated by the
+# orbit task: its third iterate's slip ends 12-1 above, 12-2 below.
+br=$(awk '$1 == "BR" { print $2 }' "$TMP/rows")
+brd=$(awk -F, '$1 == "BR" { print $4, $5 }' "$TMP/branch/points.csv")
+scene fpb
+printf '[task]\nkind = fixed-point\nperiod = 4\n[output]\nplot = no\n' >>"$TMP/fpb.ini"
+scene orbb
+printf '[task]\nkind = orbit\niterations = 4\n[output]\nplot = no\n' >>"$TMP/orbb.ini"
+for s in 1 -1; do
+  a=$(awk -v a="${br:-0}" -v s=$s 'BEGIN { printf "%.17g", a + s * 1e-11 }')
+  run_within 60 run "$TMP/fpb.ini" --out "$TMP/fpb$s" --quiet \
+    --set model.alpha="$a" --set "task.d0=$brd"
+  d=$(awk -F, 'NR == 2 { k = split($NF, p, ";"); print p[k - 1] }' "$TMP/fpb$s/orbits.csv")
+  run_within 60 run "$TMP/orbb.ini" --out "$TMP/orbb$s" --quiet \
+    --set model.alpha="$a" --set "task.d0=$d"
+done
+check "chain3-branch: the BR by brute force: iterate 3 ends 12-1 at +1e-11, 12-2 at -1e-11" \
+  sh -c 'grep -q "^2,.*,1-12-123-12-1\$" "$1" && grep -q "^2,.*,1-12-123-12-2\$" "$2"' _ \
+  "$TMP/orbb1/orbit.csv" "$TMP/orbb-1/orbit.csv"
+
+# The SW by brute force: the orbit task iterates the located point twice;
+# there the gaps of blocks 1 and 3, in closed form, differ by
+# (1 + alpha)(d1 + d2) - 2: zero within 1e-12; a step of 1e-9 along
+# (1, 1) either way starts the slip at block 3 or at block 1.
+sw=$(awk '$1 == "SW" { print $2 }' "$TMP/rows")
+swd=$(awk -F, '$1 == "SW" { print $4, $5 }' "$TMP/branch/points.csv")
+printf '[task]\nkind = orbit\niterations = 2\n[output]\nplot = no\n' >"$TMP/orbs.tail"
+scene orbs
+cat "$TMP/orbs.tail" >>"$TMP/orbs.ini"
+run_within 60 run "$TMP/orbs.ini" --out "$TMP/orbs" --quiet \
+  --set model.alpha="$sw" --set "task.d0=$swd"
+x2=$(awk -F, '$1 == 2 { printf "%.17g %.17g", $2, $3 }' "$TMP/orbs/orbit.csv")
+check "chain3-branch: the SW's third iterate starts where gap 1 = gap 3 (1e-12)" \
+  awk -v a="${sw:-0}" -v x="$x2" 'BEGIN { split(x, d, " "); g = (1 + a) * (d[1] + d[2]) - 2
+    exit !(x != "" && (g < 0 ? -g : g) < 1e-12) }'
+scene orbs1
+printf '[task]\nkind = orbit\niterations = 1\n[output]\nplot = no\n' >>"$TMP/orbs1.ini"
+for s in 1 -1; do
+  d=$(awk -v x="$x2" -v s=$s 'BEGIN { split(x, d, " "); printf "%.17g %.17g", d[1] + s * 1e-9, d[2] + s * 1e-9 }')
+  run_within 60 run "$TMP/orbs1.ini" --out "$TMP/orbs1$s" --quiet \
+    --set model.alpha="$sw" --set "task.d0=$d"
+done
+check "chain3-branch: the SW by brute force: block 3 starts on one side, block 1 on the other" \
+  sh -c 'grep -q "^0,.*,3-23-" "$1" && grep -q "^0,.*,1-" "$2"' _ \
+  "$TMP/orbs11/orbit.csv" "$TMP/orbs1-1/orbit.csv"
 
 # The flip by brute force: the period-4 orbit's multiplier from the
 # fixed-point task below -1 at 3.185, above at 3.205, and its linear
@@ -102,6 +164,17 @@ check "chain3-branch: the flip, multiplier -1 crossed between 3.185 and 3.205 ne
     END { if (k != 2 || !(m[1] < -1 && m[2] > -1)) exit 1
       a = 3.185 + 0.02 * (-1 - m[1]) / (m[2] - m[1])
       exit abs(a - pd) > 1e-3 }' "$TMP/fp3.185/orbits.csv" "$TMP/fp3.205/orbits.csv"
+for a in 4.163 4.168; do
+  run_within 60 run "$TMP/fp.ini" --out "$TMP/fp$a" --quiet --set model.alpha=$a \
+    --set "task.d0=0.1477 0.2815"
+  expect_rc "period 4 at alpha = $a" 0
+done
+check "chain3-branch: the upper flip, multiplier -1 crossed between 4.163 and 4.168 near its PD" \
+  awk -F, -v pd="${pd2:-0}" 'function abs(x) { return x < 0 ? -x : x }
+    FNR == 2 { m[++k] = $2; if ($1 != 4) exit 1 }
+    END { if (k != 2 || !(m[1] > -1 && m[2] < -1)) exit 1
+      a = 4.163 + 0.005 * (-1 - m[1]) / (m[2] - m[1])
+      exit abs(a - pd) > 1e-3 }' "$TMP/fp4.163/orbits.csv" "$TMP/fp4.168/orbits.csv"
 
 # Below the flip the orbit from its point settles on period 8 (1e-7
 # after 3000 iterates), its two halves apart by a width that grows away
@@ -125,23 +198,24 @@ check "chain3-branch: below the flip a stable period-8 orbit, its halves parting
 
 # The drawing agrees: below the flip (unstable by the fixed-point task at
 # 3.185) the branch is drawn dashed, above it solid, the flip in both.
-check "chain3-branch: branch-orbits.csv unstable below the flip, stable above" \
-  awk -F, -v pd="${pd:-0}" 'NR <= 2 || NF < 5 { next }
-    $1 + 0 < pd && !($2 == "nan" && $3 != "nan") { bad = 1 }
-    $1 + 0 > pd && !($2 != "nan" && $3 == "nan") { bad = 1 }
-    $1 + 0 == pd && !($2 != "nan" && $3 != "nan") { bad = 1 }
+check "chain3-branch: branch-orbits.csv stable between the two flips, unstable outside (down to the BR)" \
+  awk -F, -v pd="${pd:-0}" -v pd2="${pd2:-0}" -v br="${br:-9}" 'NR <= 2 || NF < 5 || $1 + 0 < br { next }
+    ($1 + 0 < pd || $1 + 0 > pd2) && !($2 == "nan" && $3 != "nan") { bad = 1 }
+    $1 + 0 > pd && $1 + 0 < pd2 && !($2 != "nan" && $3 == "nan") { bad = 1 }
+    ($1 + 0 == pd || $1 + 0 == pd2) && !($2 != "nan" && $3 != "nan") { bad = 1 }
     { n++ } END { exit bad || n < 40 }' "$TMP/branch/branch-orbits.csv"
 
-# The period-4 orbit is lost at the branch's upper end: the sweep's last
-# period-4 value is below 4.1614, its next value above, with no period.
-check "chain3-sweep: period 2 up to 3.03, period 4 from 3.29 to 4.16, lost at the branch's end" \
+# The period-4 orbit loses its stability at the upper flip (4.1656): the
+# sweep's last period-4 value is below it, its next value above, with no
+# period.
+check "chain3-sweep: period 2 up to 3.03, period 4 from 3.29 to 4.16, lost at the upper flip" \
   awk -F, 'function abs(x) { return x < 0 ? -x : x }
     NR == 1 { next }
     { per[$1] = $4 }
     END { for (s in per) { a = s + 0
         if (a < 3.03 && per[s] != 2) exit 1
         if (a > 3.29 && a < 4.16 && per[s] != 4) exit 1
-        if (a > 4.1614 && per[s] == 4) exit 1 }
+        if (a > 4.1656 && per[s] == 4) exit 1 }
       exit 0 }' "$TMP/sweep/sweep.csv"
 
 # The period-8 orbits of the sweep between 3.2 and 3.26 coexist with the

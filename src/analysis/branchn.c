@@ -352,9 +352,12 @@ static int itinerary_changed(sc_branchn *b, int bi, int period,
 }
 
 /* The loop of one segment from its corrected start: points, special
- * points, its end row. */
+ * points, its end row.  A segment handed over at a border (@p on_border)
+ * starts on it, where the natural itinerary may be neither side's (two
+ * events at one instant: a tie): its itinerary is watched from its first
+ * step on. */
 static int segment_loop(sc_branchn *b, sc_branch *br, int bi, int period,
-                        sc_msg *msg) {
+                        int on_border, sc_msg *msg) {
   size_t n = b->n;
   double uprev[BN_MAXN + 1];
   char itin0[SC_ITIN_LEN];
@@ -375,6 +378,10 @@ static int segment_loop(sc_branchn *b, sc_branch *br, int bi, int period,
       /* beyond a border the orbit is not real: the segment ends at it */
       if (!st && crossed == 1) st = add_point(b, bi, period, ub, msg);
       if (st || crossed) break;
+      if (on_border && *itin0 && !itinerary_at(b, period, u, itin0,
+                                               sizeof itin0))
+        itin0[0] = '\0';
+      on_border = 0;
       st = itinerary_changed(b, bi, period, itin0, uprev, u, &changed);
       if (st || changed) break;
       st = add_point(b, bi, period, u, msg);
@@ -437,7 +444,7 @@ static int run_segment(sc_branchn *b, const bn_job *j, sc_msg *msg) {
     st = add_end(b, bi, period, j->u, j->why, why);
     goto out;
   }
-  st = segment_loop(b, br, bi, period, msg);
+  st = segment_loop(b, br, bi, period, j->handover != 0, msg);
 out:
   sc_branch_free(br);
   sc_mapn_system_free(sys);

@@ -28,6 +28,12 @@
  * bracket its sign change, up to this fraction of their distance (the
  * interpolated start is already inside). */
 #define BRACKET_SLACK 0.5
+/* ... or this many of their distances for a border with its own code: a
+ * switching whose phase lasts as the square root of the distance to it
+ * (sc_bordern.alt), where the segment's Jacobian grows without bound and
+ * its steps shrink: the sign change is seen a few such steps off the
+ * border, which its own smooth system locates. */
+#define BRACKET_SLACK_OWN 4.0
 
 /* The side beyond a border is probed at this distance from the border
  * orbit's point, relative to 1 + |x|: far above the rounding of the
@@ -123,12 +129,25 @@ static int step_done(double dx, double x, const sc_accuracy *acc) {
          fabs(dx) <= BORDER_NOISE_ULPS * DBL_EPSILON * (1 + fabs(x));
 }
 
+/* The codes a border's system follows: the segment's, with the border's
+ * own code in its iterate where it has one (sc_bordern.alt: a switching
+ * whose first phase has length zero on it, dropped there, so that the
+ * system stays smooth); in codes2, free until the hand-over. */
+static const sc_itin_code *system_codes(sc_branchn *b, int period,
+                                        const sc_bordern *like) {
+  if (!like->alt.n) return b->codes;
+  memcpy(b->codes2, b->codes, (size_t)period * sizeof *b->codes2);
+  b->codes2[like->iterate] = like->alt;
+  return b->codes2;
+}
+
 /* The system and its Jacobian at u into F (N) and A (N x N, row-major):
  * rows of g - x, [g_x - I, g_p]; the border's row, [m_x, m_p]. */
 static int border_system(sc_branchn *b, int period, const sc_bordern *like,
                          const double *u, double *F, double *A) {
   size_t n = b->n, N = n + 1, ip = b->param;
-  if (borders_at(b, period, u, u[n], b->codes, NULL, &b->bl_tmp, NULL))
+  if (borders_at(b, period, u, u[n], system_codes(b, period, like), NULL,
+                 &b->bl_tmp, NULL))
     return SC_EUNDEF;
   const sc_bordern *bd = find(b->bl_tmp, like);
   if (!bd) return SC_EUNDEF;
@@ -191,7 +210,7 @@ static void locate(sc_branchn *b, int period, const sc_bordern *like,
     }
     fx->residual = max_abs(F, N);
     double lo = fmin(ua[n], ub[n]), hi = fmax(ua[n], ub[n]);
-    double w = BRACKET_SLACK * (hi - lo);
+    double w = (like->alt.n ? BRACKET_SLACK_OWN : BRACKET_SLACK) * (hi - lo);
     if (fx->u[n] < lo - w || fx->u[n] > hi + w) {
       snprintf(fx->why, sizeof fx->why,
                "Newton converged to %.17g, outside the bracket [%.17g, "

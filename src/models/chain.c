@@ -252,6 +252,11 @@ static void onset(chain_inst *c, const double *d, int deriv) {
         c->T[i] - (D[i] + al * cc[i]) == gmin; /* ties start together */
     c->U[i] = c->Vs;
   }
+  if (c->bx) { /* forced starters, codes, switching borders */
+    double *gap = c->Y; /* scratch until placed below */
+    for (int i = 0; i < N; i++) gap[i] = c->T[i] - (D[i] + al * cc[i]);
+    j = chain_bx_onset(c, gap, j);
+  }
   /* block j at its threshold: S_j = Y_j + alpha c_j = T_j */
   double yj = c->T[j] - al * cc[j];
   for (int i = 0; i < N; i++) c->Y[i] = yj + (D[i] - D[j]);
@@ -319,10 +324,11 @@ static void write_out(const chain_inst *c, unsigned flags, sc_mapn_value *out) {
   }
 }
 
-static int chain_eval_n(void *inst, const double *d, unsigned flags,
-                        sc_mapn_value *out, sc_msg *msg) {
+int chain_eval_n(void *inst, const double *d, unsigned flags,
+                 sc_mapn_value *out, sc_msg *msg) {
   chain_inst *c = inst;
   int N = c->N, deriv = (flags & (SC_EVAL_DERIV | SC_EVAL_DERIV2)) != 0;
+  if (c->bx) deriv |= chain_bx_deriv(c);
   chain_event ev[CHAIN_MAXBLOCKS];
   onset(c, d, deriv);
   out->nphases = 0;
@@ -373,6 +379,7 @@ const sc_model_type sc_model_chain = {
     .setup = chain_setup,
     .release = chain_release,
     .eval_n = chain_eval_n,
+    .eval_n_ex = chain_eval_n_ex,
     .dim_of = chain_dim_of,
     .precision = chain_precision,
 };

@@ -7,6 +7,7 @@
 #define SC_MODELS_CHAIN_IMPL_H
 
 #include "slipcont/common.h"
+#include "slipcont/hybrid.h"
 #include "slipcont/models.h"
 
 /* Most blocks (the option's range). */
@@ -21,6 +22,12 @@ enum { O_BLOCKS, O_TOPOLOGY, O_DRIVER, O_FRICTION, O_FLOWS };
 
 /* The numerical flows' workspace (chain_vw.c). */
 typedef struct chain_num chain_num;
+
+/* A phase's horizon in turns of its slowest mode (frequencies are >= 1,
+ * so a turn is <= 2 pi): a slip without any event for so long is taken
+ * for a slip cycle that never returns to a global stick phase. */
+#define CHAIN_HORIZON_TURNS 1000.0
+#define CHAIN_TWO_PI 6.28318530717958647692
 
 /* Shapes of a run's coupling matrix L (docs/chain.md, "Exact flows"):
  * a path whose two ends are coupled to stuck blocks (degree 2 at both
@@ -44,6 +51,8 @@ typedef struct {
   int start, m, rev, off;
   chain_basis B;
 } chain_run;
+
+struct chain_bx; /* borders and itinerary codes (chain_border.c) */
 
 typedef struct {
   int N, ring, frozen;
@@ -74,6 +83,7 @@ typedef struct {
   double *mz, *mzp;   /* one column's modal sensitivities, per mode */
   double *NY, *NU;    /* one column's sensitivities at the event */
   double *Ad;         /* accelerations at the event, per block */
+  struct chain_bx *bx; /* an evaluation with borders or codes; NULL else */
 } chain_inst;
 
 /* The event that ends a phase. */
@@ -128,5 +138,37 @@ void chain_num_release(chain_inst *c);
 int chain_phase_num(chain_inst *c, int deriv, chain_event *ev, int *nev,
                     sc_msg *msg);
 double chain_num_precision(const chain_inst *c);
+
+/* --- borders and itinerary codes (chain_border.c, docs/chain.md,
+ * "Borders"); the evaluation without them never calls these. */
+
+/* One iterate of the map (chain.c); with c->bx set, it follows and
+ * records codes and appends borders through the hooks below. */
+int chain_eval_n(void *inst, const double *d, unsigned flags,
+                 sc_mapn_value *out, sc_msg *msg);
+/* The model's eval_n_ex (models.h). */
+int chain_eval_n_ex(void *inst, const double *d, unsigned flags,
+                    const sc_itin_code *force, sc_itin_code *code,
+                    sc_bordern_list *borders, sc_mapn_value *out,
+                    sc_msg *msg);
+/* Whether an evaluation with c->bx needs the sensitivities (borders). */
+int chain_bx_deriv(const chain_inst *c);
+/* The onset's hook: the starting blocks (forced or natural, in c->slip
+ * and c->fresh), their code and the switching borders; gap[i] = T_i -
+ * S_i at the end of the GSP; returns the block the positions are placed
+ * from. */
+int chain_bx_onset(chain_inst *c, const double *gap, int j);
+/* The phase's hook, before the state at its end: the forced events in
+ * place of ev (*nev of them, the first one's time the phase's end), the
+ * code of the events and the phase's borders. */
+int chain_bx_phase(chain_inst *c, chain_event *ev, int *nev, sc_msg *msg);
+/* The guard of an event of the phase (kind, block) into g, its terms in
+ * the phase's buffers (valid until the next guard). */
+void chain_guard_of(chain_inst *c, int kind, int block, sc_guard_long *g);
+/* The derivatives of that guard at time t of the phase, t held fixed,
+ * in every column (d, then the parameters) into dg (c->P values), and
+ * its rate there into *gdot; overwrites the state at the event. */
+void chain_guard_sens(chain_inst *c, int kind, int block, double t,
+                      double *dg, double *gdot);
 
 #endif

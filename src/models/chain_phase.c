@@ -12,11 +12,6 @@
 #include "chain_impl.h"
 #include "slipcont/hybrid.h"
 
-/* A phase's horizon in turns of its slowest mode (frequencies are >= 1,
- * so a turn is <= 2 pi): a slip without any event for so long is taken
- * for a slip cycle that never returns to a global stick phase. */
-#define CHAIN_HORIZON_TURNS 1000.0
-#define CHAIN_TWO_PI 6.28318530717958647692
 /* Rounding of a guard's value: a few ulps of its terms' size, as the
  * search's own bound (guard_long.c). */
 #define CHAIN_ROUND_ULPS 8.0
@@ -522,7 +517,38 @@ int chain_phase(chain_inst *c, int deriv, chain_event *ev, int *nev,
   ev[first] = ev[0];
   ev[0] = e0;
   *nev = n;
+  if (c->bx) { /* forced events, codes, borders: chain_border.c */
+    st = chain_bx_phase(c, ev, nev, msg);
+    if (st) return st;
+    e0 = ev[0];
+  }
   state_at(c, e0.t);
   if (deriv) sens_at(c, &e0, e0.t);
   return SC_OK;
+}
+
+/* --- for the borders (chain_border.c) --------------------------------- */
+
+void chain_guard_of(chain_inst *c, int kind, int block, sc_guard_long *g) {
+  if (kind == CHAIN_RESTICK) restick_guard(c, block, g);
+  else threshold_guard(c, block, g);
+}
+
+void chain_guard_sens(chain_inst *c, int kind, int block, double t,
+                      double *dg, double *gdot) {
+  int N = c->N;
+  chain_event e = {kind, block, t, 0, 0};
+  state_at(c, t);
+  for (int b = 0; b < N; b++) c->Ad[b] = accel_at(c, b);
+  for (int col = 0; col < c->P; col++) {
+    chain_dir D = dir_of(c, col);
+    const double *ty = c->TY + (size_t)col * N, *tu = c->TU + (size_t)col * N;
+    for (int j = 0; j < N; j++)
+      if (!c->slip[j]) {
+        c->NY[j] = ty[j] + D.dW * t;
+        c->NU[j] = D.dW;
+      }
+    for (int r = 0; r < c->nruns; r++) run_sens(c, &c->runs[r], &D, ty, tu, t);
+    event_sens(c, &e, &D, &dg[col], gdot);
+  }
 }
