@@ -38,6 +38,8 @@ sc_add_test(test_chain)
 # The chain's numerical flows: velocity weakening against bk2 and an
 # integration of its own, Coulomb through the integrator (a few seconds).
 sc_add_test(test_chain_vw)
+# Thresholds per block: betas, the seeded draw, their refusals.
+sc_add_test(test_chain_data)
 sc_add_test(test_guard_long)
 # The chain through the program: two blocks give bk2's orbits.
 add_test(NAME chain_cli

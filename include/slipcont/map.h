@@ -77,6 +77,24 @@ SC_API int sc_map_set_option(sc_map *m, const char *name, const char *value,
 /** Current value of option @p name, or NULL for an unknown option. */
 SC_API const char *sc_map_get_option(const sc_map *m, const char *name);
 
+/**
+ * @brief Set a data key of the model (sc_data_info: the chain's `betas`,
+ * `thresholds`, ...) from its text.  Parameters the data gives (the
+ * chain's beta2..beta5) take its values unless sc_map_set_param() set
+ * them (before or after).
+ * @return SC_OK, or SC_EINVAL for an unknown key, a bad value or data
+ *         that does not fit the options (the key is then back to its
+ *         previous value); SC_ENOMEM.
+ */
+SC_API int sc_map_set_data(sc_map *m, const char *name, const char *value,
+                           sc_msg *msg);
+/** Current text of data key @p name (its default when never set), or
+ * NULL for an unknown key. */
+SC_API const char *sc_map_get_data(const sc_map *m, const char *name);
+/** 1 if parameter @p i was set by sc_map_set_param() (it then overrides
+ * what the data gives it), else 0. */
+SC_API int sc_map_param_is_set(const sc_map *m, size_t i);
+
 /** @brief Replace the accuracy (checked with sc_accuracy_check()). */
 SC_API int sc_map_set_accuracy(sc_map *m, const sc_accuracy *acc, sc_msg *msg);
 /** The accuracy in use. */

@@ -42,6 +42,21 @@ typedef struct {
   const char *only_with;
 } sc_param_info;
 
+/** Most data keys a model may declare (sc_model_type.data). */
+#define SC_MAXDATA 4
+/** Longest value of a data key, NUL included (a scene line is shorter). */
+#define SC_DATA_LEN 256
+
+/** One data key of a model: a value of its `[model]` section that is
+ * neither a parameter (it is not continued) nor an option (not one word
+ * of a list), read by the model as text: the chain's `betas`, a list of
+ * thresholds.  The map keeps the text (sc_map_get_data()). */
+typedef struct {
+  const char *name; /**< "betas" */
+  const char *def;  /**< its default as text ("" : not given) */
+  const char *doc;  /**< one line: what it holds and its syntax */
+} sc_data_info;
+
 /** Most values one string option may take. */
 #define SC_MAXVALUES 6
 
@@ -346,6 +361,22 @@ typedef struct sc_model_type {
   int (*eval_n_ex)(void *inst, const double *x, unsigned flags,
                    const sc_itin_code *force, sc_itin_code *code,
                    sc_bordern_list *borders, sc_mapn_value *out, sc_msg *msg);
+  size_t ndata;                /**< number of data keys (<= SC_MAXDATA) */
+  const sc_data_info *data;    /**< their table, NULL when ndata = 0 */
+  /** Read data key @p i's text @p value into @p inst: its syntax and the
+   * range of each number, with a message naming the key and the bad word
+   * (relations with the options and parameters are setup()'s).  The map
+   * calls setup() after it.  NULL when ndata = 0. */
+  int (*set_data)(void *inst, size_t i, const char *value, sc_msg *msg);
+  /** The parameter values the data gives (the chain: its thresholds of
+   * blocks 2..5 are parameters): for the options @p opt, set p[i] and
+   * which[i] = 1 for each such parameter i (nparam entries each).  The
+   * map applies them before each setup() to the parameters that were
+   * never set by sc_map_set_param(), so that a parameter set explicitly
+   * overrides the data.  May fail (SC_EINVAL: data that does not fit the
+   * options, e.g. a list of the wrong length).  May be NULL. */
+  int (*data_params)(void *inst, const int *opt, double *p,
+                     unsigned char *which, sc_msg *msg);
   /** Continuous motion (see sc_map_trajectory()); NULL if none. */
   int (*trajectory)(void *inst, double d, int iterations, double dtau,
                     int (*fn)(void *, double, const double *, int),

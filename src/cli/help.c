@@ -151,6 +151,17 @@ void sc_cli_print_model(FILE *f, const sc_model_type *t, int md) {
               vals, t->options[i].values[0], t->options[i].doc);
     }
   }
+  for (size_t i = 0; i < t->ndata; i++) {
+    const char *def = t->data[i].def[0] ? t->data[i].def : "-";
+    if (md) {
+      fprintf(f, "| `%s` | data | %s | ", t->data[i].name, def);
+      md_cell(f, t->data[i].doc);
+      fputs(" |\n", f);
+    } else {
+      fprintf(f, "  %-10s %-*s default %-8s %s\n", t->data[i].name, w,
+              "data", def, t->data[i].doc);
+    }
+  }
   fputc('\n', f);
 }
 

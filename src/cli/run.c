@@ -312,14 +312,26 @@ int sc_cli_summary_begin(sc_cli_run *r, sc_file **out) {
   for (size_t i = 0; i < t->nparam; i++) {
     sc_scene_origin(s, "model", t->params[i].name, where, sizeof where);
     char num[40];
+    /* not in the scene: the table's default, or the model's data's value
+     * (the chain's beta2..beta5 from betas or a draw) */
+    int from_data = !sc_map_param_is_set(m, i) &&
+                    sc_map_get_param(m, i) != t->params[i].def;
     fprintf(f, "  %-16s = %-24s ; %s\n", t->params[i].name,
             exact(sc_map_get_param(m, i), num, sizeof num),
-            strcmp(where, sc_scene_name(s)) ? where : "default");
+            strcmp(where, sc_scene_name(s)) ? where
+            : from_data                      ? "model data"
+                                             : "default");
   }
   for (size_t i = 0; i < t->noption; i++) {
     sc_scene_origin(s, "model", t->options[i].name, where, sizeof where);
     fprintf(f, "  %-16s = %-24s ; %s\n", t->options[i].name,
             sc_map_get_option(m, t->options[i].name),
+            strcmp(where, sc_scene_name(s)) ? where : "default");
+  }
+  for (size_t i = 0; i < t->ndata; i++) {
+    sc_scene_origin(s, "model", t->data[i].name, where, sizeof where);
+    const char *v = sc_map_get_data(m, t->data[i].name);
+    fprintf(f, "  %-16s = %-24s ; %s\n", t->data[i].name, v[0] ? v : "-",
             strcmp(where, sc_scene_name(s)) ? where : "default");
   }
   const sc_task_type *tt = sc_scene_task(s);

@@ -136,6 +136,9 @@ static int scene_text(const sc_cli_run *r, const sc_chart_spec *c, char *buf,
   for (size_t i = 0; i < t->noption; i++)
     ADD_("model.%s = %s\n", t->options[i].name,
          sc_map_get_option(m, t->options[i].name));
+  for (size_t i = 0; i < t->ndata; i++)
+    ADD_("model.%s = %s\n", t->data[i].name,
+         sc_map_get_data(m, t->data[i].name));
   const sc_accuracy *acc = sc_map_accuracy(m);
   for (size_t i = 0; i < sc_accuracy_nfields(); i++)
     ADD_("accuracy.%s = %.17g\n", sc_accuracy_field_name(i),

@@ -591,6 +591,30 @@ static void model_keys_text(const sc_model_type *t, char *buf, size_t len) {
     strncat(buf, ", ", len - strlen(buf) - 1);
     strncat(buf, t->options[i].name, len - strlen(buf) - 1);
   }
+  for (size_t i = 0; i < t->ndata; i++) {
+    strncat(buf, ", ", len - strlen(buf) - 1);
+    strncat(buf, t->data[i].name, len - strlen(buf) - 1);
+  }
+}
+
+static int is_data_key(const sc_model_type *t, const char *key) {
+  for (size_t i = 0; i < t->ndata; i++)
+    if (strcmp(t->data[i].name, key) == 0) return 1;
+  return 0;
+}
+
+/* The model's data keys (the chain's thresholds), after its parameters
+ * and options and in the model's table order, whatever the file's: a
+ * list's length is checked against the options, and a key's relations
+ * with the data keys before it in the table. */
+static int set_model_data(sc_scene *s, const sc_model_type *t, sc_msg *msg) {
+  sc_msg m;
+  for (size_t k = 0; k < t->ndata; k++) {
+    entry *e = find_entry(s, "model", t->data[k].name);
+    if (e && sc_map_set_data(s->map, e->key, e->value, &m))
+      return fail_entry(s, e, msg, m.text);
+  }
+  return SC_OK;
 }
 
 static void model_names_text(char *buf, size_t len) {
@@ -617,7 +641,8 @@ static int check_model(sc_scene *s, sc_msg *msg) {
   if (st) return fail_entry(s, ne, msg, m.text);
   for (size_t i = 0; i < s->n; i++) {
     entry *e = &s->e[i];
-    if (strcmp(e->section, "model") != 0 || e == ne) continue;
+    if (strcmp(e->section, "model") != 0 || e == ne || is_data_key(t, e->key))
+      continue;
     int pi = sc_map_param_index(s->map, e->key);
     if (pi >= 0) {
       /* Range from the model's table; the message quotes the value as
@@ -643,7 +668,7 @@ static int check_model(sc_scene *s, sc_msg *msg) {
              e->key, t->name, list);
     return fail_entry(s, e, msg, detail);
   }
-  return SC_OK;
+  return set_model_data(s, t, msg);
 }
 
 static const sc_key_info *find_key(const sc_key_info *keys, size_t n,

@@ -37,7 +37,23 @@ static int refresh_dim(sc_map *m) {
   return sc_mapn_work_alloc(m) ? SC_ENOMEM : SC_OK;
 }
 
+/* The parameters the model's data gives (models.h data_params), for
+ * those not set explicitly. */
+static int data_params(sc_map *m, sc_msg *msg) {
+  double p[SC_MAXPARAM];
+  unsigned char which[SC_MAXPARAM] = {0};
+  memcpy(p, m->p, sizeof p);
+  int st = m->type->data_params(m->inst, m->opt, p, which, msg);
+  for (size_t i = 0; !st && i < m->type->nparam; i++)
+    if (which[i] && !m->p_set[i]) m->p[i] = p[i];
+  return st;
+}
+
 static int setup(sc_map *m, sc_msg *msg) {
+  if (m->type->data_params) {
+    int st = data_params(m, msg);
+    if (st) return st;
+  }
   int st = m->type->setup
                ? m->type->setup(m->inst, m->p, m->opt, &m->acc, msg)
                : SC_OK;
@@ -56,6 +72,7 @@ int sc_map_alloc_type(const sc_model_type *type, const sc_accuracy *acc,
                       sc_map **out, sc_msg *msg) {
   *out = NULL;
   if (!type || type->nparam > SC_MAXPARAM || type->noption > SC_MAXOPTION ||
+      type->ndata > SC_MAXDATA || (type->ndata && !type->set_data) ||
       type->dim > SC_MAXDIM ||
       (type->dim > 1 || type->dim_of ? !type->eval_n : !type->eval))
     return sc_fail(msg, SC_EINVAL, "sc_map_alloc: malformed model table");
@@ -70,6 +87,15 @@ int sc_map_alloc_type(const sc_model_type *type, const sc_accuracy *acc,
       m->opt[i] = atoi(type->options[i].values[0]);
       int_option_text(m, i);
     }
+  for (size_t i = 0; i < type->ndata; i++) {
+    snprintf(m->data[i], SC_DATA_LEN, "%s", type->data[i].def);
+    if (type->set_data(m->inst, i, m->data[i], msg)) {
+      sc_map_free(m);
+      return sc_fail(msg, SC_EINVAL, "sc_map_alloc: malformed model table "
+                                     "(data key %s's default)",
+                     type->data[i].name);
+    }
+  }
   if (acc) {
     int st = sc_accuracy_check(acc, msg);
     if (st) {
@@ -119,7 +145,12 @@ int sc_map_clone(const sc_map *m, sc_map **out, sc_msg *msg) {
   memcpy((*out)->p, m->p, sizeof m->p);
   memcpy((*out)->opt, m->opt, sizeof m->opt);
   memcpy((*out)->opt_text, m->opt_text, sizeof m->opt_text);
-  st = setup(*out, msg);
+  memcpy((*out)->p_set, m->p_set, sizeof m->p_set);
+  for (size_t i = 0; i < m->type->ndata && !st; i++) {
+    memcpy((*out)->data[i], m->data[i], SC_DATA_LEN);
+    st = m->type->set_data((*out)->inst, i, m->data[i], msg);
+  }
+  if (!st) st = setup(*out, msg);
   if (st) {
     sc_map_free(*out);
     *out = NULL;
@@ -170,13 +201,55 @@ int sc_map_set_param(sc_map *m, size_t i, double value, sc_msg *msg) {
   int st = sc_param_check(&m->type->params[i], value, msg);
   if (st) return st;
   double old = m->p[i];
+  unsigned char was = m->p_set[i];
   m->p[i] = value;
+  m->p_set[i] = 1;
   st = setup(m, msg);
   if (st) {
     m->p[i] = old;
+    m->p_set[i] = was;
     setup(m, NULL);
   }
   return st;
+}
+
+int sc_map_param_is_set(const sc_map *m, size_t i) {
+  return i < m->type->nparam && m->p_set[i];
+}
+
+static int data_index(const sc_map *m, const char *name) {
+  for (size_t i = 0; name && i < m->type->ndata; i++)
+    if (strcmp(m->type->data[i].name, name) == 0) return (int)i;
+  return -1;
+}
+
+int sc_map_set_data(sc_map *m, const char *name, const char *value,
+                    sc_msg *msg) {
+  int i = data_index(m, name);
+  if (i < 0)
+    return sc_fail(msg, SC_EINVAL, "unknown data key '%s' for model %s",
+                   name ? name : "(null)", m->type->name);
+  if (!value || strlen(value) >= SC_DATA_LEN)
+    return sc_fail(msg, SC_EINVAL, "%s: value too long (limit %d characters)",
+                   name, SC_DATA_LEN - 1);
+  char old[SC_DATA_LEN];
+  memcpy(old, m->data[i], SC_DATA_LEN);
+  int st = m->type->set_data(m->inst, (size_t)i, value, msg);
+  if (!st) {
+    snprintf(m->data[i], SC_DATA_LEN, "%s", value);
+    st = setup(m, msg);
+  }
+  if (st) {
+    memcpy(m->data[i], old, SC_DATA_LEN);
+    m->type->set_data(m->inst, (size_t)i, old, NULL);
+    setup(m, NULL);
+  }
+  return st;
+}
+
+const char *sc_map_get_data(const sc_map *m, const char *name) {
+  int i = data_index(m, name);
+  return i < 0 ? NULL : m->data[i];
 }
 
 int sc_map_set_param_by_name(sc_map *m, const char *name, double value,

@@ -11,6 +11,10 @@ struct sc_map {
   int opt[SC_MAXOPTION];
   /* a whole-number option's value as text (sc_map_get_option()) */
   char opt_text[SC_MAXOPTION][16];
+  /* data keys' texts (sc_map_set_data()); parameters set explicitly,
+   * which the data's parameter values do not override */
+  char data[SC_MAXDATA][SC_DATA_LEN];
+  unsigned char p_set[SC_MAXPARAM];
   size_t dim;             /* state dimension, read after every setup */
   sc_accuracy acc;
   void *inst;             /* type->inst_size bytes, owned */

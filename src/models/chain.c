@@ -41,7 +41,7 @@ static const sc_param_info chain_params[CHAIN_NPARAM] = {
      "blocks>=3"},
     {"beta4", 1, 0, 1e6, 1, 0, "static threshold of block 4", NULL,
      "blocks>=4"},
-    {"beta5", 1, 0, 1e6, 1, 0, "static threshold of block 5 (blocks past 5: 1)",
+    {"beta5", 1, 0, 1e6, 1, 0, "static threshold of block 5 (blocks past 5: betas or a draw)",
      NULL, "blocks>=5"},
 };
 
@@ -198,7 +198,11 @@ static int chain_setup(void *inst, const double *p, const int *opt,
   c->Vs = c->frozen ? 0 : c->v;
   c->acc = *acc;
   for (int i = 0; i < N; i++) {
-    c->T[i] = i == 0 ? 1 : i < CHAIN_PARAM_BLOCKS ? p[P_BETA2 + i - 1] : 1;
+    /* blocks past 5: the data's thresholds (betas or the draw), else 1 */
+    c->T[i] = i == 0                    ? 1
+              : i < CHAIN_PARAM_BLOCKS ? p[P_BETA2 + i - 1]
+              : c->data.random || c->data.nbetas ? c->data.T[i]
+                                                 : 1;
     c->K[i] = c->T[i] / c->phi;
   }
   int st = SC_OK;
@@ -382,4 +386,8 @@ const sc_model_type sc_model_chain = {
     .eval_n_ex = chain_eval_n_ex,
     .dim_of = chain_dim_of,
     .precision = chain_precision,
+    .ndata = CHAIN_NDATA,
+    .data = chain_data_info,
+    .set_data = chain_set_data,
+    .data_params = chain_data_params,
 };

@@ -54,8 +54,29 @@ typedef struct {
 
 struct chain_bx; /* borders and itinerary codes (chain_border.c) */
 
+/* The thresholds given as data (chain_thresholds.c, docs/chain.md
+ * "Thresholds per block"): `thresholds`, `betas`, `threshold-seed`,
+ * `threshold-range`, in the data table's order. */
+enum { D_THRESHOLDS, D_BETAS, D_SEED, D_RANGE, CHAIN_NDATA };
+typedef struct {
+  int random;      /* thresholds = random */
+  int nbetas;      /* values in betas (0: not given) */
+  int seed_given, range_given;
+  unsigned long long seed;
+  double lo, hi;   /* the draw's range */
+  /* the data's threshold of block i + 1 (T[0] = 1): betas, or the draw */
+  double T[CHAIN_MAXBLOCKS];
+} chain_data;
+
+/* The data table and its callbacks (chain_thresholds.c). */
+extern const sc_data_info chain_data_info[CHAIN_NDATA];
+int chain_set_data(void *inst, size_t i, const char *value, sc_msg *msg);
+int chain_data_params(void *inst, const int *opt, double *p,
+                      unsigned char *which, sc_msg *msg);
+
 typedef struct {
   int N, ring, frozen;
+  chain_data data;
   int vw;        /* friction = velocity-weakening */
   int numerical; /* flows = numerical (always with velocity weakening) */
   double alpha, phi, v, Vs, gamma;
