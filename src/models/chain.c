@@ -138,6 +138,7 @@ static void chain_release(void *inst) {
     *bufs[i] = NULL;
   }
   c->fresh = NULL; /* in slip's block */
+  chain_log_free(c);
   c->alloc_N = 0;
   chain_num_release(c);
 }
@@ -264,6 +265,7 @@ static void onset(chain_inst *c, const double *d, int deriv) {
   /* block j at its threshold: S_j = Y_j + alpha c_j = T_j */
   double yj = c->T[j] - al * cc[j];
   for (int i = 0; i < N; i++) c->Y[i] = yj + (D[i] - D[j]);
+  c->onset_block = j;
   if (!deriv) return;
   for (int col = 0; col < c->P; col++) {
     double *ty = c->TY + (size_t)col * N, *tu = c->TU + (size_t)col * N;
@@ -319,13 +321,6 @@ static void write_out(const chain_inst *c, unsigned flags, sc_mapn_value *out) {
         else out->fp[(size_t)(col - n) * n + i] = v;
       }
     }
-  if (flags & SC_EVAL_DERIV2) {
-    /* second derivatives are not computed for the chain (docs/chain.md) */
-    size_t np = out->np;
-    for (size_t i = 0; i < (size_t)n * n * n; i++) out->H[i] = NAN;
-    for (size_t i = 0; i < np * n * n; i++) out->Jp[i] = NAN;
-    for (size_t i = 0; i < (size_t)n * n * n * n; i++) out->T[i] = NAN;
-  }
 }
 
 int chain_eval_n(void *inst, const double *d, unsigned flags,
@@ -333,8 +328,13 @@ int chain_eval_n(void *inst, const double *d, unsigned flags,
   chain_inst *c = inst;
   int N = c->N, deriv = (flags & (SC_EVAL_DERIV | SC_EVAL_DERIV2)) != 0;
   if (c->bx) deriv |= chain_bx_deriv(c);
+  int jet = (flags & SC_EVAL_DERIV2) != 0; /* record the phases */
   chain_event ev[CHAIN_MAXBLOCKS];
   onset(c, d, deriv);
+  if (jet) {
+    int st = chain_log_start(c, msg);
+    if (st) return st;
+  }
   out->nphases = 0;
   out->itinerary[0] = '\0';
   for (int ph = 0; ph < c->acc.max_events; ph++) {
@@ -342,6 +342,7 @@ int chain_eval_n(void *inst, const double *d, unsigned flags,
     int nev = 0, st = c->numerical ? chain_phase_num(c, deriv, ev, &nev, msg)
                                    : chain_phase(c, deriv, ev, &nev, msg);
     if (st) return st;
+    if (jet) chain_log_phase(c, ev, nev);
     out->nphases++;
     for (int i = 0; i < N; i++) c->fresh[i] = 0;
     /* re-sticks first, together */
@@ -358,7 +359,7 @@ int chain_eval_n(void *inst, const double *d, unsigned flags,
     for (int i = 0; i < N; i++) left += c->slip[i];
     if (!left) {
       write_out(c, flags, out);
-      return SC_OK;
+      return jet ? chain_jet_fill(c, d, out, msg) : SC_OK;
     }
     /* then the thresholds reached at that instant, together */
     for (int e = 0; e < nev; e++)

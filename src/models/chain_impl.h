@@ -74,6 +74,10 @@ int chain_set_data(void *inst, size_t i, const char *value, sc_msg *msg);
 int chain_data_params(void *inst, const int *opt, double *p,
                       unsigned char *which, sc_msg *msg);
 
+/* The record of one evaluation's phases for its second derivatives
+ * (chain_jet.c). */
+typedef struct chain_log chain_log;
+
 typedef struct {
   int N, ring, frozen;
   chain_data data;
@@ -105,6 +109,8 @@ typedef struct {
   double *NY, *NU;    /* one column's sensitivities at the event */
   double *Ad;         /* accelerations at the event, per block */
   struct chain_bx *bx; /* an evaluation with borders or codes; NULL else */
+  int onset_block;    /* the block the last onset placed the others from */
+  chain_log *log;     /* SC_EVAL_DERIV2's record, NULL until asked for */
 } chain_inst;
 
 /* The event that ends a phase. */
@@ -132,6 +138,15 @@ static inline int chain_neighbours(const chain_inst *c, int j, int nb[2]) {
     if (j < c->N - 1) nb[k++] = j + 1;
   }
   return k;
+}
+
+/* Block of element i of run r, and the row of its basis. */
+static inline int chain_run_block(const chain_inst *c, const chain_run *r,
+                                  int i) {
+  return (r->start + i) % c->N;
+}
+static inline int chain_run_row(const chain_run *r, int i) {
+  return r->rev ? r->m - 1 - i : i;
 }
 
 /* The eigenbasis of a run's coupling matrix (from the table, or computed
@@ -191,5 +206,22 @@ void chain_guard_of(chain_inst *c, int kind, int block, sc_guard_long *g);
  * its rate there into *gdot; overwrites the state at the event. */
 void chain_guard_sens(chain_inst *c, int kind, int block, double t,
                       double *dg, double *gdot);
+/* The maximal runs of the slipping set c->slip into c->runs, c->nruns,
+ * with their bases (chain_phase.c). */
+int chain_find_runs(chain_inst *c, sc_msg *msg);
+
+/* Second derivatives (chain_jet.c): chain_log_start() after the onset
+ * (takes the record's buffers on first use), chain_log_phase() after each
+ * phase (its events ev[0 .. nev - 1], the earliest first), then
+ * chain_jet_fill() at the GSP: out's H, Jp and T at the state x by
+ * replaying the record in jet arithmetic with the closed-form (Coulomb)
+ * flows, whichever flows found the phases (NaN where an event's guard
+ * has zero slope: f is not twice differentiable there; NaN under
+ * velocity weakening, which has no closed form). */
+int chain_log_start(chain_inst *c, sc_msg *msg);
+void chain_log_phase(chain_inst *c, const chain_event *ev, int nev);
+int chain_jet_fill(chain_inst *c, const double *x, sc_mapn_value *out,
+                   sc_msg *msg);
+void chain_log_free(chain_inst *c);
 
 #endif

@@ -50,7 +50,7 @@ static int add_run(chain_inst *c, int start, int m, size_t *used, int *off,
 }
 
 /* The maximal runs of slipping blocks (a ring's may wrap around). */
-static int find_runs(chain_inst *c, sc_msg *msg) {
+int chain_find_runs(chain_inst *c, sc_msg *msg) {
   int N = c->N, off = 0, first = 0;
   size_t used = 0;
   c->nruns = 0;
@@ -75,12 +75,8 @@ static int find_runs(chain_inst *c, sc_msg *msg) {
 }
 
 /* Block of element i of run r, and the row of its basis. */
-static inline int run_block(const chain_inst *c, const chain_run *r, int i) {
-  return (r->start + i) % c->N;
-}
-static inline int run_row(const chain_run *r, int i) {
-  return r->rev ? r->m - 1 - i : i;
-}
+#define run_block chain_run_block
+#define run_row chain_run_row
 
 /* The slipping block's forcing F0 + F1 s: its kinetic friction and its
  * stuck neighbours' springs, those neighbours moving at Vs. */
@@ -493,7 +489,7 @@ int chain_phase(chain_inst *c, int deriv, chain_event *ev, int *nev,
                 sc_msg *msg) {
   memcpy(c->Y0, c->Y, (size_t)c->N * sizeof(double));
   memcpy(c->U0, c->U, (size_t)c->N * sizeof(double));
-  int st = find_runs(c, msg);
+  int st = chain_find_runs(c, msg);
   if (st) return st;
   for (int r = 0; r < c->nruns; r++) run_modes(c, &c->runs[r]);
   chain_search S = {ev, 0, HUGE_VAL, 0, CHAIN_HORIZON_TURNS * CHAIN_TWO_PI};
