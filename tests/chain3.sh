@@ -72,18 +72,32 @@ run_within 120 run "$SRC/examples/chain3-branch.ini" --out "$TMP/branch" \
   --quiet --set output.plot=no
 expect_rc "examples/chain3-branch.ini" 0
 
-# The branch's rows: label, alpha, multiplier, residual, method
-awk -F, 'NR > 1 { print $1, $3, $7, $12, $15 }' "$TMP/branch/points.csv" >"$TMP/rows"
+# The branch's rows: label, alpha, multiplier, residual, method,
+# coefficient
+awk -F, 'NR > 1 { print $1, $3, $7, $12, $15, $9 }' "$TMP/branch/points.csv" >"$TMP/rows"
 pd=$(awk '$1 == "PD" && $2 > 3.1 && $2 < 3.3 { print $2 }' "$TMP/rows")
 pd2=$(awk '$1 == "PD" && $2 > 4.1 { print $2 }' "$TMP/rows")
-check "chain3-branch: flips near alpha 3.1955, 4.1656 and 3.0814 with multiplier -1 (1e-9), found in arclength only" \
+# With the map's exact second derivatives every flip and the NS are
+# located by Newton on their systems and certified by their residual;
+# their normal-form coefficients: the flips at 3.1955 and 3.0814
+# supercritical (b = 393.66, 1154.6), the one at 4.1656 subcritical (b =
+# -7.8e4), the NS subcritical (d = 5967 > 0).
+check "chain3-branch: flips at 3.1955 (b > 0), 4.1656 (b < 0), 3.0814 (b > 0): Newton, multiplier -1 and residual within 1e-12" \
   awk 'function abs(x) { return x < 0 ? -x : x }
-    $1 == "PD" { n++; if ((abs($2 - 3.1955) < 1e-3 || abs($2 - 4.1656) < 1e-3 ||
-                          abs($2 - 3.0814) < 1e-3) && abs($3 + 1) < 1e-9 &&
-                         $5 == "not-located") ok++ }
+    $1 == "PD" { n++; if (abs($3 + 1) < 1e-12 && $4 <= 1e-12 && $5 == "newton" &&
+                         ((abs($2 - 3.1955) < 1e-3 && $6 > 0) ||
+                          (abs($2 - 4.1656) < 1e-3 && $6 < 0) ||
+                          (abs($2 - 3.0814) < 1e-3 && $6 > 0))) ok++ }
     END { exit !(n == 3 && ok == 3) }' "$TMP/rows"
-check "chain3-branch: the flip's note says why it is not located (no second derivatives)" \
-  grep -q "^PD,.*not located: .*a model without second derivatives" "$TMP/branch/points.csv"
+check "chain3-branch: the NS at 3.0430 by Newton (residual within 1e-12, |multiplier| 1 to 1e-12), d > 0" \
+  awk 'function abs(x) { return x < 0 ? -x : x }
+    $1 == "NS" { n++; if (abs($2 - 3.0430) < 1e-3 && abs($3 - 1) < 1e-12 &&
+                         $4 <= 1e-12 && $5 == "newton" && $6 > 0) ok++ }
+    END { exit !(n == 1 && ok == 1) }' "$TMP/rows"
+check "chain3-branch: the flips' notes say supercritical, subcritical, supercritical" \
+  sh -c 'grep -q "^PD,alpha,3.1955.*supercritical (b > 0)" "$1" &&
+         grep -q "^PD,alpha,3.0813.*supercritical (b > 0)" "$1" &&
+         grep -q "^PD,alpha,4.1656.*subcritical" "$1"' _ "$TMP/branch/points.csv"
 # The borders, located by Newton with their residual certificates: down,
 # blocks 1 and 2 re-stick at once in the fourth phase of the third
 # iterate (BR, alpha 3.1362112258); the branch goes on past it with
@@ -179,7 +193,7 @@ check "chain3-branch: the upper flip, multiplier -1 crossed between 4.163 and 4.
 # Below the flip the orbit from its point settles on period 8 (1e-7
 # after 3000 iterates), its two halves apart by a width that grows away
 # from the flip (0.014 at 3.18, 0.038 at 3.17): a supercritical flip,
-# seen by iteration where its coefficient is not available.
+# seen by iteration, as the sign of its coefficient says.
 scene orb8
 printf '[task]\nkind = orbit\nd0 = 0.1435 0.3552\niterations = 3000\n[output]\nplot = no\n' \
   >>"$TMP/orb8.ini"
@@ -196,13 +210,50 @@ check "chain3-branch: below the flip a stable period-8 orbit, its halves parting
       exit !(w[1] > 1e-3 && w[2] > 2 * w[1] && w[2] < 0.1) }' \
   "$TMP/orb8-3.18/orbit.csv" "$TMP/orb8-3.17/orbit.csv"
 
+# The flip's coefficient b against its period-8 orbit: on the centre
+# manifold f^4 is w -> -(1 + e) w + b w^3 (docs/maps.md, "Normal forms";
+# |q| = 1, e = -1 - the period-4 multiplier), so the period-8 orbit's two
+# halves are 2 w apart with w^2 = e / b + O(e^2).  The fixed-point task's
+# period-8 orbits at alpha 3.194 and 3.1925 (the switched branch lives
+# between its border at 3.1903 and the flip) and the period-4
+# multipliers there give e / w^2 at the orbit's pair nearest the flip's
+# point (386 and 390), extrapolated linearly to e = 0: b within 1%
+# (observed 393.7 against 393.66).
+sed 's/period = 4/period = 8/; s/^d0 = .*/d0 = 0.14297 0.35920/' \
+  "$TMP/fp.ini" >"$TMP/fp8.ini"
+for a in 3.194 3.1925; do
+  run_within 60 run "$TMP/fp.ini" --out "$TMP/nf4-$a" --quiet --set model.alpha=$a
+  run_within 60 run "$TMP/fp8.ini" --out "$TMP/nf8-$a" --quiet --set model.alpha=$a
+  expect_rc "period 8 at alpha = $a" 0
+done
+pdrow=$(awk -F, '$1 == "PD" && $3 > 3.1 && $3 < 3.3 { print $4, $5, $9 }' "$TMP/branch/points.csv")
+check "chain3-branch: the flip's b from its period-8 orbit's width (1%)" \
+  awk -F, -v pdrow="$pdrow" 'function abs(x) { return x < 0 ? -x : x }
+    FNR == 1 { f++; next }
+    f % 2 == 1 { e[(f + 1) / 2] = -1 - $2; next }
+    { split(pdrow, P, " "); n = split($8, Q, ";"); best = 1e9
+      for (k = 1; k <= n; k++) { split(Q[k], q, " "); x[k] = q[1]; y[k] = q[2] }
+      for (k = 1; k <= n / 2; k++) {
+        dx = x[k] - x[k + n / 2]; dy = y[k] - y[k + n / 2]
+        m = abs((x[k] + x[k + n / 2]) / 2 - P[1]) + abs((y[k] + y[k + n / 2]) / 2 - P[2])
+        if (m < best) { best = m; w2 = (dx * dx + dy * dy) / 4 } }
+      est[f / 2] = e[f / 2] / w2 }
+    END { if (f != 4 || !(e[1] > 0 && e[2] > e[1])) exit 1
+      b0 = est[1] - e[1] * (est[2] - est[1]) / (e[2] - e[1])
+      printf "b %s, from the period-8 orbits %.6g, %.6g -> %.6g\n", P[3], est[1], est[2], b0
+      exit abs(b0 - P[3]) > 0.01 * P[3] }' \
+  "$TMP/nf4-3.194/orbits.csv" "$TMP/nf8-3.194/orbits.csv" \
+  "$TMP/nf4-3.1925/orbits.csv" "$TMP/nf8-3.1925/orbits.csv"
+
 # The drawing agrees: below the flip (unstable by the fixed-point task at
-# 3.185) the branch is drawn dashed, above it solid, the flip in both.
+# 3.185) the branch is drawn dashed, above it solid, the flip in both
+# (the branch's own point there, within 1e-9 of the Newton-located one).
 check "chain3-branch: branch-orbits.csv stable between the two flips, unstable outside (down to the BR)" \
-  awk -F, -v pd="${pd:-0}" -v pd2="${pd2:-0}" -v br="${br:-9}" 'NR <= 2 || NF < 5 || $1 + 0 < br { next }
+  awk -F, -v pd="${pd:-0}" -v pd2="${pd2:-0}" -v br="${br:-9}" 'function abs(x) { return x < 0 ? -x : x }
+    NR <= 2 || NF < 5 || $1 + 0 < br { next }
+    abs($1 - pd) < 1e-9 || abs($1 - pd2) < 1e-9 { if (!($2 != "nan" && $3 != "nan")) bad = 1; next }
     ($1 + 0 < pd || $1 + 0 > pd2) && !($2 == "nan" && $3 != "nan") { bad = 1 }
     $1 + 0 > pd && $1 + 0 < pd2 && !($2 != "nan" && $3 == "nan") { bad = 1 }
-    ($1 + 0 == pd || $1 + 0 == pd2) && !($2 != "nan" && $3 != "nan") { bad = 1 }
     { n++ } END { exit bad || n < 40 }' "$TMP/branch/branch-orbits.csv"
 
 # The period-4 orbit loses its stability at the upper flip (4.1656): the
