@@ -121,7 +121,7 @@ static void onset_borders(chain_inst *c, const double *gap, int j) {
   const double *cc = c->U0;
   int N = c->N, n = N - 1;
   double *dm = c->bx->dm;
-  char name[2 * SC_BORDER_NAME];
+  char name[4 * SC_BORDER_NAME];
   for (int k = 0; k < N; k++) {
     if (k == j || (c->slip[k] && !c->bx->force)) continue;
     for (int col = 0; col < c->P; col++) {
@@ -281,10 +281,10 @@ static void crossing_border(chain_inst *c, const sc_guard_long *g, int kind,
           : (kind == CHAIN_RESTICK ? SC_BORDER_CROSSING : SC_BORDER_SWITCHING);
   /* named by the two guards in block order, so that the other side's
    * border, where the other guard ends the phase, has the same name */
-  char ename[32], name[2 * SC_BORDER_NAME];
+  char ename[32], name[4 * SC_BORDER_NAME];
   guard_name(e0->kind, e0->block, ename, sizeof ename);
   int first = b < e0->block || (b == e0->block && kind < e0->kind);
-  snprintf(name, sizeof name, "%s, %s at once, phase %d (slip %s)",
+  snprintf(name, sizeof name, "%s, %s at once, phase %d (slip %.40s)",
            first ? gname : ename, first ? ename : gname, x->phase, slip);
   add_border(c, k, tg - T, x->dm, 0, name);
 }
@@ -298,7 +298,7 @@ static void phase_borders(chain_inst *c, const chain_event *ev, int nev) {
   int N = c->N;
   double T = ev[0].t, gdot;
   double tol = 2 * (c->acc.event_atol + c->acc.event_rtol * T);
-  char slip[4 * CHAIN_MAXBLOCKS], gname[32], name[2 * SC_BORDER_NAME];
+  char slip[4 * CHAIN_MAXBLOCKS], gname[32], name[4 * SC_BORDER_NAME];
   slip_name(c, slip, sizeof slip);
   chain_guard_sens(c, ev[0].kind, ev[0].block, T, x->dA, &gdot);
   for (int col = 0; col < c->P; col++) x->dT[col] = -x->dA[col] / gdot;
@@ -316,7 +316,7 @@ static void phase_borders(chain_inst *c, const chain_event *ev, int nev) {
     if (g.n > 0 && highest_max(x, &g, T - tol, &tm, &gm)) {
       chain_guard_sens(c, kind, b, tm, x->dA, &gdot);
       for (int col = 0; col < c->P; col++) x->dm[col] = -x->dA[col];
-      snprintf(name, sizeof name, "%s max, phase %d (slip %s)", gname,
+      snprintf(name, sizeof name, "%s max, phase %d (slip %.40s)", gname,
                x->phase, slip);
       add_border(c,
                  kind == CHAIN_RESTICK ? SC_BORDER_GRAZING : SC_BORDER_TOUCH,
