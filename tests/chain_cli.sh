@@ -42,9 +42,10 @@ check "two blocks: bk2's period-6 orbits (points 1e-12, multipliers 1e-9, itiner
 
 # The chapter's branch example (fig 5.8) with name = chain: every fold and
 # flip bk2 locates, the chain locates too (same label and period), at the
-# same alpha within 1e-12 relative.  The chain has no borders yet, so it
-# may continue past a grazing where bk2 stops: the check runs from bk2's
-# points to the chain's.
+# same alpha within 1e-12 relative.  The chain's borders are the
+# n-dimensional branch's, and two blocks run the one-dimensional one,
+# which does not read them: it may continue past a grazing where bk2
+# stops, so the check runs from bk2's points to the chain's.
 sed -e 's/^name = bk2/name = chain\nblocks = 2/' -e 's/^beta = /beta2 = /' \
   -e '/^plot-at/d' "$SRC/examples/branch-fig58.ini" >"$TMP/br-chain.ini"
 sed -e '/^plot-at/d' "$SRC/examples/branch-fig58.ini" >"$TMP/br-bk2.ini"
@@ -68,6 +69,21 @@ check "fig 5.8: bk2's $(wc -l <"$TMP/pb") folds and flips located by the chain w
         if (cl[j] == lab[i] && cp[j] == per[i] &&
             abs(ca[j] - al[i]) <= 1e-12 * (1 + abs(al[i]))) ok = 1
       if (!ok) { print "missing:", lab[i], per[i], al[i]; exit 1 } } }' "$TMP/pb" "$TMP/pc"
+
+# The map task's border in the state (sc_map_state_borders): two blocks
+# mark the switching point where bk2 marks d*, within 1e-12.
+for mdl in bk2 chain; do
+  sed -e 's/^kind = fixed-point/kind = map/' -e '/^period = /d' \
+    "$TMP/$mdl.ini" >"$TMP/map-$mdl.ini"
+  run_sc run "$TMP/map-$mdl.ini" --out "$TMP/map-$mdl" --quiet
+  expect_rc "map task, $mdl" 0
+done
+check "two blocks: the map task marks bk2's d* as the chain's switching point (1e-12)" \
+  sh -c 'b=$(sed -n "s/^ *d\* = \([^:]*\): a border in the state.*/\1/p" "$1")
+         c=$(sed -n "s/^ *SW = \([^:]*\): a border in the state (SW: gaps 1, 2 equal.*/\1/p" "$2")
+         [ -n "$b" ] && [ -n "$c" ] &&
+           awk -v b="$b" -v c="$c" "BEGIN { d = b - c; exit !(d < 1e-12 && d > -1e-12) }"' _ \
+  "$TMP/map-bk2/summary.txt" "$TMP/map-chain/summary.txt"
 
 run_sc models
 check "slipcont models lists chain with blocks 2..256 and topology open|ring" \

@@ -35,6 +35,9 @@ sc_add_test(test_vw_edges)
 # Branch starts with velocity weakening: mirror images alike.
 sc_add_test(test_vw_starts)
 sc_add_test(test_chain)
+# The chain's borders: gradients against differences, zeros against the
+# itineraries on both sides, two blocks against bk2's (a few seconds).
+sc_add_test(test_chain_border)
 # The chain's numerical flows: velocity weakening against bk2 and an
 # integration of its own, Coulomb through the integrator (a few seconds).
 sc_add_test(test_chain_vw)

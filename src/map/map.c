@@ -356,9 +356,49 @@ const char *sc_border_label(sc_border_kind k) {
 
 int sc_map_has_borders(const sc_map *m) { return m->type->eval_ex != NULL; }
 
+/* The state borders of a model whose one-dimensional state is read by
+ * eval_n_ex (the chain of two blocks): each on_state border m = s (d -
+ * d_on(p)) as an sc_border, d_on = d - m / m_d, d_on_p = -m_p / m_d. */
+static int state_borders_n(sc_map *m, double d, sc_border_list *out,
+                           sc_msg *msg) {
+  sc_bordern_list *l = NULL;
+  sc_mapn_value *v = NULL;
+  int st = sc_bordern_list_alloc(m, out->cap ? out->cap : 1, &l, msg);
+  if (!st) st = sc_mapn_value_alloc(m, SC_EVAL_VALUE, &v, msg);
+  if (!st) st = sc_map_eval_n_ex(m, &d, SC_EVAL_VALUE, NULL, NULL, l, v, msg);
+  for (size_t i = 0; !st && i < l->n && i < l->cap; i++) {
+    const sc_bordern *b = &l->b[i];
+    if (!b->on_state || !(b->dx[0] != 0)) continue;
+    if (out->n < out->cap) {
+      sc_border *o = &out->b[out->n];
+      memset(o, 0, sizeof *o);
+      o->kind = b->kind;
+      o->value = b->value;
+      o->dd = b->dx[0];
+      o->on_state = 1;
+      o->d_on = d - b->value / b->dx[0];
+      for (size_t q = 0; q < SC_MAXPARAM; q++) {
+        o->dp[q] = b->dp[q];
+        o->d_on_dp[q] = -b->dp[q] / b->dx[0];
+      }
+      snprintf(o->name, sizeof o->name, "%s", b->name);
+    }
+    out->n++;
+  }
+  if (!st && out->n > out->cap)
+    st = sc_fail(msg, SC_ENOMEM,
+                 "sc_map_state_borders: %zu borders, room for %zu", out->n,
+                 out->cap);
+  sc_mapn_value_free(v);
+  sc_bordern_list_free(l);
+  return st;
+}
+
 int sc_map_state_borders(sc_map *m, double d, sc_border_list *out,
                          sc_msg *msg) {
   out->n = 0;
+  if (!m->type->eval_ex && m->type->eval_n_ex && sc_map_dim(m) == 1)
+    return state_borders_n(m, d, out, msg);
   if (!m->type->eval_ex) return SC_OK;
   sc_map_value v;
   int st = sc_map_eval_ex(m, d, SC_EVAL_VALUE, NULL, NULL, out, &v, msg);
