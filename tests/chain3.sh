@@ -256,6 +256,74 @@ check "chain3-branch: branch-orbits.csv stable between the two flips, unstable o
     $1 + 0 > pd && $1 + 0 < pd2 && !($2 != "nan" && $3 == "nan") { bad = 1 }
     { n++ } END { exit bad || n < 40 }' "$TMP/branch/branch-orbits.csv"
 
+# Curves in (alpha, beta3) from the branch's rows (start = FILE:N): the
+# flip curves of the PDs at 3.1955 (row 3) and 3.0814 (row 5) and the NS
+# curve of its NS (row 6), each ended where the itinerary of f^4
+# changes (a border the curves do not locate).  Located by Newton on
+# their extended systems: a generalized flip (GPD, b = 0) on the first
+# at (3.23297, 2.89819), a 1:2 resonance (R2, a double multiplier -1) on
+# the second at (3.06212, 3.28270), which the NS curve reaches too (its
+# kappa -> -1 there, an R2? not located on it: the NS system is
+# singular at R2; 9e-5 from the flip curve's).
+curve_run() { # NAME TYPE ROW
+  cat >"$TMP/$1.ini" <<INI
+[model]
+name = chain
+blocks = 3
+driver = frozen
+phi = 1.25
+v = 0.025
+beta3 = 3
+[task]
+kind = curve
+type = $2
+x = alpha
+y = beta3
+x-from = 2.2
+x-to = 4.4
+y-from = 2.2
+y-to = 4.4
+start = $TMP/branch/points.csv:$3
+[output]
+plot = no
+INI
+  run_within 60 run "$TMP/$1.ini" --out "$TMP/$1" --quiet
+  expect_rc "curve $1 ($2 from row $3)" 0
+}
+curve_run cflip1 flip 3
+curve_run cflip2 flip 5
+curve_run cns ns 6
+check "chain3-curves: the first flip curve's GPD at (3.23297, 2.89819), residual <= 1e-12, b from + to -" \
+  awk -F, 'function abs(x) { return x < 0 ? -x : x }
+    FNR == 1 { f++; next }
+    f == 1 && $1 == "GPD" { n++; if (abs($2 - 3.23297) < 1e-5 && abs($3 - 2.89819) < 1e-5 &&
+                                   $9 <= 1e-12) ok++ }
+    f == 2 && abs($1 - 3.2262577) < 1e-6 && $7 > 0 { before++ }
+    f == 2 && abs($1 - 3.2384795) < 1e-6 && $7 < 0 { after++ }
+    END { exit !(n == 1 && ok == 1 && before == 1 && after == 1) }' \
+  "$TMP/cflip1/points.csv" "$TMP/cflip1/curve.csv"
+check "chain3-curves: each curve ends where the itinerary changes (at least at one end)" \
+  sh -c 'for f; do grep -q "^EP,.*the itinerary changes between" "$f" || exit 1; done' _ \
+  "$TMP/cflip1/points.csv" "$TMP/cflip2/points.csv" "$TMP/cns/points.csv"
+r2=$(awk -F, '$1 == "R2" { print $2, $3, $4, $5, $9 }' "$TMP/cflip2/points.csv")
+check "chain3-curves: the second flip curve's R2 at (3.06212, 3.28270), residual <= 1e-12; the NS curve's R2? within 2e-4 of it" \
+  awk -v r2="$r2" -F, 'function abs(x) { return x < 0 ? -x : x }
+    BEGIN { split(r2, R, " ") }
+    $1 == "R2?" && abs($2 - R[1]) + abs($3 - R[2]) < 2e-4 { near++ }
+    END { exit !(abs(R[1] - 3.06212) < 1e-5 && abs(R[2] - 3.28270) < 1e-5 &&
+                 R[5] <= 1e-12 && near == 1) }' "$TMP/cns/points.csv"
+# The R2 by the fixed-point task (the map's J only): the period-4 orbit
+# at the R2's parameters has both multipliers -1, to the square root of
+# the point's accuracy (a Jordan block splits as the root of a
+# perturbation: 1e-15 gives 3e-8; within 1e-6).
+set -- $r2
+run_within 60 run "$TMP/fp.ini" --out "$TMP/fpr2" --quiet --set model.alpha="${1:-0}" \
+  --set model.beta3="${2:-0}" --set "task.d0=${3:-0} ${4:-0}"
+check "chain3-curves: at the R2 the fixed-point task's multipliers are -1, -1 (1e-6)" \
+  awk -F, 'function abs(x) { return x < 0 ? -x : x }
+    NR == 2 { split($3, m, " "); ok = $1 == 4 && abs(m[1] + 1) < 1e-6 && abs(m[2] + 1) < 1e-6 }
+    END { exit !ok }' "$TMP/fpr2/orbits.csv"
+
 # The period-4 orbit loses its stability at the upper flip (4.1656): the
 # sweep's last period-4 value is below it, its next value above, with no
 # period.

@@ -344,6 +344,38 @@ static int end_point(ntrace *T, const double *u, const char *why) {
   return emit_special(T, "EP", u, NAN, NAN, why);
 }
 
+/* The itinerary of g at u into buf ("" if the map fails there); the
+ * return value: the evaluation's slip phases (0 for a smooth map, whose
+ * itinerary is symbolic only), as the n-dimensional branch watches it. */
+static int itinerary_at(ntrace *T, const double *u, char *buf, size_t len) {
+  buf[0] = '\0';
+  if (g_eval(&T->g, u, UX(T, u), UY(T, u), SC_EVAL_ITINERARY)) return 0;
+  snprintf(buf, len, "%s", T->g.v->itinerary);
+  return T->g.v->nphases;
+}
+
+/* On an event map, whether the accepted point cur has another itinerary
+ * of g than the start's: the map is not smooth between prev and cur (a
+ * border the curve does not locate), so the direction ends at prev with
+ * a row that says so, and no test's sign change across it is located
+ * (a coefficient may jump there). */
+static int itinerary_changed(ntrace *T, const char *itin0, int *st) {
+  char itin[SC_ITIN_LEN], why[256]; /* the notes' length */
+  if (!*itin0) return 0; /* a smooth map: nothing to watch */
+  itinerary_at(T, T->cur, itin, sizeof itin);
+  if (!strcmp(itin, itin0)) return 0;
+  size_t k = 0; /* from the phase where they part */
+  while (itin[k] && itin[k] == itin0[k]) k++;
+  while (k > 0 && itin0[k - 1] != '|') k--; /* its iterate */
+  snprintf(why, sizeof why,
+           "the itinerary changes between (%.8g, %.8g) and (%.8g, %.8g) "
+           "(%s%.32s to %s%.32s): not passed",
+           UX(T, T->prev), UY(T, T->prev), UX(T, T->cur), UY(T, T->cur),
+           k ? "..." : "", itin0 + k, k ? "..." : "", itin + k);
+  *st = end_point(T, T->prev, why);
+  return 1;
+}
+
 /* The tests at the accepted point cur that changed sign since prev, each
  * located; the point's tests become the next step's (and the fold's q
  * the next reference). */
@@ -435,6 +467,8 @@ static int run(ntrace *T, int dir, int branch, sc_msg *msg) {
   }
   memcpy(T->qref, T->qnext, sizeof T->qref);
   T->have_qref = 1;
+  char itin0[SC_ITIN_LEN];
+  if (!itinerary_at(T, T->prev, itin0, sizeof itin0)) itin0[0] = '\0';
   double far = 0;
   for (;;) {
     sc_msg bm;
@@ -446,6 +480,7 @@ static int run(ntrace *T, int dir, int branch, sc_msg *msg) {
       break;
     }
     memcpy(T->cur, sc_branch_point(b), T->N * sizeof *T->cur);
+    if (itinerary_changed(T, itin0, &st)) break;
     if (sc_mapn_system_update(T->sys, T->cur, &bm))
       sc_mapn_system_init(T->sys, T->cur, &bm);
     if ((st = step_tests(T))) break;
