@@ -127,7 +127,8 @@ SC_API void sc_guard_long_eval(const sc_guard_long *g, double t, double *g0,
  *        > 0, or g'(0) = 0 < g''(0)).  A guard that starts above zero
  *        (past its event) has its root at 0.
  * @return SC_OK (found or not: out->found); SC_EINVAL for a malformed
- *         guard (non-finite coefficients, n < 0, w <= 0) or tmax not
+ *         guard (non-finite coefficients or ones whose squares overflow,
+ *         |a| > 1e154; n < 0, w <= 0) or tmax not
  *         finite and >= 0; SC_ENOCONV for a start on zero that neither
  *         rises nor falls (g' and g'' within rounding of zero) or more
  *         steps than a march can take (SC_GUARD_LONG_MAXSTEPS).
@@ -158,6 +159,7 @@ typedef struct {
   double g0, g1;    /**< g, g' at t (stage SC_MARCH_AT) */
   long steps;       /**< steps so far */
   sc_root_long root;/**< the root (stage SC_MARCH_DONE) */
+  double bounds[6]; /**< the guard's bounds, from the first call */
 } sc_guard_long_march;
 
 /**

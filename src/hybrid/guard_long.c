@@ -13,7 +13,9 @@
  * then a root (a touch: a grazing). */
 #include <float.h>
 #include <math.h>
+#include <string.h>
 
+#include "hybrid/trig.h"
 #include "slipcont/hybrid.h"
 
 /* Rounding bound on one evaluation of g: a few ulps of each term's size,
@@ -25,7 +27,8 @@ void sc_guard_long_eval(const sc_guard_long *g, double t, double *g0,
                         double *g1, double *g2) {
   double v0 = g->c0 + g->c1 * t, v1 = g->c1, v2 = 0;
   for (int k = 0; k < g->n; k++) {
-    double w = g->w[k], c = cos(w * t), s = sin(w * t);
+    double w = g->w[k], c, s;
+    sc_fast_sincos(w * t, &s, &c); /* within 2 ulps: LONG_ROUND_ULPS */
     double p = g->a[k] * c + g->b[k] * s, q = g->b[k] * c - g->a[k] * s;
     v0 += p;
     v1 += w * q;
@@ -41,12 +44,17 @@ void sc_guard_long_eval(const sc_guard_long *g, double t, double *g0,
 typedef struct {
   double M2, M3, size0, size0t, size1, size1t;
 } long_bounds;
+_Static_assert(sizeof(long_bounds) ==
+                   sizeof(((sc_guard_long_march *)0)->bounds),
+               "a march keeps its guard's bounds");
 
+/* The amplitudes are sqrt(a^2 + b^2), not hypot: a coefficient whose
+ * square overflows (|a| > 1e154) makes a bound infinite, refused. */
 static int long_bounds_make(const sc_guard_long *g, long_bounds *z) {
   *z = (long_bounds){0, 0, fabs(g->c0), fabs(g->c1), fabs(g->c1), 0};
   if (!isfinite(g->c0) || !isfinite(g->c1) || g->n < 0) return -1;
   for (int k = 0; k < g->n; k++) {
-    double w = g->w[k], amp = hypot(g->a[k], g->b[k]);
+    double w = g->w[k], amp = sqrt(g->a[k] * g->a[k] + g->b[k] * g->b[k]);
     if (!(w > 0) || !isfinite(w) || !isfinite(amp)) return -1;
     z->M2 += w * w * amp;
     z->M3 += w * w * w * amp;
@@ -55,7 +63,7 @@ static int long_bounds_make(const sc_guard_long *g, long_bounds *z) {
     z->size1 += w * amp;
     z->size1t += w * w * amp;
   }
-  return 0;
+  return isfinite(z->M3) && isfinite(z->size1t) ? 0 : -1;
 }
 
 /* The first time after a start on zero (g(t0) within rounding of 0) that
@@ -103,13 +111,15 @@ static int march_start(const sc_guard_long *g, const long_bounds *z,
 int sc_guard_long_advance(const sc_guard_long *g, double tmax, int skip_start,
                           sc_guard_long_march *m, sc_root_long *out) {
   long_bounds z;
-  if (!g || !m || long_bounds_make(g, &z) || !isfinite(tmax) || tmax < 0)
-    return SC_EINVAL;
+  if (!g || !m || !isfinite(tmax) || tmax < 0) return SC_EINVAL;
   if (m->stage == SC_MARCH_NEW) {
+    if (long_bounds_make(g, &z)) return SC_EINVAL;
+    memcpy(m->bounds, &z, sizeof z);
     m->steps = 0;
     int st = march_start(g, &z, skip_start, m);
     if (st < 0) return st;
-  }
+  } else
+    memcpy(&z, m->bounds, sizeof z);
   if (m->stage == SC_MARCH_DONE) {
     *out = m->root;
     out->steps = m->steps;
