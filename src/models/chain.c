@@ -132,7 +132,7 @@ static void chain_release(void *inst) {
   chain_inst *c = inst;
   void **bufs[] = {(void **)&c->table, (void **)&c->eager, (void **)&c->scratch,
                    (void **)&c->lwork, (void **)&c->runs, (void **)&c->slip,
-                   (void **)&c->Y, (void **)&c->TY};
+                   (void **)&c->Y, (void **)&c->TY, (void **)&c->gw};
   for (size_t i = 0; i < sizeof bufs / sizeof bufs[0]; i++) {
     free(*bufs[i]);
     *bufs[i] = NULL;
@@ -154,19 +154,24 @@ static int chain_alloc(chain_inst *c, sc_msg *msg) {
   c->scratch = malloc(((size_t)N * N + N) * sizeof(double));
   c->runs = malloc((size_t)N * sizeof *c->runs);
   c->slip = calloc(2 * (size_t)N, sizeof(int));
-  /* Y U Y0 U0 lam om P0 P1 A B cs sn mz mzp NY NU Ad: 17 N; gw ga gb: 2N each */
-  c->Y = malloc(23 * (size_t)N * sizeof(double));
+  /* Y U Y0 U0 lam om P0 P1 A B cs sn mz mzp NY NU Ad: 17 N */
+  c->Y = malloc(17 * (size_t)N * sizeof(double));
+  /* every guard of a phase at once (chain_phase.c, search_all): the
+   * re-sticks of a run of m blocks have m^2 terms, the thresholds at most
+   * 2N in all */
+  size_t gcap = (size_t)N * N + 2 * (size_t)N;
+  c->gw = malloc(3 * gcap * sizeof(double));
   c->TY = malloc(2 * (size_t)c->P * N * sizeof(double));
-  if (!c->lwork || !c->scratch || !c->runs || !c->slip || !c->Y || !c->TY)
+  if (!c->lwork || !c->scratch || !c->runs || !c->slip || !c->Y || !c->TY ||
+      !c->gw)
     return sc_fail(msg, SC_ENOMEM, "chain: out of memory for %d blocks", N);
   c->fresh = c->slip + N;
   double **v[] = {&c->U,  &c->Y0, &c->U0, &c->lam, &c->om, &c->P0,
                   &c->P1, &c->A,  &c->B,  &c->cs,  &c->sn, &c->mz,
                   &c->mzp, &c->NY, &c->NU, &c->Ad};
   for (size_t i = 0; i < sizeof v / sizeof v[0]; i++) *v[i] = c->Y + (i + 1) * N;
-  c->gw = c->Y + 17 * (size_t)N;
-  c->ga = c->gw + 2 * N;
-  c->gb = c->ga + 2 * N;
+  c->ga = c->gw + gcap;
+  c->gb = c->ga + gcap;
   c->TU = c->TY + (size_t)c->P * N;
   c->alloc_N = N;
   return N <= CHAIN_EAGER_BLOCKS ? eager_bases(c, msg) : SC_OK;

@@ -101,7 +101,7 @@ typedef struct {
   double *Y, *U, *Y0, *U0;
   double *lam, *om, *P0, *P1, *A, *B; /* per mode */
   double *cs, *sn;                    /* cos, sin of each mode at the event */
-  double *gw, *ga, *gb;               /* one guard's terms */
+  double *gw, *ga, *gb; /* the terms of a phase's guards: N^2 + 2N each */
   /* sensitivities: columns d_1..d_(N-1), then the parameters */
   int P;
   double *TY, *TU;    /* [c N + i] */

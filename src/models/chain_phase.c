@@ -18,12 +18,14 @@
 /* Two roots within this many event tolerances (atol + rtol t) are one
  * instant, as bk2 ties them (twice its tie tolerance). */
 #define CHAIN_TIE_TOLS 2.0
-/* The first round of the side-by-side march reaches one turn of a mode
- * of frequency 1 (the slowest there is): most phases end within it; each
- * round after reaches this many times further, so a phase that lasts T
- * costs its guards at most their march to about this times T. */
-#define CHAIN_FIRST_REACH CHAIN_TWO_PI
-#define CHAIN_REACH_GROWTH 4.0
+/* The side-by-side march's first round reaches an eighth of a turn of a
+ * mode of frequency 1 (the slowest there is), each round after twice as
+ * far: a phase that lasts T costs its guards their march to at most 2T
+ * (in instructions on three blocks in chaos, an eighth and twice took 15%
+ * fewer than one turn and four times, and within 1% of a quarter and
+ * 1.5 times). */
+#define CHAIN_FIRST_REACH (CHAIN_TWO_PI / 8)
+#define CHAIN_REACH_GROWTH 2.0
 
 /* --- runs and their modal data ------------------------------------- */
 
@@ -129,17 +131,19 @@ static const chain_run *run_of(const chain_inst *c, int b, int *elem) {
   return NULL;
 }
 
-/* Re-stick guard of slipping block b: U_b - Vs. */
-static void restick_guard(chain_inst *c, int b, sc_guard_long *g) {
+/* Re-stick guard of slipping block b: U_b - Vs, its terms at offset
+ * `at` of the phase's guard storage (c->ga, c->gb). */
+static void restick_guard(chain_inst *c, int b, sc_guard_long *g, size_t at) {
   int i;
   const chain_run *r = run_of(c, b, &i);
-  *g = (sc_guard_long){-c->Vs, 0, r->m, c->om + r->off, c->ga, c->gb};
+  double *ga = c->ga + at, *gb = c->gb + at;
+  *g = (sc_guard_long){-c->Vs, 0, r->m, c->om + r->off, ga, gb};
   for (int k = 0; k < r->m; k++) {
     int o = r->off + k;
     double q = r->B.Q[run_row(r, i) + (size_t)k * r->m];
     g->c0 += q * c->P1[o];
-    c->ga[k] = q * c->B[o] * c->om[o];
-    c->gb[k] = -q * c->A[o] * c->om[o];
+    ga[k] = q * c->B[o] * c->om[o];
+    gb[k] = -q * c->A[o] * c->om[o];
   }
 }
 
@@ -147,12 +151,15 @@ static void restick_guard(chain_inst *c, int b, sc_guard_long *g) {
  * - alpha (sum of the neighbours' Y); a slipping neighbour brings its
  * run's modes (a ring's run of N - 1 blocks has j on both sides and
  * brings them twice: the terms stay apart, which only loosens the
- * search's bound a little).  Returns 1 if j has a slipping neighbour. */
-static int threshold_guard(chain_inst *c, int j, sc_guard_long *g) {
+ * search's bound a little).  Its terms at offset `at` of the phase's
+ * guard storage.  Returns 1 if j has a slipping neighbour. */
+static int threshold_guard(chain_inst *c, int j, sc_guard_long *g,
+                           size_t at) {
   int nb[2], nn = chain_neighbours(c, j, nb), osc = 0;
   double al = c->alpha, gain = 1 + al * chain_degree(c, j);
-  *g = (sc_guard_long){gain * c->Y0[j] - c->T[j], gain * c->Vs, 0, c->gw,
-                       c->ga, c->gb};
+  double *gw = c->gw + at, *ga = c->ga + at, *gb = c->gb + at;
+  *g = (sc_guard_long){gain * c->Y0[j] - c->T[j], gain * c->Vs, 0, gw, ga,
+                       gb};
   for (int q = 0; q < nn; q++) {
     int n = nb[q], i;
     if (!c->slip[n]) {
@@ -167,9 +174,9 @@ static int threshold_guard(chain_inst *c, int j, sc_guard_long *g) {
       double w = -al * r->B.Q[run_row(r, i) + (size_t)k * r->m];
       g->c0 += w * c->P0[o];
       g->c1 += w * c->P1[o];
-      c->gw[g->n] = c->om[o];
-      c->ga[g->n] = w * c->A[o];
-      c->gb[g->n] = w * c->B[o];
+      gw[g->n] = c->om[o];
+      ga[g->n] = w * c->A[o];
+      gb[g->n] = w * c->B[o];
       g->n++;
     }
   }
@@ -251,26 +258,25 @@ static double search_lim(const chain_inst *c, const chain_search *S,
   return fmin(S->H, L);
 }
 
-/* The guard of block b: a stuck block's threshold, a slipping block's
- * re-stick; returns whether it has sinusoids (a threshold may not). */
-static int guard_of(chain_inst *c, int b, sc_guard_long *g) {
-  if (c->slip[b]) {
-    restick_guard(c, b, g);
-    return 1;
-  }
-  return threshold_guard(c, b, g);
-}
+/* The guards marched in a phase: block, guard (its terms in the phase's
+ * guard storage), march, and how far it has been marched. */
+typedef struct {
+  int n;
+  int block[CHAIN_MAXBLOCKS];
+  sc_guard_long g[CHAIN_MAXBLOCKS];
+  sc_guard_long_march m[CHAIN_MAXBLOCKS];
+  double reached[CHAIN_MAXBLOCKS];
+} chain_marches;
 
-/* March block b's guard (rebuilt: the same terms) from where m stands up
- * to lim, and record its root. */
-static int advance_guard(chain_inst *c, int b, sc_guard_long_march *m,
-                         double lim, chain_search *S, sc_msg *msg) {
-  sc_guard_long g;
-  int kind = c->slip[b] ? CHAIN_RESTICK : CHAIN_THRESHOLD;
-  guard_of(c, b, &g);
+/* March guard i from where it stands up to lim, and record its root. */
+static int advance_guard(chain_inst *c, chain_marches *M, int i, double lim,
+                         chain_search *S, sc_msg *msg) {
+  int b = M->block[i], kind = c->slip[b] ? CHAIN_RESTICK : CHAIN_THRESHOLD;
   sc_root_long r;
-  int st = sc_guard_long_advance(&g, lim, kind == CHAIN_RESTICK && c->fresh[b],
-                                 m, &r);
+  int st = sc_guard_long_advance(&M->g[i], lim,
+                                 kind == CHAIN_RESTICK && c->fresh[b], &M->m[i],
+                                 &r);
+  M->reached[i] = lim;
   /* the guards are built from finite parameters, so a refused one has
    * overflowed: a state far too large (Newton's steps can go there) */
   if (st)
@@ -281,44 +287,55 @@ static int advance_guard(chain_inst *c, int b, sc_guard_long_march *m,
                    st == SC_EINVAL ? "its terms overflow: a state too large"
                                    : "a start on zero, or too many steps");
   /* found once: a march over is not advanced again */
-  if (r.found) record(S, kind, b, r.t, r.slope, root_spread(&g, r.t, r.slope));
+  if (r.found)
+    record(S, kind, b, r.t, r.slope, root_spread(&M->g[i], r.t, r.slope));
   return SC_OK;
 }
 
+/* Keep guard g of block b for the march unless it can never fire. */
+static void keep(chain_marches *M, int b, const sc_guard_long *g,
+                 size_t *at) {
+  if (never_zero(g)) return;
+  M->block[M->n] = b;
+  M->g[M->n] = *g;
+  M->m[M->n].stage = SC_MARCH_NEW;
+  M->reached[M->n++] = -1;
+  *at += (size_t)g->n;
+}
+
 /* Every guard of the phase.  Thresholds of blocks between stuck ones are
- * linear: their roots come first, in closed form.  The others are
- * marched side by side (sc_guard_long_advance()) in rounds reaching
- * CHAIN_FIRST_REACH, then CHAIN_REACH_GROWTH times further each round,
- * until a root is found; then every guard only up to that root's instant.
- * A guard that never fires before the phase ends is so marched no
- * further than the phase's end, not to the horizon.  Each guard's root
- * is the one a search of it alone finds. */
+ * linear: their roots come first, in closed form.  The others are built
+ * once and marched side by side (sc_guard_long_advance()) in rounds
+ * reaching CHAIN_FIRST_REACH, then CHAIN_REACH_GROWTH times further each
+ * round, until a root is found; then every guard only up to that root's
+ * instant.  A guard that never fires before the phase ends is so marched
+ * not much further than the phase's end, not to the horizon.  Each
+ * guard's root is the one a search of it alone finds. */
 static int search_all(chain_inst *c, chain_search *S, sc_msg *msg) {
+  chain_marches M;
   sc_guard_long g;
-  sc_guard_long_march mk[CHAIN_MAXBLOCKS];
-  int N = c->N, list[CHAIN_MAXBLOCKS], nl = 0, st = SC_OK;
-  double reached[CHAIN_MAXBLOCKS];
+  int N = c->N, st = SC_OK;
+  size_t at = 0;
+  M.n = 0;
   /* thresholds (linear ones recorded), then re-sticks of blocks that
    * slipped before, then fresh blocks' (their start on zero skipped) */
   for (int j = 0; j < N; j++)
     if (!c->slip[j]) {
-      if (!threshold_guard(c, j, &g)) linear_threshold(&g, j, S);
-      else if (!never_zero(&g)) list[nl++] = j;
+      if (!threshold_guard(c, j, &g, at)) linear_threshold(&g, j, S);
+      else keep(&M, j, &g, &at);
     }
   for (int pass = 0; pass < 2; pass++)
     for (int b = 0; b < N; b++)
       if (c->slip[b] && c->fresh[b] == pass) {
-        restick_guard(c, b, &g);
-        if (!never_zero(&g)) list[nl++] = b;
+        restick_guard(c, b, &g, at);
+        keep(&M, b, &g, &at);
       }
-  for (int i = 0; i < nl; i++) mk[i].stage = SC_MARCH_NEW, reached[i] = -1;
   for (double L = CHAIN_FIRST_REACH;; L *= CHAIN_REACH_GROWTH) {
     int final = S->best < HUGE_VAL;
-    for (int i = 0; i < nl && !st; i++) {
+    for (int i = 0; i < M.n && !st; i++) {
       double lim = search_lim(c, S, L);
-      if (mk[i].stage == SC_MARCH_DONE || reached[i] >= lim) continue;
-      st = advance_guard(c, list[i], &mk[i], lim, S, msg);
-      reached[i] = lim;
+      if (M.m[i].stage != SC_MARCH_DONE && M.reached[i] < lim)
+        st = advance_guard(c, &M, i, lim, S, msg);
     }
     /* with a root found in this round: one more, up to its instant */
     if (st || final || (S->best == HUGE_VAL && L >= S->H)) return st;
@@ -526,8 +543,9 @@ int chain_phase(chain_inst *c, int deriv, chain_event *ev, int *nev,
 /* --- for the borders (chain_border.c) --------------------------------- */
 
 void chain_guard_of(chain_inst *c, int kind, int block, sc_guard_long *g) {
-  if (kind == CHAIN_RESTICK) restick_guard(c, block, g);
-  else threshold_guard(c, block, g);
+  /* at the start of the phase's guard storage: the search is over */
+  if (kind == CHAIN_RESTICK) restick_guard(c, block, g, 0);
+  else threshold_guard(c, block, g, 0);
 }
 
 void chain_guard_sens(chain_inst *c, int kind, int block, double t,
