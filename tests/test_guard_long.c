@@ -2,6 +2,7 @@
  * (sc_guard_long_first_root(), hybrid.h): roots in closed form, a start
  * on zero skipped, a touch found and a near miss passed, a guard of five
  * incommensurate frequencies against a dense scan, and the refusals. */
+#include <float.h>
 #include <math.h>
 
 #include "slipcont/hybrid.h"
@@ -132,6 +133,55 @@ static void resumed(void) {
   }
 }
 
+/* One sinusoid without drift has its root in closed form; the same
+ * guard written as two halves of the same frequency is marched: both give
+ * the same root (simple roots to 1e-12 of the period plus rounding over
+ * the slope; touches found alike), on random guards, starts on zero
+ * (skipped) included. */
+static void closed_form_vs_march(void) {
+  unsigned long s = 99;
+  int touches = 0, found = 0;
+  for (int k = 0; k < 2000; k++) {
+    double u[5];
+    for (int i = 0; i < 5; i++) {
+      s = s * 6364136223846793005UL + 1442695040888963407UL;
+      u[i] = (double)(s >> 11) / 9007199254740992.0;
+    }
+    double w[2] = {0.5 + 3 * u[0], 0}, a[2] = {u[1] - 0.5, 0},
+           b[2] = {u[2] - 0.5, 0}, R = sqrt(a[0] * a[0] + b[0] * b[0]);
+    double c0 = -R * (0.2 + 1.1 * u[3]);
+    int skip = 0;
+    if (k % 4 == 1) c0 = -a[0], skip = 1;  /* a start on zero */
+    if (k % 4 == 2) c0 = -R * (1 - 1e-17); /* tops within rounding */
+    w[1] = w[0], a[1] = a[0] / 2, b[1] = b[0] / 2;
+    double ah[1] = {a[0] / 2}, bh[1] = {b[0] / 2};
+    sc_guard_long one = {c0, 0, 1, w, a, b};
+    double a2[2] = {ah[0], ah[0]}, b2[2] = {bh[0], bh[0]};
+    sc_guard_long two = {c0, 0, 2, w, a2, b2};
+    sc_root_long r1, r2;
+    int s1 = sc_guard_long_first_root(&one, 50, skip, &r1);
+    int s2 = sc_guard_long_first_root(&two, 50, skip, &r2);
+    tu_int("closed form: status as the march's", s1, s2);
+    if (s1 || s2) continue;
+    tu_true(r1.found == r2.found, "guard %d: found %d, marched %d", k,
+            r1.found, r2.found);
+    if (!r1.found || !r2.found) continue;
+    found++;
+    /* a root near a top is known to rounding over the slope */
+    double tol = r1.tangent || r2.tangent
+                     ? 1e-6
+                     : 1e-12 * 6.3 / w[0] + 64 * DBL_EPSILON * R / fabs(r2.slope);
+    touches += r2.tangent;
+    tu_true(fabs(r1.t - r2.t) <= tol,
+            "guard %d (c0 %g, R %g, w %g, skip %d): root %.17g, marched "
+            "%.17g", k, c0, R, w[0], skip, r1.t, r2.t);
+    tu_true(r1.tangent == r2.tangent, "guard %d: tangent %d, marched %d", k,
+            r1.tangent, r2.tangent);
+  }
+  printf("closed form vs march: %d roots, %d touches\n", found, touches);
+  tu_true(found > 1000 && touches > 100, "the cases are exercised");
+}
+
 static void refusals(void) {
   double w0[1] = {0}, a1[1] = {1}, wn[1] = {1}, an[1] = {NAN};
   sc_guard_long g = {-1, 0, 1, w0, a1, a1};
@@ -151,6 +201,7 @@ int main(void) {
   closed_forms();
   against_scan();
   resumed();
+  closed_form_vs_march();
   refusals();
   return tu_finish();
 }

@@ -142,7 +142,9 @@ enum {
   SC_MARCH_NEW = 0, /**< not started: set this before the first call */
   SC_MARCH_TO,      /**< g still to be evaluated at t */
   SC_MARCH_AT,      /**< g0, g1 are g, g' at t */
-  SC_MARCH_DONE     /**< over: the root in root */
+  SC_MARCH_DONE,    /**< over: the root in root */
+  SC_MARCH_KNOWN    /**< the root (t = HUGE_VAL: none) is known, in root,
+                         and past every tmax so far */
 };
 
 /**

@@ -22,6 +22,7 @@
  * the sinusoids' arguments w t included (their rounding grows with t),
  * as guard.c's GUARD_ROUND_ULPS. */
 #define LONG_ROUND_ULPS 8.0
+#define LONG_TWO_PI 6.28318530717958647692
 
 void sc_guard_long_eval(const sc_guard_long *g, double t, double *g0,
                         double *g1, double *g2) {
@@ -108,6 +109,34 @@ static int march_start(const sc_guard_long *g, const long_bounds *z,
   return 0;
 }
 
+/* A guard of one sinusoid and no drift, c0 + R cos(w t - phi), has its
+ * roots in closed form: from a point t0 where it is below zero (the start,
+ * or where a start on zero was left), the first root is the first
+ * rising crossing w t = phi - acos(-c0 / R) + 2 pi k at or after t0, or,
+ * when the top c0 + R is at or below zero but within rounding of it, the
+ * first top at or after t0 (a touch).  The march would take ~5 steps to
+ * the same root (within rounding).  The root goes into m->root, known
+ * (stage SC_MARCH_KNOWN) until a tmax reaches it; t = HUGE_VAL for none. */
+static void one_term(const sc_guard_long *g, const long_bounds *z,
+                     sc_guard_long_march *m) {
+  const double ulp = LONG_ROUND_ULPS * DBL_EPSILON, two_pi = LONG_TWO_PI;
+  double w = g->w[0], R = z->size0 - fabs(g->c0), t0 = m->t;
+  double phi = sc_atan2(g->b[0], g->a[0]), x = -g->c0 / R;
+  /* the first angle base + 2 pi k at or after w t0 */
+  double base = phi, top = 1;
+  if (x < 1) base = phi - acos(fmax(x, -1.0)), top = 0;
+  double k = ceil((w * t0 - base) / two_pi), t = (base + two_pi * k) / w;
+  while (t < t0) t = (base + two_pi * ++k) / w;
+  double r0 = ulp * (z->size0 + z->size0t * t);
+  double slope = top ? 0 : w * R * sqrt(fmax(1 - x * x, 0.0));
+  int found = !top || g->c0 + R >= -r0;
+  double r1 = ulp * (z->size1 + z->size1t * t);
+  int touch = top || slope <= r1 + sqrt(2 * r0 * z->M2);
+  m->root = (sc_root_long){found, touch, found ? t : HUGE_VAL, slope, 1};
+  m->steps = 1;
+  m->stage = SC_MARCH_KNOWN;
+}
+
 int sc_guard_long_advance(const sc_guard_long *g, double tmax, int skip_start,
                           sc_guard_long_march *m, sc_root_long *out) {
   long_bounds z;
@@ -118,8 +147,25 @@ int sc_guard_long_advance(const sc_guard_long *g, double tmax, int skip_start,
     m->steps = 0;
     int st = march_start(g, &z, skip_start, m);
     if (st < 0) return st;
+    /* the closed form from below zero, or from a start on zero left
+     * falling or at a top; the march's own ways elsewhere: a start above
+     * zero is a root at once, and one rising from zero (skipped) is above
+     * it where the march resumes, a root there */
+    const double r = LONG_ROUND_ULPS * DBL_EPSILON;
+    if (g->n == 1 && g->c1 == 0 &&
+        (m->stage == SC_MARCH_TO ? m->g1 <= r * z.size1
+                                 : m->stage == SC_MARCH_AT &&
+                                       m->g0 < -r * z.size0))
+      one_term(g, &z, m);
   } else
     memcpy(&z, m->bounds, sizeof z);
+  if (m->stage == SC_MARCH_KNOWN) {
+    if (!(m->root.t <= tmax)) {
+      *out = (sc_root_long){0, 0, tmax, NAN, m->steps};
+      return SC_OK;
+    }
+    m->stage = SC_MARCH_DONE;
+  }
   if (m->stage == SC_MARCH_DONE) {
     *out = m->root;
     out->steps = m->steps;
