@@ -12,7 +12,10 @@
 # points of fig 5.12 within 1e-7, each by Newton: a grazing met from the
 # side where its guard fires too (its system ends a slip phase at the
 # guard's maximum, a code the numerical flows follow since they strip the
-# flag "at its maximum" from the event's guard, as the exact flows do).
+# flag "at its maximum" from the event's guard, as the exact flows do),
+# and fig 5.8's period-16 switchings by multiple shooting
+# (tests/scenes/branch-ms16.ini; the whole of fig 5.8 with
+# SLIPCONT_FULL_NUMERICAL=1).
 # Usage: sh tests/branch_presets.sh PATH/TO/slipcont SOURCE_DIR
 . "$(dirname "$0")/cli_common.sh"
 

@@ -40,11 +40,11 @@
  * (as branch_border.c's BORDER_NOISE_ULPS). */
 #define MS_NOISE_ULPS 256.0
 
-int sc_ob_ms_wanted(const sc_orbit_branch *b, int period, double mult) {
+int sc_ob_ms_wanted(const sc_orbit_branch *b, int period, double d,
+                    double mult) {
   double prec = sc_map_precision(b->m);
   if (!(prec > 0) || period < 2) return 0;
-  double x = 0;
-  return prec * fabs(mult) > MS_SWITCH_ORBIT_TOLS * sc_orbit_tol(&b->acc, x);
+  return prec * fabs(mult) > MS_SWITCH_ORBIT_TOLS * sc_orbit_tol(&b->acc, d);
 }
 
 /* The per-iterate values at u into S->ms_val: f, f' and f_p of iterate

@@ -204,9 +204,10 @@ int sc_ob_run_segment(sc_orbit_branch *b, const job *jb, int branch,
 /* branch_ms.c: segments by multiple shooting ---------------------- */
 
 /* Whether a segment of a model with borders whose period-`period` orbit
- * has multiplier `mult` is continued by multiple shooting (the switch
- * criterion, see branch_ms.c). */
-int sc_ob_ms_wanted(const sc_orbit_branch *b, int period, double mult);
+ * through d has multiplier `mult` is continued by multiple shooting (the
+ * switch criterion, see branch_ms.c). */
+int sc_ob_ms_wanted(const sc_orbit_branch *b, int period, double d,
+                    double mult);
 /* The continuation problem of the multiple-shooting system on b->ctx's
  * codes and the segment's scratch; SC_OK or SC_ENOMEM. */
 int sc_ob_ms_problem(sc_orbit_branch *b, segment *S, sc_cont_problem *pb,

@@ -197,7 +197,7 @@ static int segment_start(sc_orbit_branch *b, segment *S, sc_cont_problem *pb,
                                    SC_EVAL_DERIV | SC_EVAL_ITINERARY, &v, msg);
   if (st) return st;
   for (int i = 0; forced && i < period; i++) forced = b->codes[i].n > 0;
-  int ms = forced && sc_ob_ms_wanted(b, period, v.dfdd) &&
+  int ms = forced && sc_ob_ms_wanted(b, period, jb->d, v.dfdd) &&
            ms_start_orbit(b, period, jb, &v);
   b->ctx = (g_ctx){.m = m, .param = b->sp.param, .period = period,
                    .force = forced ? b->codes : NULL,
