@@ -11,6 +11,8 @@
  * - bk2, driver frozen, beta = 3.2 (fig 5.12): a crossing-sliding after
  *   which the branch goes on with period 1, a grazing-sliding, the
  *   period-3 fold; each DIB's degeneracy recomputed at the located point.
+ * - sc_map_iterate_points (branch segments by multiple shooting) against
+ *   sc_map_iterate_ex at the iterates of one point.
  *
  * Tolerances: special points are located until the arclength step is
  * within 1e-13 (1 + |u|) and |test function| <= 1e-8 (the continuation
@@ -476,6 +478,68 @@ static void test_collapse(void) {
   sc_map_free(m);
 }
 
+/* sc_map_iterate_points (multiple shooting's evaluation) against
+ * sc_map_iterate_ex: at the iterates of one point it chains to the same
+ * f^8 bit for bit (the same products in the same order), and its
+ * borders, whose derivatives are in their own iterate's point, chained
+ * by hand give sc_map_iterate_ex's within rounding (1e-12 relative). */
+static void test_iterate_points(void) {
+  printf("--- sc_map_iterate_points: f^8 iterate by iterate (fig 5.8)\n");
+  sc_map *m = bk2_frozen(2.5);
+  size_t ia = (size_t)sc_map_param_index(m, "alpha");
+  sc_map_set_param(m, ia, 3.25, NULL);
+  enum { N = 8 };
+  double x[N], each[3 * N], pre[N], prep[N];
+  x[0] = 0.2;
+  for (int k = 1; k < N; k++) {
+    sc_map_value w;
+    sc_map_eval(m, x[k - 1], SC_EVAL_VALUE, &w, NULL);
+    x[k] = w.f;
+  }
+  sc_itin_code codes[N];
+  sc_border b1[256], b2[256];
+  sc_border_list l1 = {b1, 256, 0}, l2 = {b2, 256, 0};
+  sc_map_value v1, v2;
+  unsigned fl = SC_EVAL_DERIV | SC_EVAL_ITINERARY;
+  int st = sc_map_iterate_ex(m, x[0], N, fl, NULL, codes, &l1, &v1, NULL);
+  if (!st)
+    st = sc_map_iterate_points(m, x, N, fl, codes, NULL, ia, &l2, each, &v2,
+                               NULL);
+  tu_int("both evaluate", st, SC_OK);
+  if (st) {
+    sc_map_free(m);
+    return;
+  }
+  tu_true(v1.f == v2.f && v1.dfdd == v2.dfdd && v1.dfdp[ia] == v2.dfdp[ia] &&
+              strcmp(v1.itinerary, v2.itinerary) == 0,
+          "f^8, (f^8)', d f^8/d alpha and itinerary bit for bit (%.17g %.17g)",
+          v2.f, v2.dfdd);
+  double prod = 1, dp = 0;
+  for (int k = 0; k < N; k++) {
+    pre[k] = prod, prep[k] = dp; /* d x_k / d x_0 and d x_k / d alpha */
+    dp = each[3 * k + 1] * dp + each[3 * k + 2];
+    prod *= each[3 * k + 1];
+  }
+  tu_true(prod == v2.dfdd && each[3 * (N - 1)] == v2.f,
+          "each iterate's f and f' chain to the same value");
+  tu_int("the same borders", (long)l2.n, (long)l1.n);
+  double worst = 0;
+  int same = 0;
+  for (size_t i = 0; i < l1.n && i < l1.cap && i < l2.n; i++) {
+    const sc_border *a = &b1[i], *c = &b2[i];
+    int k = c->iterate;
+    same += a->iterate == k && a->value == c->value &&
+            strcmp(a->name, c->name) == 0;
+    double dd = c->dd * pre[k], dpa = c->dp[ia] + c->dd * prep[k];
+    worst = fmax(worst, fabs(dd - a->dd) / (1 + fabs(a->dd)));
+    worst = fmax(worst, fabs(dpa - a->dp[ia]) / (1 + fabs(a->dp[ia])));
+  }
+  tu_int("borders of the same iterate, name and value", same, (long)l1.n);
+  tu_close("borders' derivatives chained by hand (worst relative)", worst, 0,
+           1e-12);
+  sc_map_free(m);
+}
+
 int main(void) {
   setvbuf(stdout, NULL, _IOLBF, 0);
   test_logistic();
@@ -483,5 +547,6 @@ int main(void) {
   test_collapse();
   test_fig512();
   test_errors();
+  test_iterate_points();
   return tu_finish();
 }
