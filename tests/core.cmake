@@ -46,6 +46,13 @@ sc_add_test(test_chain_data)
 # The chain's second and third derivatives against differences and bk2.
 sc_add_test(test_chain_jet)
 sc_add_test(test_guard_long)
+# The event catalogue: two blocks against bk2, the energy balance, seeds,
+# the example of 100 blocks, the refusals (about 3 s of processor time;
+# the limit is for a hang on a loaded machine).
+add_test(NAME chain_catalogue
+  COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/chain_catalogue.sh
+          $<TARGET_FILE:slipcont_cli> ${PROJECT_SOURCE_DIR})
+set_tests_properties(chain_catalogue PROPERTIES TIMEOUT 300)
 # The chain through the program: two blocks give bk2's orbits.
 add_test(NAME chain_cli
   COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/chain_cli.sh

@@ -258,6 +258,25 @@ SC_API int sc_map_eval_n(sc_map *m, const double *x, unsigned flags,
 SC_API int sc_map_iterate_n(sc_map *m, const double *x, int k, unsigned flags,
                             sc_mapn_value *out, sc_msg *msg);
 
+/** 1 if the model of @p m records slip events (sc_map_eval_event():
+ * the chain), else 0. */
+SC_API int sc_map_has_events(const sc_map *m);
+
+/**
+ * @brief One iterate at @p x as sc_map_eval_n(), with what its slip did
+ * block by block (start block, blocks that slipped, each one's slip, the
+ * energy released, the work of friction and of the driver, the slip's
+ * duration and the global stick phase after it) into @p ev.
+ * @param flags SC_EVAL_VALUE or SC_EVAL_ITINERARY (no derivatives).
+ * @return as sc_map_eval_n(); SC_EINVAL for a model without slip events
+ *         (sc_map_has_events()), for derivatives in @p flags, or storage
+ *         of another dimension.  @p ev is filled only on SC_OK.
+ * Thread safety: as sc_map_eval_n() (one map per thread).
+ */
+SC_API int sc_map_eval_event(sc_map *m, const double *x, unsigned flags,
+                             sc_mapn_value *out, sc_slip_event *ev,
+                             sc_msg *msg);
+
 /* ------------------------------------------------------------------ */
 /* Borders of n-dimensional maps                                       */
 

@@ -293,6 +293,38 @@ typedef struct {
   size_t n;      /**< borders of the evaluation (may exceed cap) */
 } sc_bordern_list;
 
+/** Most blocks a slip event record describes (the chain's largest N). */
+#define SC_EVENT_MAXBLOCKS 256
+
+/**
+ * What one iterate of a stick-slip map of many blocks did, block by block:
+ * one slip event, from the end of one global stick phase to the start of
+ * the next (sc_map_eval_event(); docs/chain.md, "Event catalogue").
+ * Dimensionless as the model: lengths in block 1's threshold over the
+ * driving spring's stiffness, energies in that length squared times it.
+ */
+typedef struct {
+  int nblocks;     /**< blocks of the model (entries of bslip) */
+  int first;       /**< the block that started the slip, from 1 (the
+                        last of blocks that start together, as the map) */
+  int nslipped;    /**< blocks that slipped during it */
+  double duration; /**< the slip's length in time (its phases together) */
+  double stick;    /**< the global stick phase after it: its length
+                        (HUGE_VAL when the driver stands, V = 0) */
+  double slip;     /**< total slip: the sum of bslip */
+  double released; /**< elastic energy released: E(start) - E(end), E the
+                        energy of every spring */
+  double friction; /**< energy dissipated by friction, sum K_i bslip_i */
+  double driver;   /**< work done by the driver during the slip; energy
+                        balance: released = friction - driver */
+  /** each block's slip, its displacement relative to the surface
+   * (0 for a block that stayed stuck) */
+  double bslip[SC_EVENT_MAXBLOCKS];
+  /** 1 for each block that slipped (a block may slip by 0 in a phase of
+   * zero length) */
+  unsigned char slipped[SC_EVENT_MAXBLOCKS];
+} sc_slip_event;
+
 /**
  * The model interface.  `inst` is a model-owned block of `inst_size`
  * bytes (zeroed before init); `p` holds the parameter values in table
@@ -377,6 +409,11 @@ typedef struct sc_model_type {
    * options, e.g. a list of the wrong length).  May be NULL. */
   int (*data_params)(void *inst, const int *opt, double *p,
                      unsigned char *which, sc_msg *msg);
+  /** One iterate as eval_n() that also records what the slip did into
+   * @p ev (sc_map_eval_event()); NULL for a model without slip events.
+   * Recording costs only the calls that ask for it. */
+  int (*eval_event)(void *inst, const double *x, unsigned flags,
+                    sc_mapn_value *out, sc_slip_event *ev, sc_msg *msg);
   /** Continuous motion (see sc_map_trajectory()); NULL if none. */
   int (*trajectory)(void *inst, double d, int iterations, double dtau,
                     int (*fn)(void *, double, const double *, int),

@@ -76,7 +76,9 @@ static const field_info fields[] = {
            "relative step of finite-difference cross-checks"),
     FIELD_(period_rtol, "period-rtol", 0, DBL_EPSILON, 1e-1,
            "period detection: tolerance relative to the spread of the orbit"),
-    FIELD_(max_events, "max-events", 1, 2, 4096,
+    /* no storage is sized by it: long chains' large slips take 10^4 to
+     * 10^5 phases (docs/chain.md, "Event catalogue") */
+    FIELD_(max_events, "max-events", 1, 2, 10000000,
            "slip phases in one iterate before the map is declared undefined (a count)"),
 };
 #define NFIELDS (sizeof fields / sizeof fields[0])

@@ -14,3 +14,5 @@ list(APPEND SC_CLI_SOURCES src/cli/task_chart.c src/cli/progress.c $<$<BOOL:${SL
 list(APPEND SC_CLI_SOURCES src/cli/task_fixed_point.c src/cli/task_branch.c
   src/cli/task_fixed_point_n.c src/cli/task_branch_n.c)
 list(APPEND SC_CLI_SOURCES src/cli/task_curve.c src/cli/task_curve_n.c)
+list(APPEND SC_CLI_SOURCES src/cli/task_catalogue.c src/cli/catalogue_mf.c
+  $<$<BOOL:${SLIPCONT_MPI}>:src/cli/mpi_catalogue.c>)

@@ -11,7 +11,8 @@
   X(chart)                  \
   X(fixed_point) X(branch)  \
   X(sweep)                  \
-  X(curve)
+  X(curve)                  \
+  X(catalogue)
 
 #define SC_CLI_TASK_DECLARE_(name) extern const sc_cli_task sc_cli_task_##name;
 SC_CLI_TASK_LIST(SC_CLI_TASK_DECLARE_)

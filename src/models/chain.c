@@ -340,6 +340,7 @@ int chain_eval_n(void *inst, const double *d, unsigned flags,
     int st = chain_log_start(c, msg);
     if (st) return st;
   }
+  if (c->rec) chain_rec_begin(c);
   out->nphases = 0;
   out->itinerary[0] = '\0';
   for (int ph = 0; ph < c->acc.max_events; ph++) {
@@ -348,6 +349,7 @@ int chain_eval_n(void *inst, const double *d, unsigned flags,
                                    : chain_phase(c, deriv, ev, &nev, msg);
     if (st) return st;
     if (jet) chain_log_phase(c, ev, nev);
+    if (c->rec) chain_rec_phase(c, ev[0].t);
     out->nphases++;
     for (int i = 0; i < N; i++) c->fresh[i] = 0;
     /* re-sticks first, together */
@@ -363,6 +365,7 @@ int chain_eval_n(void *inst, const double *d, unsigned flags,
       }
     for (int i = 0; i < N; i++) left += c->slip[i];
     if (!left) {
+      if (c->rec) chain_rec_end(c);
       write_out(c, flags, out);
       return jet ? chain_jet_fill(c, d, out, msg) : SC_OK;
     }
@@ -396,4 +399,5 @@ const sc_model_type sc_model_chain = {
     .data = chain_data_info,
     .set_data = chain_set_data,
     .data_params = chain_data_params,
+    .eval_event = chain_eval_event,
 };

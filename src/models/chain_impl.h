@@ -78,9 +78,14 @@ int chain_data_params(void *inst, const int *opt, double *p,
  * (chain_jet.c). */
 typedef struct chain_log chain_log;
 
+/* The record of one slip event while it is evaluated (chain_events.c);
+ * NULL in the plain map. */
+typedef struct chain_rec chain_rec;
+
 typedef struct {
   int N, ring, frozen;
   chain_data data;
+  chain_rec *rec;
   int vw;        /* friction = velocity-weakening */
   int numerical; /* flows = numerical (always with velocity weakening) */
   double alpha, phi, v, Vs, gamma;
@@ -223,5 +228,15 @@ void chain_log_phase(chain_inst *c, const chain_event *ev, int nev);
 int chain_jet_fill(chain_inst *c, const double *x, sc_mapn_value *out,
                    sc_msg *msg);
 void chain_log_free(chain_inst *c);
+
+/* The slip-event record (chain_events.c), called by the event loop only
+ * when c->rec is set: after the onset, after each phase (its length t,
+ * before its re-sticks are applied), at the global stick phase. */
+void chain_rec_begin(chain_inst *c);
+void chain_rec_phase(chain_inst *c, double t);
+void chain_rec_end(chain_inst *c);
+/* The model's eval_event (models.h). */
+int chain_eval_event(void *inst, const double *x, unsigned flags,
+                     sc_mapn_value *out, sc_slip_event *ev, sc_msg *msg);
 
 #endif
