@@ -216,27 +216,39 @@ typedef struct {
   chain_inst *c;
   const chain_log *L;
   int ne;                /* tangents: the n state components, then the
-                            parameters in table order */
+                            parameters that act */
+  int pe[CHAIN_NPARAM];  /* parameter q's tangent, -1 if it does not act */
   cjet al, Vs;           /* alpha, the surface speed during slips */
   cjet *T, *K, *Y, *U, *Y0, *U0, *Ac, *F0, *F1;    /* per block */
   cjet *lam, *om, *P0, *P1, *A, *B, *z, *zp, *zpp; /* per mode */
   cjet *f;                                          /* the map's value */
 } jreplay;
 
+/* Whether parameter q acts on the map (its other derivatives are 0):
+ * gamma never under Coulomb friction, v not with the driver frozen, the
+ * thresholds of blocks the chain does not have. */
+static int acts(const chain_inst *c, int q) {
+  if (q == P_GAMMA) return 0;
+  if (q == P_V) return !c->frozen;
+  if (q >= P_BETA2) return q - P_BETA2 + 1 < c->N;
+  return 1;
+}
+
 static void j_bind(jreplay *R, chain_inst *c) {
-  int N = c->N, n = N - 1, ne = n + CHAIN_NPARAM;
+  int N = c->N, n = N - 1, ne = n;
+  for (int q = 0; q < CHAIN_NPARAM; q++) R->pe[q] = acts(c, q) ? ne++ : -1;
   cjet **v[] = {&R->T,  &R->K,  &R->Y,  &R->U,  &R->Y0, &R->U0, &R->Ac,
                 &R->F0, &R->F1, &R->lam, &R->om, &R->P0, &R->P1, &R->A,
                 &R->B,  &R->z,  &R->zp, &R->zpp, &R->f};
   for (size_t i = 0; i < sizeof v / sizeof v[0]; i++)
     *v[i] = c->log->jets + i * (size_t)N;
   R->c = c, R->L = c->log, R->ne = ne;
-  R->al = cj_var(c->alpha, n + P_ALPHA, 0);
-  R->Vs = c->frozen ? cj_const(0) : cj_var(c->v, n + P_V, 0);
-  cjet phi = cj_var(c->phi, n + P_PHI, 0), iphi = cj_inv(phi, ne);
+  R->al = cj_var(c->alpha, R->pe[P_ALPHA], 0);
+  R->Vs = c->frozen ? cj_const(0) : cj_var(c->v, R->pe[P_V], 0);
+  cjet phi = cj_var(c->phi, R->pe[P_PHI], 0), iphi = cj_inv(phi, ne);
   for (int i = 0; i < N; i++) {
     R->T[i] = i > 0 && i < CHAIN_PARAM_BLOCKS
-                  ? cj_var(c->T[i], n + P_BETA2 + i - 1, 0)
+                  ? cj_var(c->T[i], R->pe[P_BETA2 + i - 1], 0)
                   : cj_const(c->T[i]);
     R->K[i] = cj_mul(R->T[i], iphi, ne);
   }
@@ -301,41 +313,72 @@ static void j_modes(jreplay *R, const chain_run *r) {
   }
 }
 
+/* Mode o at time tau of the phase: z, z' and z'' into R->z, R->zp,
+ * R->zpp. */
+static void j_mode_at(jreplay *R, int o, const cjet *tau) {
+  int ne = R->ne;
+  cjet sn, cs;
+  cj_sincos(cj_mul(R->om[o], *tau, ne), ne, &sn, &cs);
+  cjet osc = cj_add(cj_mul(R->A[o], cs, ne), cj_mul(R->B[o], sn, ne), ne);
+  cjet rot = cj_sub(cj_mul(R->B[o], cs, ne), cj_mul(R->A[o], sn, ne), ne);
+  R->z[o] = cj_add(cj_add(R->P0[o], cj_mul(R->P1[o], *tau, ne), ne), osc, ne);
+  R->zp[o] = cj_add(R->P1[o], cj_mul(R->om[o], rot, ne), ne);
+  R->zpp[o] = cj_scale(cj_mul(R->lam[o], osc, ne), -1, ne);
+}
+
+/* Element i (block b) of run r from its modes' z, z', z''. */
+static void j_project(jreplay *R, const chain_run *r, int i, int b) {
+  int m = r->m, ne = R->ne;
+  cjet y = cj_const(0), v = y, a = y;
+  for (int k = 0; k < m; k++) {
+    double q = r->B.Q[chain_run_row(r, i) + (size_t)k * m];
+    y = cj_axpy(y, q, &R->z[r->off + k], ne);
+    v = cj_axpy(v, q, &R->zp[r->off + k], ne);
+    a = cj_axpy(a, q, &R->zpp[r->off + k], ne);
+  }
+  R->Y[b] = y, R->U[b] = v, R->Ac[b] = a;
+}
+
+static void j_stuck_at(jreplay *R, int j, const cjet *tau) {
+  R->Y[j] = cj_add(R->Y0[j], cj_mul(R->Vs, *tau, R->ne), R->ne);
+  R->U[j] = R->Vs;
+  R->Ac[j] = cj_const(0);
+}
+
 /* Positions, velocities and accelerations of every block at time tau of
  * the phase. */
 static void j_state(jreplay *R, const cjet *tau) {
   chain_inst *c = R->c;
-  int ne = R->ne;
   for (int j = 0; j < c->N; j++)
-    if (!c->slip[j]) {
-      R->Y[j] = cj_add(R->Y0[j], cj_mul(R->Vs, *tau, ne), ne);
-      R->U[j] = R->Vs;
-      R->Ac[j] = cj_const(0);
-    }
+    if (!c->slip[j]) j_stuck_at(R, j, tau);
   for (int ri = 0; ri < c->nruns; ri++) {
     const chain_run *r = &c->runs[ri];
-    int m = r->m;
-    for (int k = 0; k < m; k++) {
-      int o = r->off + k;
-      cjet sn, cs;
-      cj_sincos(cj_mul(R->om[o], *tau, ne), ne, &sn, &cs);
-      cjet osc = cj_add(cj_mul(R->A[o], cs, ne), cj_mul(R->B[o], sn, ne), ne);
-      cjet rot = cj_sub(cj_mul(R->B[o], cs, ne), cj_mul(R->A[o], sn, ne), ne);
-      R->z[o] = cj_add(cj_add(R->P0[o], cj_mul(R->P1[o], *tau, ne), ne), osc,
-                       ne);
-      R->zp[o] = cj_add(R->P1[o], cj_mul(R->om[o], rot, ne), ne);
-      R->zpp[o] = cj_scale(cj_mul(R->lam[o], osc, ne), -1, ne);
+    for (int k = 0; k < r->m; k++) j_mode_at(R, r->off + k, tau);
+    for (int i = 0; i < r->m; i++) j_project(R, r, i, chain_run_block(c, r, i));
+  }
+}
+
+/* The blocks the guard of (kind, j) reads (j, and a threshold's
+ * neighbours) at time tau, their runs' modes computed once: what the
+ * Newton steps need, without the whole state. */
+static void j_guard_blocks(jreplay *R, int kind, int j, const cjet *tau) {
+  chain_inst *c = R->c;
+  int b[3] = {j, -1, -1}, nb = 1, done[3] = {-1, -1, -1};
+  if (kind == CHAIN_THRESHOLD) nb += chain_neighbours(c, j, b + 1);
+  for (int k = 0; k < nb; k++) {
+    if (!c->slip[b[k]]) {
+      j_stuck_at(R, b[k], tau);
+      continue;
     }
-    for (int i = 0; i < m; i++) {
-      int b = chain_run_block(c, r, i);
-      cjet y = cj_const(0), v = y, a = y;
-      for (int k = 0; k < m; k++) {
-        double q = r->B.Q[chain_run_row(r, i) + (size_t)k * m];
-        y = cj_axpy(y, q, &R->z[r->off + k], ne);
-        v = cj_axpy(v, q, &R->zp[r->off + k], ne);
-        a = cj_axpy(a, q, &R->zpp[r->off + k], ne);
-      }
-      R->Y[b] = y, R->U[b] = v, R->Ac[b] = a;
+    for (int ri = 0; ri < c->nruns; ri++) {
+      const chain_run *r = &c->runs[ri];
+      int i = (b[k] - r->start + c->N) % c->N;
+      if (i >= r->m) continue;
+      if (done[0] != ri && done[1] != ri && done[2] != ri)
+        for (int q = 0; q < r->m; q++) j_mode_at(R, r->off + q, tau);
+      done[k] = ri;
+      j_project(R, r, i, b[k]);
+      break;
     }
   }
 }
@@ -381,7 +424,7 @@ static int j_phase(jreplay *R, int p, sc_msg *msg) {
   cjet tau = cj_const(t);
   for (int it = 0; it < CJ_NEWTON; it++) {
     cjet g, rate;
-    j_state(R, &tau);
+    j_guard_blocks(R, R->L->kind[p], R->L->block[p], &tau);
     j_guard(R, R->L->kind[p], R->L->block[p], &g, &rate);
     if (rate.s[0] == 0 || !isfinite(rate.s[0])) return 1;
     tau = cj_sub(tau, cj_div(g, rate, ne), ne);
@@ -436,7 +479,7 @@ static void take_axis(const jreplay *R, size_t a, sc_mapn_value *out) {
       put_t(out->T, n, i, a, a, r, 2 * f->e[2][r]);
     }
     for (size_t q = 0; q < np; q++)
-      out->Jp[(q * n + i) * n + a] = f->e[1][n + q];
+      out->Jp[(q * n + i) * n + a] = R->pe[q] < 0 ? 0 : f->e[1][R->pe[q]];
   }
 }
 
