@@ -345,8 +345,10 @@ static int search_all(chain_inst *c, chain_search *S, sc_msg *msg) {
 /* --- the state at the event and its sensitivities -------------------- */
 
 /* Positions, velocities and accelerations (c->mzp holds them per block
- * for the sensitivities) at time t of the phase. */
-static void state_at(chain_inst *c, double t) {
+ * for the sensitivities) at time t of the phase.  (inline: called from
+ * chain_phase() and from the borders' chain_guard_sens(), it stays in
+ * the first, as before the second came: 0.3% of a three-block iterate.) */
+static inline void state_at(chain_inst *c, double t) {
   for (int j = 0; j < c->N; j++)
     if (!c->slip[j]) {
       c->Y[j] = c->Y0[j] + c->Vs * t;
