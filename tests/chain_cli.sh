@@ -85,6 +85,29 @@ check "two blocks: the map task marks bk2's d* as the chain's switching point (1
            awk -v b="$b" -v c="$c" "BEGIN { d = b - c; exit !(d < 1e-12 && d > -1e-12) }"' _ \
   "$TMP/map-bk2/summary.txt" "$TMP/map-chain/summary.txt"
 
+# A curve of two blocks through the chain's exact second and third
+# derivatives (the one-dimensional interface reads H, Jp, T of its n-d
+# value): examples/curve-fig58-flip1.ini's flip curve of bk2 in (alpha,
+# beta) run with name = chain, blocks = 2 in (alpha, beta2): the same
+# ends and the same GPD (b = 0) to 1e-12 (observed ~1e-14).
+sed -e 's/^name = bk2/name = chain\nblocks = 2/' -e 's/^beta = /beta2 = /' \
+  -e 's/^y = beta$/y = beta2/' "$SRC/examples/curve-fig58-flip1.ini" \
+  >"$TMP/curve-chain2.ini"
+run_sc run "$SRC/examples/curve-fig58-flip1.ini" --out "$TMP/curve-bk2" \
+  --quiet --set output.plot=no
+expect_rc "curve-fig58-flip1, bk2" 0
+run_sc run "$TMP/curve-chain2.ini" --out "$TMP/curve-chain2" --quiet \
+  --set output.plot=no
+expect_rc "curve-fig58-flip1, chain of two blocks" 0
+check "two blocks: bk2's flip curve of fig 5.8, its ends and GPD, through the chain (1e-12)" \
+  awk -F, 'function abs(x) { return x < 0 ? -x : x }
+    FNR == 1 { f++; next }
+    f == 1 { l[FNR] = $1; a[FNR] = $2; b[FNR] = $3; n1 = FNR; next }
+    { n2 = FNR; if ($1 != l[FNR] || abs($2 - a[FNR]) > 1e-12 || abs($3 - b[FNR]) > 1e-12) bad++
+      if ($1 == "GPD") gpd++ }
+    END { exit !(n1 == n2 && n1 >= 3 && gpd == 1 && !bad) }' \
+  "$TMP/curve-bk2/points.csv" "$TMP/curve-chain2/points.csv"
+
 run_sc models
 check "slipcont models lists chain with blocks 2..256 and topology open|ring" \
   sh -c "printf '%s' \"\$1\" | grep -q '^chain:' &&
