@@ -10,10 +10,6 @@
 
 #include "analysis/branch_orbit_impl.h"
 
-/* Newton iterations on a border's defining system: from the linear
- * interpolation between two accepted points it converges quadratically
- * in a handful; more means it is not converging. */
-#define BORDER_NEWTON_MAX 40
 
 /* A border located by Newton must lie between the two accepted points
  * that bracket its sign change, up to this fraction of their distance
@@ -43,9 +39,7 @@
  * (the "precise" preset) is met at that floor. */
 #define BORDER_NOISE_ULPS 256.0
 
-/* A Newton step on a border's system that is within tolerance, or at
- * the rounding floor. */
-static int step_done(double dx, double x, const sc_accuracy *acc) {
+int sc_ob_border_step_done(double dx, double x, const sc_accuracy *acc) {
   return sc_test_delta(dx, x, acc->newton_atol, acc->newton_rtol) == SC_OK ||
          fabs(dx) <= BORDER_NOISE_ULPS * DBL_EPSILON * (1 + fabs(x));
 }
@@ -119,7 +113,8 @@ static void newton_2d(sc_orbit_branch *b, int period, const sc_itin_code *codes,
     d -= dd;
     p -= dpp;
     fx->step = fabs(dpp);
-    if (step_done(dpp, p, acc) && step_done(dd, d, acc)) {
+    if (sc_ob_border_step_done(dpp, p, acc) &&
+        sc_ob_border_step_done(dd, d, acc)) {
       /* the certificate: the system at the returned point */
       if (border_at(b, period, d, p, codes, like, &bd, &v)) {
         snprintf(fx->why, sizeof fx->why,
@@ -263,7 +258,7 @@ static void newton_on_state(sc_orbit_branch *b, int period,
     if (isnan(lo) || (G > 0) == (Glo > 0)) lo = p, Glo = G;
     else hi = p;
     double dp = Gp != 0 ? G / Gp : HUGE_VAL;
-    if (forced && it > 0 && step_done(dp, p, acc)) {
+    if (forced && it > 0 && sc_ob_border_step_done(dp, p, acc)) {
       on_state_done(b, period, like, p, dp, don, it, fx);
       return;
     }

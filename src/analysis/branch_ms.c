@@ -13,7 +13,6 @@
  * Newton on this system plus the border's own equation on the iterate
  * that meets it (for a border in the state, that iterate is put on it).
  * See docs/branches.md, "Multiple shooting". */
-#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -32,13 +31,6 @@
  * rest of the branch identifies orbits.  Closed forms (precision 0)
  * never switch. */
 #define MS_SWITCH_ORBIT_TOLS 1.0
-
-/* Newton iterations on a border's system (as branch_border.c's). */
-#define MS_NEWTON_MAX 40
-
-/* A step within this many ulps of the unknown is at the rounding floor
- * (as branch_border.c's BORDER_NOISE_ULPS). */
-#define MS_NOISE_ULPS 256.0
 
 int sc_ob_ms_wanted(const sc_orbit_branch *b, int period, double d,
                     double mult) {
@@ -222,7 +214,7 @@ static void ms_newton(sc_orbit_branch *b, segment *S, const sc_itin_code *codes,
   double *mat = S->ms_mat, *rhs = S->ms_rhs;
   sc_map_value v;
   double mx, mp, mval;
-  for (int it = 0; it < MS_NEWTON_MAX; it++) {
+  for (int it = 0; it < BORDER_NEWTON_MAX; it++) {
     int st = ms_border_eval(b, S, codes, like, y, &mx, &mp, &mval, &v);
     if (st) {
       snprintf(fx->why, sizeof fx->why,
@@ -245,10 +237,7 @@ static void ms_newton(sc_orbit_branch *b, segment *S, const sc_itin_code *codes,
     int small = 1;
     for (int i = 0; i < N; i++) {
       y[i] += rhs[i];
-      if (sc_test_delta(rhs[i], y[i], b->acc.newton_atol,
-                        b->acc.newton_rtol) != SC_OK &&
-          !(fabs(rhs[i]) <= MS_NOISE_ULPS * DBL_EPSILON * (1 + fabs(y[i]))))
-        small = 0;
+      if (!sc_ob_border_step_done(rhs[i], y[i], &b->acc)) small = 0;
     }
     fx->step = fabs(rhs[m]);
     if (!small) continue;
@@ -271,7 +260,7 @@ static void ms_newton(sc_orbit_branch *b, segment *S, const sc_itin_code *codes,
   snprintf(fx->why, sizeof fx->why,
            "Newton did not converge in %d iterations (last step %.3g in "
            "the parameter)",
-           MS_NEWTON_MAX, fx->step);
+           BORDER_NEWTON_MAX, fx->step);
 }
 
 void sc_ob_ms_locate(sc_orbit_branch *b, segment *S, const sc_itin_code *codes,

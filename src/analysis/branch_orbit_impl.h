@@ -236,6 +236,15 @@ void sc_ob_marks(sc_orbit_branch *b, const segment *S, const double *u);
 
 /* branch_border.c: locating a border ------------------------------- */
 
+/* Newton iterations on a border's defining system: from the linear
+ * interpolation between two accepted points it converges quadratically
+ * in a handful; more means it is not converging. */
+#define BORDER_NEWTON_MAX 40
+
+/* A Newton step dx on a border's system (single or multiple shooting)
+ * that is within tolerance at x, or at the rounding floor. */
+int sc_ob_border_step_done(double dx, double x, const sc_accuracy *acc);
+
 /* Newton on the defining system of border `like` between (pa, da, ma)
  * and (pb, db, mb); the result, or why not, in fx. */
 void sc_ob_locate_border(sc_orbit_branch *b, int period,
