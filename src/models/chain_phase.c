@@ -207,7 +207,7 @@ static double tie_window(const chain_inst *c, double t) {
 static double root_spread(const sc_guard_long *g, double t, double slope) {
   double size = fabs(g->c0) + fabs(g->c1) * t, M2 = 0;
   for (int k = 0; k < g->n; k++) {
-    double amp = hypot(g->a[k], g->b[k]);
+    double amp = sqrt(g->a[k] * g->a[k] + g->b[k] * g->b[k]);
     size += amp * (1 + g->w[k] * t);
     M2 += g->w[k] * g->w[k] * amp;
   }
@@ -228,7 +228,7 @@ static int never_zero(const sc_guard_long *g) {
   if (g->c1 > 0) return 0;
   double top = g->c0, size = fabs(g->c0);
   for (int k = 0; k < g->n; k++) {
-    double amp = hypot(g->a[k], g->b[k]);
+    double amp = sqrt(g->a[k] * g->a[k] + g->b[k] * g->b[k]);
     top += amp, size += amp;
   }
   return top < -CHAIN_ROUND_ULPS * DBL_EPSILON * size;
