@@ -4,7 +4,8 @@
 # 2 T (1 - 1/phi) / (1 + alpha)), the energy balance on every event, the
 # driver's work against a quadrature of bk2's trajectory, random
 # thresholds reproducible from their seed whatever the threads, the
-# example of 100 blocks, and the refusals (exit 2, nothing created).
+# example of 100 blocks, the refusals (exit 2, nothing created), and the
+# trajectory of two blocks against bk2's.
 # About 3 s of processor time.
 # usage: sh tests/chain_catalogue.sh PATH/TO/slipcont SOURCE_DIR
 . "$(dirname "$0")/cli_common.sh"
@@ -116,6 +117,50 @@ check "the driver's work against the trapezoid rule on bk2's trajectory (1e-7)" 
   FNR == 2 { drv = $12 }
   END { w *= 0.02; printf "quadrature %.12g, catalogue %.12g\n", w, drv
         exit !(abs(w - drv) < 1e-7) }' "$TMP/traj/trajectory.csv" "$TMP/cat-moving/catalogue.csv"
+
+# Trajectories: two blocks through the chain are bk2's, sample for
+# sample (Y1, Y2, U1, U2 within 1e-12: closed forms of the same motion in
+# other bases; tau within 1e-12 of 1 + tau: stick phases are gaps over V,
+# which carry the gaps' rounding 1/V = 50 times), bk2's mode 1 or 2 one
+# block slipping, 3 two.
+for drv in frozen moving; do
+  for m in bk2 chain; do
+    if [ $m = bk2 ]; then model="name = bk2
+beta = 1.7"; else model="name = chain
+blocks = 2
+beta2 = 1.7"; fi
+    cat >"$TMP/tr-$m.ini" <<INI
+[model]
+$model
+driver = $drv
+alpha = 3.3
+phi = 1.25
+v = 0.02
+[task]
+kind = orbit
+d0 = 0.05
+iterations = 8
+trajectory = yes
+dtau = 0.05
+[output]
+plot = no
+INI
+    run_sc run "$TMP/tr-$m.ini" --out "$TMP/tr-$m-$drv" --quiet
+    expect_rc "$m trajectory, driver $drv" 0
+  done
+  check "driver $drv: the chain's trajectory of two blocks is bk2's (1e-12)" \
+    awk -F, 'function abs(x) { return x < 0 ? -x : x }
+    FNR == 1 { next }
+    NR == FNR { for (i = 1; i <= 6; i++) b[FNR, i] = $i; nb = FNR; next }
+    { nc = FNR
+      if (abs($1 - b[FNR, 1]) > 1e-12 * (1 + abs($1))) bad = 1
+      for (i = 2; i <= 5; i++) if (abs($i - b[FNR, i]) > 1e-12) bad = 1
+      m = b[FNR, 6]; if ($6 != (m == 3 ? 2 : m > 0 ? 1 : 0)) bad = 1 }
+    END { exit bad || nb != nc || nb < 100 }' \
+    "$TMP/tr-bk2-$drv/trajectory.csv" "$TMP/tr-chain-$drv/trajectory.csv"
+done
+expect_header "the chain's trajectory.csv" "$TMP/tr-chain-moving/trajectory.csv" \
+  "tau,y1,y2,u1,u2,mode"
 
 # Random thresholds: a seed's rows are the same alone, among other seeds
 # and with any number of threads.

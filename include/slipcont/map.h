@@ -350,6 +350,23 @@ typedef int (*sc_traj_fn)(void *ctx, double tau, const double *state,
 SC_API int sc_map_trajectory(sc_map *m, double d, int iterations, double dtau,
                       sc_traj_fn fn, void *ctx, sc_msg *msg);
 
+/**
+ * @brief The continuous motion of a model of N blocks whose map has n =
+ * N - 1 components (the chain): @p iterations iterates from the state
+ * @p x, sampled every @p dtau of each slip phase and of each global stick
+ * phase and at each phase's end, tau = 0 at the start of the first slip
+ * (as sc_map_trajectory() for bk2).  @p fn gets tau, the state (the N
+ * positions relative to the driver, then the N velocities: 2 N values)
+ * and the number of blocks slipping (0 in a global stick phase); a
+ * non-zero return stops the run with SC_ECALLBACK.
+ * @return SC_OK; SC_EINVAL for a model without it, dtau <= 0,
+ *         iterations < 1 or a state not finite; the map's status.
+ */
+SC_API int sc_map_trajectory_n(sc_map *m, const double *x, int iterations,
+                               double dtau, sc_traj_fn fn, void *ctx,
+                               sc_msg *msg);
+
+
 /** Map evaluations made by @p m since its creation (a counter). */
 SC_API unsigned long sc_map_nevals(const sc_map *m);
 

@@ -414,6 +414,15 @@ typedef struct sc_model_type {
    * Recording costs only the calls that ask for it. */
   int (*eval_event)(void *inst, const double *x, unsigned flags,
                     sc_mapn_value *out, sc_slip_event *ev, sc_msg *msg);
+  /** Continuous motion of a model of blocks whose state has n = N - 1
+   * components (the chain), from the state @p x: as trajectory, each
+   * sample passed to @p fn being the N positions then the N velocities
+   * (2 N values) and the number of blocks slipping (0: a global stick
+   * phase).  See sc_map_trajectory_n(); NULL if none. */
+  int (*trajectory_n)(void *inst, const double *x, int iterations,
+                      double dtau, int (*fn)(void *, double, const double *,
+                                             int),
+                      void *ctx, sc_msg *msg);
   /** Continuous motion (see sc_map_trajectory()); NULL if none. */
   int (*trajectory)(void *inst, double d, int iterations, double dtau,
                     int (*fn)(void *, double, const double *, int),

@@ -17,7 +17,7 @@ static const sc_key_info orbit_keys[] = {
     {"iterations", SC_KEY_INT, 0, "300", 1, 10000000, 0, 0, NULL,
      "map iterates (as the sweep task's iterations)"},
     {"trajectory", SC_KEY_BOOL, 0, "no", 0, 0, 0, 0, NULL,
-     "also write the continuous motion (models with one: bk2)"},
+     "also write the continuous motion (models with one: bk2, chain)"},
     {"trajectory-iterates", SC_KEY_INT, 0, "0", 0, 10000000, 0, 0, NULL,
      "the trajectory follows the last this many iterates (0: all)"},
     {"dtau", SC_KEY_REAL, 0, "0.01", 0, 1000, 1, 0, NULL,
@@ -47,7 +47,8 @@ static double traj_rows_estimate(const sc_scene *s) {
 
 static int orbit_check(const sc_scene *s, sc_msg *msg) {
   const sc_map *m = sc_scene_map(s);
-  if (sc_scene_flag(s, "trajectory") && !sc_map_type(m)->trajectory)
+  if (sc_scene_flag(s, "trajectory") && !sc_map_type(m)->trajectory &&
+      !sc_map_type(m)->trajectory_n)
     return sc_scene_fail_key(s, "task", "trajectory", msg,
                              "trajectory = yes: model %s has no continuous "
                              "motion (valid: no)",
@@ -74,6 +75,7 @@ typedef struct {
   FILE *f;
   long rows;
   double y1lo, y1hi, y2lo, y2hi;
+  int blocks; /* trajectory_n: the number of blocks N (2 N values) */
 } traj_ctx;
 
 static int on_sample(void *ctx, double tau, const double *x, int mode) {
@@ -88,6 +90,21 @@ static int on_sample(void *ctx, double tau, const double *x, int mode) {
   c->y1hi = fmax(c->y1hi, x[0]);
   c->y2lo = fmin(c->y2lo, x[1]);
   c->y2hi = fmax(c->y2hi, x[1]);
+  c->rows++;
+  return ferror(c->f) || sc_cli_interrupted() || c->rows > TRAJ_MAX_ROWS ? 1
+                                                                         : 0;
+}
+
+/* A sample of a model of N blocks: tau, N positions, N velocities, the
+ * number of blocks slipping. */
+static int on_sample_n(void *ctx, double tau, const double *x, int mode) {
+  traj_ctx *c = ctx;
+  sc_csv_double(c->f, tau);
+  for (int i = 0; i < 2 * c->blocks; i++) {
+    fputc(',', c->f);
+    sc_csv_double(c->f, x[i]);
+  }
+  fprintf(c->f, ",%d\n", mode);
   c->rows++;
   return ferror(c->f) || sc_cli_interrupted() || c->rows > TRAJ_MAX_ROWS ? 1
                                                                          : 0;
@@ -221,7 +238,7 @@ static int orbit_trajectory(sc_cli_run *r, orbit_job *j) {
   long mt = sc_scene_int(s, "trajectory-iterates");
   if (mt == 0) mt = j->n;
   traj_ctx *c = &j->traj;
-  *c = (traj_ctx){NULL, 0, HUGE_VAL, -HUGE_VAL, HUGE_VAL, -HUGE_VAL};
+  *c = (traj_ctx){NULL, 0, HUGE_VAL, -HUGE_VAL, HUGE_VAL, -HUGE_VAL, 2};
   sc_file *tr = NULL;
   int st = sc_cli_open(r, "trajectory.csv", &tr);
   if (st) return st;
@@ -241,12 +258,49 @@ static int orbit_trajectory(sc_cli_run *r, orbit_job *j) {
   return sc_fail(r->msg, st, "trajectory from d = %.17g: %s", from, em.text);
 }
 
+/* The blocks' motion of a model of N = n + 1 blocks (the chain) over the
+ * last trajectory-iterates iterates into trajectory.csv. */
+static int orbit_trajectory_n(sc_cli_run *r, orbit_job *j) {
+  const sc_scene *s = r->scene;
+  long mt = sc_scene_int(s, "trajectory-iterates");
+  if (mt == 0) mt = j->n;
+  traj_ctx *c = &j->traj;
+  *c = (traj_ctx){NULL, 0, 0, 0, 0, 0, (int)j->dim + 1};
+  sc_file *tr = NULL;
+  int st = sc_cli_open(r, "trajectory.csv", &tr);
+  if (st) return st;
+  c->f = sc_file_stream(tr);
+  fputs("tau", c->f);
+  for (int k = 0; k < 2; k++)
+    for (int i = 1; i <= c->blocks; i++) fprintf(c->f, ",%c%d", "yu"[k], i);
+  fputs(",mode\n", c->f);
+  sc_msg em;
+  st = sc_map_trajectory_n(r->map, j->d + (size_t)(j->n - mt) * j->dim,
+                           (int)mt, sc_scene_real(s, "dtau"), on_sample_n, c,
+                           &em);
+  if (!st) return sc_cli_commit(r, "trajectory.csv", tr);
+  if (sc_cli_interrupted()) return sc_cli_stop(r);
+  if (c->rows > TRAJ_MAX_ROWS)
+    return sc_fail(r->msg, SC_EINVAL,
+                   "trajectory longer than %ld rows: raise dtau or lower "
+                   "trajectory-iterates",
+                   TRAJ_MAX_ROWS);
+  return sc_fail(r->msg, st, "trajectory from iterate %ld: %s", j->n - mt,
+                 em.text);
+}
+
 static int orbit_compute(sc_cli_run *r, void *job) {
   orbit_job *j = job;
-  if (j->dim > 1) return orbit_iterate_n(r, j);
+  if (j->dim > 1) {
+    int st = orbit_iterate_n(r, j);
+    if (!st && !j->fail && sc_scene_flag(r->scene, "trajectory"))
+      st = orbit_trajectory_n(r, j);
+    return st;
+  }
   int st = orbit_iterate(r, j);
   if (!st && !j->fail && sc_scene_flag(r->scene, "trajectory"))
-    st = orbit_trajectory(r, j);
+    st = sc_map_type(r->map)->trajectory ? orbit_trajectory(r, j)
+                                         : orbit_trajectory_n(r, j);
   return st;
 }
 
@@ -475,6 +529,28 @@ static int velocity_plot(sc_cli_run *r, const char *title) {
   return sc_cli_plot_end(r, "velocity", gp);
 }
 
+/* The blocks' slip history of a model of N blocks: each block's row in
+ * time, coloured by its slip velocity V_s - U_i (0 when stuck). */
+static int spacetime_plot(sc_cli_run *r, const traj_ctx *c,
+                          const char *title) {
+  sc_file *gp = NULL;
+  int st = sc_cli_plot_begin(r, "spacetime", title, "tau", "block", &gp);
+  if (st) return st;
+  FILE *f = sc_file_stream(gp);
+  fputs("# column 1 + i: Y_i, column 1 + N + i: U_i; slip velocity V_s - "
+        "U_i\n",
+        f);
+  fprintf(f, "N = %d\nVs = %.17g\n", c->blocks, stuck_velocity(r->map));
+  fprintf(f, "set yrange [0.5:%d.5]\nset cblabel 'slip velocity V_s - "
+             "U_i'\nset palette defined (0 '#f4f4f4', 1 '#fdae61', 2 "
+             "'#d7191c', 3 '#2b0000')\nset cbrange [0:*]\n",
+          c->blocks);
+  fputs("plot for [i=1:N] 'trajectory.csv' skip 1 using 1:(i):(Vs - "
+        "column(1 + N + i)) with points pt 5 ps 0.5 lc palette notitle\n",
+        f);
+  return sc_cli_plot_end(r, "spacetime", gp);
+}
+
 /* A map of n > 1 components: every component against k, and for n = 2
  * the phase plane (the second component against the first). */
 static int orbit_plots_n(sc_cli_run *r, const orbit_job *j,
@@ -495,7 +571,9 @@ static int orbit_plots_n(sc_cli_run *r, const orbit_job *j,
     sc_plot_quote(f, sc_map_state_component(m, i, c0, sizeof c0));
   }
   fputc('\n', f);
-  if ((st = sc_cli_plot_end(r, "orbit", gp)) || j->dim != 2) return st;
+  if ((st = sc_cli_plot_end(r, "orbit", gp))) return st;
+  if (j->traj.rows && (st = spacetime_plot(r, &j->traj, title))) return st;
+  if (j->dim != 2) return st;
   sc_map_state_component(m, 0, c0, sizeof c0);
   sc_map_state_component(m, 1, c1, sizeof c1);
   if ((st = sc_cli_plot_begin(r, "phase", title, c0, c1, &gp))) return st;
@@ -530,6 +608,7 @@ static int orbit_plots(sc_cli_run *r, void *job) {
         f);
   if ((st = sc_cli_plot_end(r, "orbit", gp))) return st;
   if (!j->traj.rows) return SC_OK;
+  if (!sc_map_type(m)->trajectory) return spacetime_plot(r, &j->traj, title);
   if ((st = phase_plot(r, &j->traj, title))) return st;
   return velocity_plot(r, title);
 }
@@ -565,7 +644,8 @@ const sc_cli_task sc_cli_task_orbit = {
     .outputs = "orbit.csv (k,d,itinerary; n > 1: k,d1..dn,itinerary), "
                "summary.txt, orbit.gp/png, for n = 2 phase.gp/png; with "
                "trajectory = yes also trajectory.csv "
-               "(tau,y1,y2,u1,u2,mode), phase.gp/png, velocity.gp/png",
+               "(tau,y1,y2,u1,u2,mode), phase.gp/png, velocity.gp/png (bk2), "
+               "or (tau,y1..yN,u1..uN,mode), spacetime.gp/png (chain)",
     .job_size = sizeof(orbit_job),
     .prepare = orbit_prepare,
     .compute = orbit_compute,

@@ -1,6 +1,7 @@
 /* Slip events of a map of many blocks (map.h sc_map_eval_event()): one
  * iterate with the record of what its slip did, for event catalogues
- * (docs/chain.md, "Event catalogue").  The plain evaluation is untouched:
+ * (docs/chain.md, "Event catalogue"); and the blocks' continuous motion
+ * (sc_map_trajectory_n()).  The plain evaluation is untouched:
  * a model records only when called through eval_event. */
 #include <math.h>
 
@@ -38,4 +39,22 @@ int sc_map_eval_event(sc_map *m, const double *x, unsigned flags,
     if (!isfinite(out->f[i]))
       return sc_fail(msg, SC_ENONFINITE, "f is not finite at the state given");
   return SC_OK;
+}
+
+int sc_map_trajectory_n(sc_map *m, const double *x, int iterations, double dtau,
+                        sc_traj_fn fn, void *ctx, sc_msg *msg) {
+  if (!m->type->trajectory_n)
+    return sc_fail(msg, SC_EINVAL,
+                   "sc_map_trajectory_n: model %s has no continuous motion "
+                   "of its blocks",
+                   m->type->name);
+  int ok = dtau > 0 && isfinite(dtau) && iterations >= 1;
+  for (size_t i = 0; ok && i < m->dim; i++)
+    ok = isfinite(x[i]);
+  if (!ok)
+    return sc_fail(msg, SC_EINVAL,
+                   "sc_map_trajectory_n: dtau = %g, iterations = %d (valid: "
+                   "dtau > 0, iterations >= 1, a finite state)",
+                   dtau, iterations);
+  return m->type->trajectory_n(m->inst, x, iterations, dtau, fn, ctx, msg);
 }

@@ -400,4 +400,5 @@ const sc_model_type sc_model_chain = {
     .set_data = chain_set_data,
     .data_params = chain_data_params,
     .eval_event = chain_eval_event,
+    .trajectory_n = chain_trajectory,
 };

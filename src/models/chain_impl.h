@@ -238,5 +238,9 @@ void chain_rec_end(chain_inst *c);
 /* The model's eval_event (models.h). */
 int chain_eval_event(void *inst, const double *x, unsigned flags,
                      sc_mapn_value *out, sc_slip_event *ev, sc_msg *msg);
+/* The model's trajectory_n (models.h). */
+int chain_trajectory(void *inst, const double *x, int iterations, double dtau,
+                     int (*fn)(void *, double, const double *, int), void *ctx,
+                     sc_msg *msg);
 
 #endif
