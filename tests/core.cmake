@@ -53,6 +53,13 @@ add_test(NAME chain_catalogue
   COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/chain_catalogue.sh
           $<TARGET_FILE:slipcont_cli> ${PROJECT_SOURCE_DIR})
 set_tests_properties(chain_catalogue PROPERTIES TIMEOUT 300)
+if(SLIPCONT_MPI)
+  # Seeds dealt to 2 MPI ranks give the serial files byte for byte.
+  add_test(NAME chain_catalogue_mpi
+    COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/chain_catalogue_mpi.sh
+            $<TARGET_FILE:slipcont_cli> ${PROJECT_SOURCE_DIR}
+            ${MPIEXEC_EXECUTABLE})
+endif()
 # The chain through the program: two blocks give bk2's orbits.
 add_test(NAME chain_cli
   COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/chain_cli.sh
