@@ -404,6 +404,74 @@ static void check_integration(int N, int ring, int npoints) {
   sc_map_free(m);
 }
 
+/* --- next to a tie --------------------------------------------------------- */
+
+/* Blocks 1 and 3 of an open chain of three at their thresholds at once:
+ * gap_1 = 1 + alpha d1 equals gap_3 = T_3 - d1 - (1 + alpha) d2 on the
+ * line d2 = (T_3 - 1 - (1 + alpha) d1) / (1 + alpha).  Within 1e-6 to
+ * 1e-12 of it one block comes loose first and the other a moment later,
+ * while the first is still slower than the surface by ~1e-14 or less:
+ * it must not be taken as re-sticking (bk2's rule).  Against the
+ * integration of its own, as check_integration(). */
+static void check_near_ties(int npoints) {
+  sc_map *m = chain_new(3, "open", "velocity-weakening", "numerical",
+                        "default");
+  sc_mapn_value *v;
+  sc_msg msg;
+  sc_mapn_value_alloc(m, SC_EVAL_ITINERARY, &v, &msg);
+  seed(2718);
+  double emax = 0, prec = sc_map_precision(m);
+  int ndone = 0, nitin = 0, nlong = 0, nsame = 0;
+  for (int k = 0; k < npoints; k++) {
+    ref_sys s = {3, 0, uni(0.5, 4), uni(0.2, 3), uni(0.005, 0.1), {1}, {0}};
+    s.T[1] = uni(1.5, 2), s.T[2] = uni(0.8, 1.4);
+    set(m, "alpha", s.alpha);
+    set(m, "gamma", s.gamma);
+    set(m, "v", s.W);
+    set(m, "beta2", s.T[1]);
+    set(m, "beta3", s.T[2]);
+    double d[2], f[2], a = s.alpha;
+    char itin[512];
+    d[0] = uni(-0.1, 0.1);
+    double delta = (k % 2 ? 1 : -1) * pow(10, -6 - 2 * ((k / 2) % 4));
+    d[1] = (s.T[2] - 1 - (1 + a) * d[0]) / (1 + a) + delta;
+    int s1 = sc_map_eval_n(m, d, SC_EVAL_ITINERARY, v, &msg);
+    int s2 = ref_map(&s, d, f, itin);
+    if (s2 == -2 || (!s1 && v->nphases >= REF_MAX_PHASES)) {
+      nlong++;
+      continue;
+    }
+    if (s1 || s2) {
+      tu_true(s1 && s2, "near a tie, point %d: chain status %d (%s), "
+              "integration %d", k, s1, s1 ? msg.text : "", s2);
+      continue;
+    }
+    ndone++;
+    nsame += strchr(v->itinerary, '-') != NULL &&
+             (strncmp(v->itinerary, "1-13", 4) == 0 ||
+              strncmp(v->itinerary, "3-13", 4) == 0);
+    if (strcmp(itin, v->itinerary)) {
+      if (nitin++ < 3)
+        tu_true(0, "near a tie, point %d (delta %g): itinerary %s, "
+                "integration %s", k, delta, v->itinerary, itin);
+      continue;
+    }
+    for (int i = 0; i < 2; i++) emax = fmax(emax, fabs(f[i] - v->f[i]));
+  }
+  printf("N = 3 open, velocity weakening, within 1e-6 to 1e-12 of blocks 1 "
+         "and 3 at their thresholds together: %d points (%d left out, %d "
+         "starting 1-13 or 3-13), max |f - f_integrated| %.3g\n",
+         ndone, nlong, nsame, emax);
+  tu_true(ndone >= npoints * 4 / 5, "%d of %d points compared", ndone,
+          npoints);
+  tu_true(nsame >= ndone / 2, "%d of %d slips start with both blocks",
+          nsame, ndone);
+  tu_int("itineraries that differ from the integration's", nitin, 0);
+  tu_close("max |f - f_integrated|", emax, 0, prec);
+  sc_mapn_value_free(v);
+  sc_map_free(m);
+}
+
 /* --- derivatives against differences ----------------------------------- */
 
 /* Central differences with h = 1e-6 of f integrated at the precise
@@ -675,6 +743,7 @@ int main(void) {
     }
   for (int ring = 0; ring <= 1; ring++) check_integration(3, ring, 40);
   check_integration(4, 0, 20);
+  check_near_ties(40);
   check_derivatives(3, 0);
   check_derivatives(3, 1);
   check_coulomb_limit(0);
