@@ -34,13 +34,19 @@ set_tests_properties(search_replay_chart search_replay_fig56 PROPERTIES
 sc_add_test(test_vw_edges)
 # Branch starts with velocity weakening: mirror images alike.
 sc_add_test(test_vw_starts)
+# An integration of the chain of its own, for test_chain and test_chain_vw.
+add_library(sc_chain_ref STATIC chain_ref.c)
+target_compile_options(sc_chain_ref PRIVATE ${SC_WARNINGS})
+target_link_libraries(sc_chain_ref PRIVATE GSL::gsl m)
 sc_add_test(test_chain)
+target_link_libraries(test_chain PRIVATE sc_chain_ref)
 # The chain's borders: gradients against differences, zeros against the
 # itineraries on both sides, two blocks against bk2's (a few seconds).
 sc_add_test(test_chain_border)
 # The chain's numerical flows: velocity weakening against bk2 and an
 # integration of its own, Coulomb through the integrator (a few seconds).
 sc_add_test(test_chain_vw)
+target_link_libraries(test_chain_vw PRIVATE sc_chain_ref)
 # Thresholds per block: betas, the seeded draw, their refusals.
 sc_add_test(test_chain_data)
 # The chain's second and third derivatives against differences and bk2.

@@ -11,21 +11,10 @@
 #include <string.h>
 
 #include "slipcont/map.h"
+#include "chain_ref.h"
 #include "test_util.h"
 
 #define MAXN 5
-
-/* A reproducible uniform draw in [lo, hi]: xorshift64*, seeded per
- * check by seed(). */
-static unsigned long long rng_state = 1;
-static void seed(unsigned long long s) { rng_state = s * 2654435761ULL + 1; }
-static double uni(double lo, double hi) {
-  rng_state ^= rng_state >> 12;
-  rng_state ^= rng_state << 25;
-  rng_state ^= rng_state >> 27;
-  unsigned long long r = rng_state * 2685821657736338717ULL;
-  return lo + (hi - lo) * ((double)(r >> 11) / 9007199254740992.0);
-}
 
 static sc_map *chain_new(int N, const char *topology, const char *driver) {
   sc_map *m = NULL;
@@ -77,14 +66,14 @@ static void check_bk2(const char *driver, int npoints) {
   }
   double ef = 0, ed = 0;
   int nitin = 0, nstatus = 0, ndone = 0;
-  seed(2385);
+  tu_seed(2385);
   for (int k = 0; k < npoints; k++) {
-    double p[4] = {uni(0.5, 5), uni(0.5, 3), uni(1.1, 2.1), uni(0.005, 0.1)};
+    double p[4] = {tu_uni(0.5, 5), tu_uni(0.5, 3), tu_uni(1.1, 2.1), tu_uni(0.005, 0.1)};
     for (int q = 0; q < 4; q++) {
       set(b, bn[q], p[q]);
       set(c, cn[q], p[q]);
     }
-    double d = uni(-1, 1);
+    double d = tu_uni(-1, 1);
     sc_map_value bv;
     unsigned fl = SC_EVAL_DERIV | SC_EVAL_ITINERARY;
     int s1 = sc_map_eval(b, d, fl, &bv, &msg);
@@ -148,145 +137,12 @@ static void check_bk2_ties(const char *driver) {
   sc_map_free(c);
 }
 
-/* --- an integration of its own --------------------------------------- */
+/* --- against an integration of its own (chain_ref.h) ------------------ */
 
-/* The chain's equations of motion written again from docs/chain.md, for
- * GSL's rk8pd: Y_i' = U_i, U_i' = T_i / phi - S_i while block i slips;
- * Y_i' = W, U_i' = 0 while it sticks. */
-typedef struct {
-  int N, ring, frozen;
-  double alpha, phi, V, W, T[MAXN];
-  int slip[MAXN];
-} ref_sys;
-
-static double ref_spring(const ref_sys *s, const double *Y, int i) {
-  double f = Y[i];
-  for (int k = -1; k <= 1; k += 2) {
-    int n = i + k;
-    if (s->ring) n = (n + s->N) % s->N;
-    else if (n < 0 || n >= s->N) continue;
-    f += s->alpha * (Y[i] - Y[n]);
-  }
-  return f;
-}
-
-static int ref_rhs(double t, const double y[], double dy[], void *p) {
-  (void)t;
-  const ref_sys *s = p;
-  for (int i = 0; i < s->N; i++) {
-    dy[i] = s->slip[i] ? y[s->N + i] : s->W;
-    dy[s->N + i] = s->slip[i] ? s->T[i] / s->phi - ref_spring(s, y, i) : 0;
-  }
-  return GSL_SUCCESS;
-}
-
-/* The guard of block i: U_i - W slipping, S_i - T_i stuck. */
-static double ref_guard(const ref_sys *s, const double *y, int i) {
-  return s->slip[i] ? y[s->N + i] - s->W : ref_spring(s, y, i) - s->T[i];
-}
-
-/* The rk8pd tolerance, absolute and relative, on states of order 1: f
- * then agrees with the closed forms to ~1e-11 (REF_TOL) over the ~10
- * time units of a slip. */
-static const double REF_EPS = 1e-13;
-/* Steps no longer than this, so that no guard crosses zero twice inside
- * one step unseen (frequencies <= sqrt(1 + 4 alpha) ~ 4 here). */
-static const double REF_HMAX = 0.01;
+/* The reference integrates at 1e-13 and agrees with the closed forms to
+ * ~1e-11 over the ~10 time units of a slip: the bound allows a hundred
+ * times that. */
 static const double REF_TOL = 1e-9;
-
-/* A slip of many phases is chaotic within itself (blocks trigger one
- * another back and forth): its end depends on the rounding of each event
- * and two correct computations part after a few dozen phases.  The
- * comparison leaves out iterates longer than this. */
-#define REF_MAX_PHASES 40
-
-/* y at t0 + h from y0 at t0, integrated afresh (event location). */
-static void ref_flow(ref_sys *s, const double *y0, double h, double *y) {
-  gsl_odeiv2_system sys = {ref_rhs, NULL, (size_t)(2 * s->N), s};
-  gsl_odeiv2_driver *d = gsl_odeiv2_driver_alloc_y_new(
-      &sys, gsl_odeiv2_step_rk8pd, fmin(h, REF_HMAX) / 4, REF_EPS, REF_EPS);
-  double t = 0;
-  memcpy(y, y0, (size_t)(2 * s->N) * sizeof *y);
-  if (h > 0) gsl_odeiv2_driver_apply(d, &t, h, y);
-  gsl_odeiv2_driver_free(d);
-}
-
-/* The time in (0, h] where guard i of the step from y0 reaches zero, by
- * bisection on re-integrations (to the rounding of the step). */
-static double ref_locate(ref_sys *s, const double *y0, double h, int i) {
-  double lo = 0, hi = h, y[2 * MAXN];
-  for (int it = 0; it < 60 && hi - lo > 1e-16 * (1 + hi); it++) {
-    double mid = 0.5 * (lo + hi);
-    ref_flow(s, y0, mid, y);
-    if (ref_guard(s, y, i) >= 0) hi = mid;
-    else lo = mid;
-  }
-  return hi;
-}
-
-/* f(d) by integration; the itinerary as the chain writes it (N <= 9). */
-static int ref_map(ref_sys *s, const double *d, double *f, char *itin) {
-  int N = s->N;
-  double y[2 * MAXN], yo[2 * MAXN], gap[MAXN], gmin = HUGE_VAL;
-  y[0] = 0;
-  for (int i = 1; i < N; i++) y[i] = y[i - 1] + d[i - 1];
-  for (int i = 0; i < N; i++) {
-    gap[i] = s->T[i] - ref_spring(s, y, i);
-    gmin = fmin(gmin, gap[i]);
-  }
-  int armed[MAXN];
-  for (int i = 0; i < N; i++) {
-    y[i] += gmin; /* S_i grows with a common shift of the positions */
-    y[N + i] = s->W = s->frozen ? 0 : s->V;
-    s->slip[i] = gap[i] == gmin;
-    armed[i] = !s->slip[i];
-  }
-  itin[0] = '\0';
-  gsl_odeiv2_system sys = {ref_rhs, NULL, (size_t)(2 * N), s};
-  for (int phase = 0;; phase++) {
-    if (phase == REF_MAX_PHASES) return -2;
-    if (phase) strcat(itin, "-");
-    for (int i = 0; i < N; i++)
-      if (s->slip[i]) snprintf(itin + strlen(itin), 12, "%d", i + 1);
-    gsl_odeiv2_evolve *ev = gsl_odeiv2_evolve_alloc((size_t)(2 * N));
-    gsl_odeiv2_control *ct = gsl_odeiv2_control_y_new(REF_EPS, REF_EPS);
-    gsl_odeiv2_step *st = gsl_odeiv2_step_alloc(gsl_odeiv2_step_rk8pd,
-                                                (size_t)(2 * N));
-    double t = 0, h = 1e-3;
-    int hit = -1;
-    double th = 0;
-    while (hit < 0 && t < 1000) {
-      double t0 = t;
-      memcpy(yo, y, sizeof y);
-      gsl_odeiv2_evolve_apply(ev, ct, st, &sys, &t, t0 + REF_HMAX, &h, y);
-      for (int i = 0; i < N; i++) {
-        double g = ref_guard(s, y, i);
-        if (!armed[i] && g < 0) armed[i] = 1;
-        else if (armed[i] && g >= 0 && ref_guard(s, yo, i) < 0) {
-          double tl = ref_locate(s, yo, t - t0, i);
-          if (hit < 0 || tl < th) hit = i, th = tl;
-        }
-      }
-      if (hit >= 0) ref_flow(s, yo, th, y);
-    }
-    gsl_odeiv2_evolve_free(ev);
-    gsl_odeiv2_control_free(ct);
-    gsl_odeiv2_step_free(st);
-    if (hit < 0) return -1;
-    if (s->slip[hit]) {
-      s->slip[hit] = 0;
-      y[N + hit] = s->W;
-      int left = 0;
-      for (int i = 0; i < N; i++) left += s->slip[i];
-      if (!left) break;
-    } else {
-      s->slip[hit] = 1;
-      armed[hit] = 0;
-    }
-  }
-  for (int i = 0; i + 1 < N; i++) f[i] = y[i + 1] - y[i];
-  return 0;
-}
 
 static void check_integration(int N, int ring, int frozen, int npoints) {
   const char *topo = ring ? "ring" : "open", *drv = frozen ? "frozen" : "moving";
@@ -294,27 +150,30 @@ static void check_integration(int N, int ring, int frozen, int npoints) {
   sc_mapn_value *v;
   sc_msg msg;
   sc_mapn_value_alloc(m, SC_EVAL_ITINERARY, &v, &msg);
-  seed(1000 * N + 10 * ring + frozen);
+  tu_seed(1000 * N + 10 * ring + frozen);
   double emax = 0;
   int ndone = 0, nitin = 0, nlong = 0;
   for (int k = 0; k < npoints; k++) {
-    ref_sys s = {N, ring, frozen, uni(0.5, 4), uni(1.1, 2), uni(0.005, 0.1),
-                 0, {1}, {0}};
+    chain_ref s = {N, ring, 0, 0, 0, 0, {1}, {0}};
+    s.alpha = tu_uni(0.5, 4);
+    s.phi = tu_uni(1.1, 2);
+    double V = tu_uni(0.005, 0.1);
+    s.W = frozen ? 0 : V;
     set(m, "alpha", s.alpha);
     set(m, "phi", s.phi);
-    set(m, "v", s.V);
+    set(m, "v", V);
     for (int i = 1; i < N; i++) {
       char nm[24];
       snprintf(nm, sizeof nm, "beta%d", i + 1);
-      s.T[i] = uni(0.6, 2);
+      s.T[i] = tu_uni(0.6, 2);
       set(m, nm, s.T[i]);
     }
     double d[MAXN], f[MAXN];
     char itin[512];
-    for (int i = 0; i + 1 < N; i++) d[i] = uni(-0.5, 0.5);
+    for (int i = 0; i + 1 < N; i++) d[i] = tu_uni(-0.5, 0.5);
     int s1 = sc_map_eval_n(m, d, SC_EVAL_ITINERARY, v, &msg);
-    int s2 = ref_map(&s, d, f, itin);
-    if (s2 == -2 || (!s1 && v->nphases >= REF_MAX_PHASES)) {
+    int s2 = chain_ref_map(&s, d, f, itin);
+    if (s2 == -2 || (!s1 && v->nphases >= CHAIN_REF_MAX_PHASES)) {
       nlong++;
       continue;
     }
@@ -334,7 +193,7 @@ static void check_integration(int N, int ring, int frozen, int npoints) {
   }
   printf("N = %d %s %s: %d points (%d left out: %d phases or more), max "
          "|f - f_integrated| %.3g\n",
-         N, topo, drv, ndone, nlong, REF_MAX_PHASES, emax);
+         N, topo, drv, ndone, nlong, CHAIN_REF_MAX_PHASES, emax);
   tu_true(ndone >= npoints * 4 / 5, "%d of %d points compared", ndone,
           npoints);
   tu_int("itineraries that differ from the integration's", nitin, 0);
@@ -368,22 +227,22 @@ static void check_symmetry(int N, int ring, const char *driver, int npoints) {
   sc_mapn_value_alloc(m, SC_EVAL_VALUE, &a, &msg);
   sc_mapn_value_alloc(m, SC_EVAL_VALUE, &b, &msg);
   void (*sym)(int, const double *, double *) = ring ? rotate : mirror;
-  seed(77 + N + ring);
+  tu_seed(77 + N + ring);
   double emax = 0;
   int ndone = 0;
   for (int k = 0; k < npoints; k++) {
-    set(m, "alpha", uni(0.5, 4));
-    set(m, "v", uni(0.005, 0.1));
+    set(m, "alpha", tu_uni(0.5, 4));
+    set(m, "v", tu_uni(0.005, 0.1));
     /* ring: equal thresholds; open: T_i = T_(N+1-i) */
     double beta[MAXN] = {1};
     for (int i = 1; i < N; i++) {
       char nm[24];
       snprintf(nm, sizeof nm, "beta%d", i + 1);
-      beta[i] = ring ? 1 : i > N - 1 - i ? beta[N - 1 - i] : uni(0.6, 2);
+      beta[i] = ring ? 1 : i > N - 1 - i ? beta[N - 1 - i] : tu_uni(0.6, 2);
       set(m, nm, beta[i]);
     }
     double d[MAXN], sd[MAXN], sf[MAXN];
-    for (int i = 0; i + 1 < N; i++) d[i] = uni(-0.5, 0.5);
+    for (int i = 0; i + 1 < N; i++) d[i] = tu_uni(-0.5, 0.5);
     sym(N, d, sd);
     int s1 = sc_map_eval_n(m, d, 0, a, &msg);
     int s2 = sc_map_eval_n(m, sd, 0, b, &msg);
@@ -481,7 +340,7 @@ static void check_derivatives(int N, int ring, const char *driver) {
   sc_mapn_value_alloc(m, SC_EVAL_DERIV | SC_EVAL_ITINERARY, &v, &msg);
   sc_mapn_value_alloc(m, SC_EVAL_ITINERARY, &a, &msg);
   sc_mapn_value_alloc(m, SC_EVAL_ITINERARY, &b, &msg);
-  seed(31 + N + ring);
+  tu_seed(31 + N + ring);
   double p0[8];
   set(m, "alpha", 2.385);
   set(m, "phi", 1.3);
@@ -489,14 +348,14 @@ static void check_derivatives(int N, int ring, const char *driver) {
   for (int i = 1; i < N; i++) {
     char nm[24];
     snprintf(nm, sizeof nm, "beta%d", i + 1);
-    set(m, nm, uni(0.8, 1.6));
+    set(m, nm, tu_uni(0.8, 1.6));
   }
   for (size_t q = 0; q < np; q++) p0[q] = sc_map_get_param(m, q);
   double emax = 0;
   int ndone = 0;
   for (int k = 0; k < 40; k++) {
     double d[MAXN], x[MAXN];
-    for (size_t i = 0; i < n; i++) d[i] = uni(-0.4, 0.4);
+    for (size_t i = 0; i < n; i++) d[i] = tu_uni(-0.4, 0.4);
     if (sc_map_eval_n(m, d, SC_EVAL_DERIV | SC_EVAL_ITINERARY, v, &msg))
       continue;
     double fd[(MAXN + 8) * MAXN], ex[(MAXN + 8) * MAXN], scale = 1;

@@ -16,16 +16,6 @@
 #define MAXN 4
 #define NBORD 64
 
-static unsigned long long rng_state = 1;
-static void seed(unsigned long long s) { rng_state = s * 2654435761ULL + 1; }
-static double uni(double lo, double hi) {
-  rng_state ^= rng_state >> 12;
-  rng_state ^= rng_state << 25;
-  rng_state ^= rng_state >> 27;
-  unsigned long long r = rng_state * 2685821657736338717ULL;
-  return lo + (hi - lo) * ((double)(r >> 11) / 9007199254740992.0);
-}
-
 static sc_map *chain_new(int N, const char *topology, const char *driver) {
   sc_map *m = NULL;
   sc_msg msg;
@@ -87,15 +77,15 @@ static const sc_bordern *border_at(probe *p, const double *x,
 /* A start on the attractor: three natural iterates from a random d. */
 static int draw_point(probe *p, int N, double *x) {
   sc_msg msg;
-  set(p->m, "alpha", uni(1.5, 4));
-  set(p->m, "phi", uni(1.1, 2));
-  set(p->m, "v", uni(0.01, 0.1));
+  set(p->m, "alpha", tu_uni(1.5, 4));
+  set(p->m, "phi", tu_uni(1.1, 2));
+  set(p->m, "v", tu_uni(0.01, 0.1));
   for (int i = 2; i <= N && i <= 5; i++) {
     char nm[8];
     snprintf(nm, sizeof nm, "beta%d", i);
-    set(p->m, nm, uni(0.7, 3));
+    set(p->m, nm, tu_uni(0.7, 3));
   }
-  for (size_t i = 0; i < p->n; i++) x[i] = uni(-0.3, 0.3);
+  for (size_t i = 0; i < p->n; i++) x[i] = tu_uni(-0.3, 0.3);
   if (sc_map_iterate_n(p->m, x, 3, SC_EVAL_VALUE, p->v, &msg)) return 0;
   memcpy(x, p->v->f, p->n * sizeof *x);
   return 1;
@@ -155,7 +145,7 @@ static void check_gradients(int N, const char *topo, const char *driver,
   sc_map *m = chain_new(N, topo, driver);
   probe p;
   if (!m || probe_init(&p, m)) return;
-  seed((unsigned long long)(N * 100 + (topo[0] == 'r') * 10 +
+  tu_seed((unsigned long long)(N * 100 + (topo[0] == 'r') * 10 +
                             (driver[0] == 'f')));
   for (int it = 0; it < npoints; it++) {
     double x[MAXN];
@@ -244,7 +234,7 @@ static void check_zeros(int N, const char *topo, const char *driver,
   sc_map *m = chain_new(N, topo, driver);
   probe p;
   if (!m || probe_init(&p, m)) return;
-  seed((unsigned long long)(7 + N * 100 + (topo[0] == 'r') * 10 +
+  tu_seed((unsigned long long)(7 + N * 100 + (topo[0] == 'r') * 10 +
                             (driver[0] == 'f')));
   for (int it = 0; it < npoints; it++) {
     double x[MAXN];
@@ -375,15 +365,15 @@ static void check_bk2(const char *driver, int npoints, int *matched) {
     tu_true(0, "bk2 against chain: setup");
     return;
   }
-  seed(driver[0] == 'f' ? 51 : 52);
+  tu_seed(driver[0] == 'f' ? 51 : 52);
   for (int it = 0; it < npoints; it++) {
-    double al = uni(1.5, 4), be = uni(0.8, 3), ph = uni(1.1, 2),
-           V = uni(0.01, 0.1);
+    double al = tu_uni(1.5, 4), be = tu_uni(0.8, 3), ph = tu_uni(1.1, 2),
+           V = tu_uni(0.01, 0.1);
     set(mc, "alpha", al), set(mb, "alpha", al);
     set(mc, "beta2", be), set(mb, "beta", be);
     set(mc, "phi", ph), set(mb, "phi", ph);
     set(mc, "v", V), set(mb, "v", V);
-    double x = uni(-0.3, 0.3);
+    double x = tu_uni(-0.3, 0.3);
     if (sc_map_iterate_n(mc, &x, 3, SC_EVAL_VALUE, p.v, &msg)) continue;
     x = p.v->f[0];
     sc_itin_code code;

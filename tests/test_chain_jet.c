@@ -14,16 +14,6 @@
 #define MAXN 3 /* state components: four blocks */
 #define NP 8   /* the chain's parameters */
 
-static unsigned long long rng_state = 1;
-static void seed(unsigned long long s) { rng_state = s * 2654435761ULL + 1; }
-static double uni(double lo, double hi) {
-  rng_state ^= rng_state >> 12;
-  rng_state ^= rng_state << 25;
-  rng_state ^= rng_state >> 27;
-  unsigned long long r = rng_state * 2685821657736338717ULL;
-  return lo + (hi - lo) * ((double)(r >> 11) / 9007199254740992.0);
-}
-
 static sc_map *chain_new(int N, const char *topology, const char *driver) {
   sc_map *m = NULL;
   sc_msg msg;
@@ -150,21 +140,21 @@ static void check_differences(int N, int ring, const char *driver) {
   F.n = (size_t)N - 1, F.np = sc_map_nparam(F.m);
   sc_mapn_value_alloc(F.m, fl, &F.v, &msg);
   for (int k = 0; k < 4; k++) sc_mapn_value_alloc(F.m, fl, &F.w[k], &msg);
-  seed(77 + 2 * N + ring);
+  tu_seed(77 + 2 * N + ring);
   set(F.m, "alpha", 2.385);
   set(F.m, "phi", 1.3);
   set(F.m, "v", 0.037);
   for (int i = 1; i < N; i++) {
     char nm[24];
     snprintf(nm, sizeof nm, "beta%d", i + 1);
-    set(F.m, nm, uni(0.9, 1.3));
+    set(F.m, nm, tu_uni(0.9, 1.3));
   }
   for (size_t q = 0; q < F.np; q++) F.p0[q] = sc_map_get_param(F.m, q);
   double emax = 0, smax = 0, asym = 0;
   int ndone = 0, nnan = 0, nslips = 0;
   for (int k = 0; k < 30; k++) {
     double x[MAXN], scale;
-    for (size_t i = 0; i < F.n; i++) x[i] = uni(-0.1, 0.1);
+    for (size_t i = 0; i < F.n; i++) x[i] = tu_uni(-0.1, 0.1);
     if (sc_map_eval_n(F.m, x, fl, F.v, &msg)) continue;
     if (!isfinite(F.v->H[0]) || !isfinite(F.v->T[0])) {
       nnan++;
@@ -222,14 +212,14 @@ static void check_bk2(const char *driver, int npoints) {
   }
   double e = 0;
   int ndone = 0, nitin = 0, iters = 0;
-  seed(4242);
+  tu_seed(4242);
   for (int k = 0; k < npoints; k++) {
-    double p[4] = {uni(0.5, 5), uni(0.5, 3), uni(1.1, 2.1), uni(0.005, 0.1)};
+    double p[4] = {tu_uni(0.5, 5), tu_uni(0.5, 3), tu_uni(1.1, 2.1), tu_uni(0.005, 0.1)};
     for (int q = 0; q < 4; q++) {
       set(b, bn[q], p[q]);
       set(c, cn[q], p[q]);
     }
-    double d = uni(-1, 1);
+    double d = tu_uni(-1, 1);
     int it = 1 + k % 2; /* one iterate, and two by the chain rule */
     if (sc_map_iterate_n(b, &d, it, fl, bv, &msg) ||
         sc_map_iterate_n(c, &d, it, fl, cv, &m2))

@@ -12,19 +12,10 @@
 #include <string.h>
 
 #include "slipcont/map.h"
+#include "chain_ref.h"
 #include "test_util.h"
 
 #define MAXN 4
-
-static unsigned long long rng_state = 1;
-static void seed(unsigned long long s) { rng_state = s * 2654435761ULL + 1; }
-static double uni(double lo, double hi) {
-  rng_state ^= rng_state >> 12;
-  rng_state ^= rng_state << 25;
-  rng_state ^= rng_state >> 27;
-  unsigned long long r = rng_state * 2685821657736338717ULL;
-  return lo + (hi - lo) * ((double)(r >> 11) / 9007199254740992.0);
-}
 
 static sc_map *map_new(const char *model, const char *preset) {
   sc_map *m = NULL;
@@ -89,18 +80,18 @@ static void check_bk2(const char *friction, const char *driver, int npoints,
   }
   double ef = 0, ed = 0;
   int nitin = 0, nstatus = 0, ndone = 0;
-  seed(4711 + (unsigned)vw + 7 * (unsigned)near_dstar);
+  tu_seed(4711 + (unsigned)vw + 7 * (unsigned)near_dstar);
   sc_msg msg, m2;
   for (int k = 0; k < npoints; k++) {
-    double p[5] = {uni(0.5, 5), uni(0.5, 3), uni(0.01, 0.1), uni(0.2, 3),
-                   uni(1.1, 2.1)};
+    double p[5] = {tu_uni(0.5, 5), tu_uni(0.5, 3), tu_uni(0.01, 0.1), tu_uni(0.2, 3),
+                   tu_uni(1.1, 2.1)};
     for (int q = 0; q < 5; q++) {
       set(b, bn[q], p[q]);
       set(c, cn[q], p[q]);
     }
     double ds = (p[1] - 1) / (1 + 2 * p[0]);
-    double d = near_dstar ? ds + uni(-1, 1) * pow(10, -uni(6, 12))
-                          : uni(-1, 1);
+    double d = near_dstar ? ds + tu_uni(-1, 1) * pow(10, -tu_uni(6, 12))
+                          : tu_uni(-1, 1);
     sc_map_value bv, cv;
     unsigned fl = SC_EVAL_DERIV | SC_EVAL_ITINERARY;
     int s1 = sc_map_eval(b, d, fl, &bv, &msg);
@@ -157,11 +148,11 @@ static void check_exact(int N, int ring, const char *driver, int npoints) {
   sc_mapn_value_alloc(e, fl, &a, &msg);
   sc_mapn_value_alloc(m, fl, &b, &msg);
   size_t n = (size_t)N - 1, np = sc_map_nparam(m);
-  seed(99 + 10 * (unsigned)N + (unsigned)ring);
+  tu_seed(99 + 10 * (unsigned)N + (unsigned)ring);
   double ef = 0, ed = 0;
   int ndone = 0, nitin = 0, nstatus = 0;
   for (int k = 0; k < npoints; k++) {
-    double p[3] = {uni(0.5, 4), uni(1.1, 2), uni(0.005, 0.1)};
+    double p[3] = {tu_uni(0.5, 4), tu_uni(1.1, 2), tu_uni(0.005, 0.1)};
     const char *pn[3] = {"alpha", "phi", "v"};
     for (int q = 0; q < 3; q++) {
       set(e, pn[q], p[q]);
@@ -170,12 +161,12 @@ static void check_exact(int N, int ring, const char *driver, int npoints) {
     for (int i = 1; i < N; i++) {
       char nm[24];
       snprintf(nm, sizeof nm, "beta%d", i + 1);
-      double t = uni(0.6, 2);
+      double t = tu_uni(0.6, 2);
       set(e, nm, t);
       set(m, nm, t);
     }
     double d[MAXN];
-    for (size_t i = 0; i < n; i++) d[i] = uni(-0.5, 0.5);
+    for (size_t i = 0; i < n; i++) d[i] = tu_uni(-0.5, 0.5);
     int s1 = sc_map_eval_n(e, d, fl, a, &msg);
     int s2 = sc_map_eval_n(m, d, fl, b, &msg);
     if (s1 || s2) {
@@ -213,138 +204,6 @@ static void check_exact(int N, int ring, const char *driver, int npoints) {
   sc_map_free(m);
 }
 
-/* --- an integration of its own ------------------------------------------ */
-
-/* The chain's equations written again from docs/chain.md for GSL's rk8pd:
- * Y_i' = U_i, U_i' = K_i(U_i) - S_i while block i slips, K_i = T_i / (1 +
- * gamma |U_i - W|); Y_i' = W, U_i' = 0 while it sticks. */
-typedef struct {
-  int N, ring;
-  double alpha, gamma, W, T[MAXN];
-  int slip[MAXN];
-} ref_sys;
-
-static double ref_spring(const ref_sys *s, const double *Y, int i) {
-  double f = Y[i];
-  for (int k = -1; k <= 1; k += 2) {
-    int n = i + k;
-    if (s->ring) n = (n + s->N) % s->N;
-    else if (n < 0 || n >= s->N) continue;
-    f += s->alpha * (Y[i] - Y[n]);
-  }
-  return f;
-}
-
-static int ref_rhs(double t, const double y[], double dy[], void *p) {
-  (void)t;
-  const ref_sys *s = p;
-  for (int i = 0; i < s->N; i++) {
-    double K = s->T[i] / (1 + s->gamma * fabs(y[s->N + i] - s->W));
-    dy[i] = s->slip[i] ? y[s->N + i] : s->W;
-    dy[s->N + i] = s->slip[i] ? K - ref_spring(s, y, i) : 0;
-  }
-  return GSL_SUCCESS;
-}
-
-/* The guard of block i: U_i - W slipping, S_i - T_i stuck. */
-static double ref_guard(const ref_sys *s, const double *y, int i) {
-  return s->slip[i] ? y[s->N + i] - s->W : ref_spring(s, y, i) - s->T[i];
-}
-
-/* rk8pd at 1e-13 (the map is compared at the default preset's 1e-10),
- * steps no longer than 0.01 (a guard cannot cross zero twice unseen:
- * frequencies <= sqrt(1 + 4 alpha) ~ 4.2 here), iterates of 40 phases
- * or more left out (a slip chaotic within itself: two correct
- * computations part after a few dozen phases). */
-static const double REF_EPS = 1e-13;
-static const double REF_HMAX = 0.01;
-#define REF_MAX_PHASES 40
-
-static void ref_flow(ref_sys *s, const double *y0, double h, double *y) {
-  gsl_odeiv2_system sys = {ref_rhs, NULL, (size_t)(2 * s->N), s};
-  gsl_odeiv2_driver *d = gsl_odeiv2_driver_alloc_y_new(
-      &sys, gsl_odeiv2_step_rk8pd, fmin(h, REF_HMAX) / 4, REF_EPS, REF_EPS);
-  double t = 0;
-  memcpy(y, y0, (size_t)(2 * s->N) * sizeof *y);
-  if (h > 0) gsl_odeiv2_driver_apply(d, &t, h, y);
-  gsl_odeiv2_driver_free(d);
-}
-
-/* The time in (0, h] where guard i of the step from y0 reaches zero, by
- * bisection on re-integrations. */
-static double ref_locate(ref_sys *s, const double *y0, double h, int i) {
-  double lo = 0, hi = h, y[2 * MAXN];
-  for (int it = 0; it < 60 && hi - lo > 1e-16 * (1 + hi); it++) {
-    double mid = 0.5 * (lo + hi);
-    ref_flow(s, y0, mid, y);
-    if (ref_guard(s, y, i) >= 0) hi = mid;
-    else lo = mid;
-  }
-  return hi;
-}
-
-/* f(d) by integration, and the itinerary as the chain writes it. */
-static int ref_map(ref_sys *s, const double *d, double *f, char *itin) {
-  int N = s->N, armed[MAXN];
-  double y[2 * MAXN], yo[2 * MAXN], gap[MAXN], gmin = HUGE_VAL;
-  y[0] = 0;
-  for (int i = 1; i < N; i++) y[i] = y[i - 1] + d[i - 1];
-  for (int i = 0; i < N; i++) {
-    gap[i] = s->T[i] - ref_spring(s, y, i);
-    gmin = fmin(gmin, gap[i]);
-  }
-  for (int i = 0; i < N; i++) {
-    y[i] += gmin; /* S_i grows with a common shift of the positions */
-    y[N + i] = s->W;
-    s->slip[i] = gap[i] == gmin;
-    armed[i] = !s->slip[i];
-  }
-  itin[0] = '\0';
-  gsl_odeiv2_system sys = {ref_rhs, NULL, (size_t)(2 * N), s};
-  for (int phase = 0;; phase++) {
-    if (phase == REF_MAX_PHASES) return -2;
-    if (phase) strcat(itin, "-");
-    for (int i = 0; i < N; i++)
-      if (s->slip[i]) snprintf(itin + strlen(itin), 12, "%d", i + 1);
-    gsl_odeiv2_evolve *ev = gsl_odeiv2_evolve_alloc((size_t)(2 * N));
-    gsl_odeiv2_control *ct = gsl_odeiv2_control_y_new(REF_EPS, REF_EPS);
-    gsl_odeiv2_step *st =
-        gsl_odeiv2_step_alloc(gsl_odeiv2_step_rk8pd, (size_t)(2 * N));
-    double t = 0, h = 1e-3, th = 0;
-    int hit = -1;
-    while (hit < 0 && t < 1000) {
-      double t0 = t;
-      memcpy(yo, y, sizeof y);
-      gsl_odeiv2_evolve_apply(ev, ct, st, &sys, &t, t0 + REF_HMAX, &h, y);
-      for (int i = 0; i < N; i++) {
-        double g = ref_guard(s, y, i);
-        if (!armed[i] && g < 0) armed[i] = 1;
-        else if (armed[i] && g >= 0 && ref_guard(s, yo, i) < 0) {
-          double tl = ref_locate(s, yo, t - t0, i);
-          if (hit < 0 || tl < th) hit = i, th = tl;
-        }
-      }
-      if (hit >= 0) ref_flow(s, yo, th, y);
-    }
-    gsl_odeiv2_evolve_free(ev);
-    gsl_odeiv2_control_free(ct);
-    gsl_odeiv2_step_free(st);
-    if (hit < 0) return -1;
-    if (s->slip[hit]) {
-      s->slip[hit] = 0;
-      y[N + hit] = s->W;
-      int left = 0;
-      for (int i = 0; i < N; i++) left += s->slip[i];
-      if (!left) break;
-    } else {
-      s->slip[hit] = 1;
-      armed[hit] = 0;
-    }
-  }
-  for (int i = 0; i + 1 < N; i++) f[i] = y[i + 1] - y[i];
-  return 0;
-}
-
 /* The default preset integrates at 1e-10 and promises f to 10 (atol +
  * rtol) = 2e-9 (sc_map_precision()); the reference is a thousand times
  * tighter. */
@@ -354,26 +213,29 @@ static void check_integration(int N, int ring, int npoints) {
   sc_mapn_value *v;
   sc_msg msg;
   sc_mapn_value_alloc(m, SC_EVAL_ITINERARY, &v, &msg);
-  seed(1000 * (unsigned)N + 10 * (unsigned)ring);
+  tu_seed(1000 * (unsigned)N + 10 * (unsigned)ring);
   double emax = 0, prec = sc_map_precision(m);
   int ndone = 0, nitin = 0, nlong = 0;
   for (int k = 0; k < npoints; k++) {
-    ref_sys s = {N, ring, uni(0.5, 4), uni(0.2, 3), uni(0.005, 0.1), {1}, {0}};
+    chain_ref s = {N, ring, 0, 1, 0, 0, {1}, {0}};
+    s.alpha = tu_uni(0.5, 4);
+    s.gamma = tu_uni(0.2, 3);
+    s.W = tu_uni(0.005, 0.1);
     set(m, "alpha", s.alpha);
     set(m, "gamma", s.gamma);
     set(m, "v", s.W);
     for (int i = 1; i < N; i++) {
       char nm[24];
       snprintf(nm, sizeof nm, "beta%d", i + 1);
-      s.T[i] = uni(0.6, 2);
+      s.T[i] = tu_uni(0.6, 2);
       set(m, nm, s.T[i]);
     }
     double d[MAXN], f[MAXN];
     char itin[512];
-    for (int i = 0; i + 1 < N; i++) d[i] = uni(-0.5, 0.5);
+    for (int i = 0; i + 1 < N; i++) d[i] = tu_uni(-0.5, 0.5);
     int s1 = sc_map_eval_n(m, d, SC_EVAL_ITINERARY, v, &msg);
-    int s2 = ref_map(&s, d, f, itin);
-    if (s2 == -2 || (!s1 && v->nphases >= REF_MAX_PHASES)) {
+    int s2 = chain_ref_map(&s, d, f, itin);
+    if (s2 == -2 || (!s1 && v->nphases >= CHAIN_REF_MAX_PHASES)) {
       nlong++;
       continue;
     }
@@ -395,7 +257,7 @@ static void check_integration(int N, int ring, int npoints) {
   printf("N = %d %s, velocity weakening, default preset: %d points (%d left "
          "out: %d phases or more), max |f - f_integrated| %.3g (promise "
          "%.3g)\n",
-         N, topo, ndone, nlong, REF_MAX_PHASES, emax, prec);
+         N, topo, ndone, nlong, CHAIN_REF_MAX_PHASES, emax, prec);
   tu_true(ndone >= npoints * 4 / 5, "%d of %d points compared", ndone,
           npoints);
   tu_int("itineraries that differ from the integration's", nitin, 0);
@@ -419,12 +281,15 @@ static void check_near_ties(int npoints) {
   sc_mapn_value *v;
   sc_msg msg;
   sc_mapn_value_alloc(m, SC_EVAL_ITINERARY, &v, &msg);
-  seed(2718);
+  tu_seed(2718);
   double emax = 0, prec = sc_map_precision(m);
   int ndone = 0, nitin = 0, nlong = 0, nsame = 0;
   for (int k = 0; k < npoints; k++) {
-    ref_sys s = {3, 0, uni(0.5, 4), uni(0.2, 3), uni(0.005, 0.1), {1}, {0}};
-    s.T[1] = uni(1.5, 2), s.T[2] = uni(0.8, 1.4);
+    chain_ref s = {3, 0, 0, 1, 0, 0, {1}, {0}};
+    s.alpha = tu_uni(0.5, 4);
+    s.gamma = tu_uni(0.2, 3);
+    s.W = tu_uni(0.005, 0.1);
+    s.T[1] = tu_uni(1.5, 2), s.T[2] = tu_uni(0.8, 1.4);
     set(m, "alpha", s.alpha);
     set(m, "gamma", s.gamma);
     set(m, "v", s.W);
@@ -432,12 +297,12 @@ static void check_near_ties(int npoints) {
     set(m, "beta3", s.T[2]);
     double d[2], f[2], a = s.alpha;
     char itin[512];
-    d[0] = uni(-0.1, 0.1);
+    d[0] = tu_uni(-0.1, 0.1);
     double delta = (k % 2 ? 1 : -1) * pow(10, -6 - 2 * ((k / 2) % 4));
     d[1] = (s.T[2] - 1 - (1 + a) * d[0]) / (1 + a) + delta;
     int s1 = sc_map_eval_n(m, d, SC_EVAL_ITINERARY, v, &msg);
-    int s2 = ref_map(&s, d, f, itin);
-    if (s2 == -2 || (!s1 && v->nphases >= REF_MAX_PHASES)) {
+    int s2 = chain_ref_map(&s, d, f, itin);
+    if (s2 == -2 || (!s1 && v->nphases >= CHAIN_REF_MAX_PHASES)) {
       nlong++;
       continue;
     }
@@ -491,7 +356,7 @@ static void check_derivatives(int N, int ring) {
   sc_mapn_value_alloc(m, SC_EVAL_DERIV | SC_EVAL_ITINERARY, &v, &msg);
   sc_mapn_value_alloc(m, SC_EVAL_ITINERARY, &a, &msg);
   sc_mapn_value_alloc(m, SC_EVAL_ITINERARY, &b, &msg);
-  seed(31 + (unsigned)N + (unsigned)ring);
+  tu_seed(31 + (unsigned)N + (unsigned)ring);
   double p0[8];
   set(m, "alpha", 2.385);
   set(m, "gamma", 1.37);
@@ -499,14 +364,14 @@ static void check_derivatives(int N, int ring) {
   for (int i = 1; i < N; i++) {
     char nm[24];
     snprintf(nm, sizeof nm, "beta%d", i + 1);
-    set(m, nm, uni(0.8, 1.6));
+    set(m, nm, tu_uni(0.8, 1.6));
   }
   for (size_t q = 0; q < np; q++) p0[q] = sc_map_get_param(m, q);
   double emax = 0, gmax = 0;
   int ndone = 0, pg = sc_map_param_index(m, "gamma");
   for (int k = 0; k < 20; k++) {
     double d[MAXN], x[MAXN];
-    for (size_t i = 0; i < n; i++) d[i] = uni(-0.4, 0.4);
+    for (size_t i = 0; i < n; i++) d[i] = tu_uni(-0.4, 0.4);
     if (sc_map_eval_n(m, d, SC_EVAL_DERIV | SC_EVAL_ITINERARY, v, &msg))
       continue;
     double fd[(MAXN + 8) * MAXN], ex[(MAXN + 8) * MAXN], scale = 1;

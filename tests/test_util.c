@@ -53,3 +53,15 @@ int tu_finish(void) {
   printf("%d passed, %d failed\n", npass, nfail);
   return nfail ? EXIT_FAILURE : EXIT_SUCCESS;
 }
+
+static unsigned long long tu_rng = 1;
+
+void tu_seed(unsigned long long s) { tu_rng = s * 2654435761ULL + 1; }
+
+double tu_uni(double lo, double hi) {
+  tu_rng ^= tu_rng >> 12;
+  tu_rng ^= tu_rng << 25;
+  tu_rng ^= tu_rng >> 27;
+  unsigned long long r = tu_rng * 2685821657736338717ULL;
+  return lo + (hi - lo) * ((double)(r >> 11) / 9007199254740992.0);
+}

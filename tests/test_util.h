@@ -15,6 +15,10 @@ int tu_true(int cond, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));
 /* Integer equality. */
 int tu_int(const char *what, long observed, long expected);
+/* A reproducible uniform draw in [lo, hi] (xorshift64*), restarted by
+ * tu_seed(): the same numbers on every machine. */
+void tu_seed(unsigned long long s);
+double tu_uni(double lo, double hi);
 /* Summary line and exit status (0 if all passed). */
 int tu_finish(void);
 
