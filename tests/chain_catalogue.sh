@@ -197,6 +197,12 @@ expect_rc "examples/chain100-catalogue.ini" 0
 expect_rows "the example's events" "$TMP/ex/catalogue.csv" 4000
 check "the example's mf.csv counts every event" \
   awk -F, 'NR > 1 { n += $4 } NR == 2 { c = $5 } END { exit !(n == 4000 && c == 4000) }' "$TMP/ex/mf.csv"
+# Its title names 100 blocks' parameters: broken into lines that fit the
+# picture (each quoted piece of gnuplot's title at most 110 characters).
+check "the example's plot titles are broken into lines that fit" \
+  awk -v q="'" 'index($0, "set title") == 1 { n++; k = split($0, a, q)
+    for (i = 2; i <= k; i += 2) if (length(a[i]) > 110) exit 1 }
+    END { exit !(n == 2) }' "$TMP/ex/mf.gp" "$TMP/ex/catalogue.gp"
 
 # Refusals: exit status 2, the message, nothing created.
 refuse() { # $1: what, $2: expected text, $3...: --set overrides

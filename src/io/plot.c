@@ -22,6 +22,39 @@ void sc_plot_quote(FILE *f, const char *text) {
   fputc('\'', f);
 }
 
+/* Characters of a title line: at the 1200-pixel terminal's 12-point font
+ * (about 7 pixels a character) a line is centred over a plot that the key
+ * outside leaves about 900 pixels wide, so a longer line is cut at both
+ * ends of the picture; titles are broken before that. */
+#define PLOT_TITLE_LINE 110
+
+/* A title quoted for gnuplot, broken into lines after ", " where a line
+ * would pass PLOT_TITLE_LINE characters: 'a, b' . "\n" . 'c' (one gnuplot
+ * line; the pieces are joined by the string operator). */
+static void quote_title(FILE *f, const char *title) {
+  size_t n = strlen(title);
+  if (n <= PLOT_TITLE_LINE) {
+    sc_plot_quote(f, title);
+    return;
+  }
+  char line[PLOT_TITLE_LINE + 1];
+  const char *p = title;
+  while (strlen(p) > PLOT_TITLE_LINE) {
+    /* the last ", " that keeps the line within bounds */
+    const char *cut = NULL;
+    for (const char *q = p; q + 1 < p + PLOT_TITLE_LINE; q++)
+      if (q[0] == ',' && q[1] == ' ') cut = q;
+    if (!cut) break;
+    size_t k = (size_t)(cut - p) + 1;
+    memcpy(line, p, k);
+    line[k] = '\0';
+    sc_plot_quote(f, line);
+    fputs(" . \"\\n\" . ", f);
+    p = cut + 2;
+  }
+  sc_plot_quote(f, p);
+}
+
 void sc_plot_head(FILE *f, const char *png, const char *title,
                   const char *xlabel, const char *ylabel) {
   fputs("# Written by slipcont; edit freely and run `gnuplot THIS.gp`.\n", f);
@@ -33,7 +66,7 @@ void sc_plot_head(FILE *f, const char *png, const char *title,
   fputs("set key outside right top\n", f);
   fputs("set grid lc rgb '#dddddd'\n", f);
   fputs("set title ", f);
-  sc_plot_quote(f, title);
+  quote_title(f, title);
   fputs("\nset xlabel ", f);
   sc_plot_quote(f, xlabel);
   fputs("\nset ylabel ", f);
