@@ -158,7 +158,8 @@ typedef struct {
   int stage;        /**< SC_MARCH_NEW before the first call */
   double t;         /**< the march's point */
   double tsafe;     /**< g < 0 on [0, tsafe) up to rounding */
-  double g0, g1;    /**< g, g' at t (stage SC_MARCH_AT) */
+  double g0;        /**< g at t (stage SC_MARCH_AT) */
+  double g1;        /**< g' at t (stage SC_MARCH_AT) */
   long steps;       /**< steps so far */
   sc_root_long root;/**< the root (stage SC_MARCH_DONE) */
   double bounds[6]; /**< the guard's bounds, from the first call */
