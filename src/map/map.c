@@ -354,52 +354,14 @@ const char *sc_border_label(sc_border_kind k) {
   return (unsigned)k < SC_BORDER_NKINDS ? t[k] : "??";
 }
 
-int sc_map_has_borders(const sc_map *m) { return m->type->eval_ex != NULL; }
-
-/* The state borders of a model whose one-dimensional state is read by
- * eval_n_ex (the chain of two blocks): each on_state border m = s (d -
- * d_on(p)) as an sc_border, d_on = d - m / m_d, d_on_p = -m_p / m_d. */
-static int state_borders_n(sc_map *m, double d, sc_border_list *out,
-                           sc_msg *msg) {
-  sc_bordern_list *l = NULL;
-  sc_mapn_value *v = NULL;
-  int st = sc_bordern_list_alloc(m, out->cap ? out->cap : 1, &l, msg);
-  if (!st) st = sc_mapn_value_alloc(m, SC_EVAL_VALUE, &v, msg);
-  if (!st) st = sc_map_eval_n_ex(m, &d, SC_EVAL_VALUE, NULL, NULL, l, v, msg);
-  for (size_t i = 0; !st && i < l->n && i < l->cap; i++) {
-    const sc_bordern *b = &l->b[i];
-    if (!b->on_state || !(b->dx[0] != 0)) continue;
-    if (out->n < out->cap) {
-      sc_border *o = &out->b[out->n];
-      memset(o, 0, sizeof *o);
-      o->kind = b->kind;
-      o->value = b->value;
-      o->dd = b->dx[0];
-      o->on_state = 1;
-      o->d_on = d - b->value / b->dx[0];
-      for (size_t q = 0; q < SC_MAXPARAM; q++) {
-        o->dp[q] = b->dp[q];
-        o->d_on_dp[q] = -b->dp[q] / b->dx[0];
-      }
-      snprintf(o->name, sizeof o->name, "%s", b->name);
-    }
-    out->n++;
-  }
-  if (!st && out->n > out->cap)
-    st = sc_fail(msg, SC_ENOMEM,
-                 "sc_map_state_borders: %zu borders, room for %zu", out->n,
-                 out->cap);
-  sc_mapn_value_free(v);
-  sc_bordern_list_free(l);
-  return st;
+int sc_map_has_borders(const sc_map *m) {
+  return m->type->eval_ex || (m->type->eval_n_ex && m->dim == 1);
 }
 
 int sc_map_state_borders(sc_map *m, double d, sc_border_list *out,
                          sc_msg *msg) {
   out->n = 0;
-  if (!m->type->eval_ex && m->type->eval_n_ex && sc_map_dim(m) == 1)
-    return state_borders_n(m, d, out, msg);
-  if (!m->type->eval_ex) return SC_OK;
+  if (!sc_map_has_borders(m)) return SC_OK;
   sc_map_value v;
   int st = sc_map_eval_ex(m, d, SC_EVAL_VALUE, NULL, NULL, out, &v, msg);
   if (st) return st;
@@ -448,12 +410,61 @@ static void clear_value(sc_map_value *v) {
 /* One iterate of a model whose dimension is 1 at its current options but
  * which gives eval_n only (the chain of two blocks), as a one-dimensional
  * value, so every one-dimensional task runs on it. */
+/* The borders of a one-component state evaluated through eval_n_ex
+ * appended to @p out as sc_border: dm/dd = dm/dx_1, and a border in the
+ * state m = s (d - d_on(p)) with d_on = d - m / m_d, d_on_p = -m_p / m_d. */
+static void borders_from_n(const sc_bordern_list *l, double d,
+                           sc_border_list *out) {
+  for (size_t i = 0; i < l->n; i++, out->n++) {
+    if (i >= l->cap || out->n >= out->cap) continue; /* counted only */
+    const sc_bordern *b = &l->b[i];
+    sc_border *o = &out->b[out->n];
+    memset(o, 0, sizeof *o);
+    o->kind = b->kind;
+    o->iterate = b->iterate;
+    o->value = b->value;
+    o->dd = b->dx[0];
+    /* a surface in the state with no normal gives no point d_on */
+    o->on_state = b->on_state && b->dx[0] != 0;
+    o->d_on = o->on_state ? d - b->value / b->dx[0] : 0;
+    for (size_t q = 0; q < SC_MAXPARAM; q++) {
+      o->dp[q] = b->dp[q];
+      o->d_on_dp[q] = o->on_state ? -b->dp[q] / b->dx[0] : 0;
+    }
+    o->alt = b->alt;
+    memcpy(o->name, b->name, sizeof o->name);
+  }
+}
+
+/* One iterate of a model whose only map is n-dimensional, with one state
+ * component: its value (and with force, code or borders, its code and
+ * borders through eval_n_ex) as the one-dimensional interface's. */
 static int eval_one_component(sc_map *m, double d, unsigned flags,
-                              sc_map_value *out, sc_msg *msg) {
+                              const sc_itin_code *force, sc_itin_code *code,
+                              sc_border_list *borders, sc_map_value *out,
+                              sc_msg *msg) {
   sc_mapn_value *v = m->step;
   v->nphases = 0;
   v->itinerary[0] = '\0';
-  int st = m->type->eval_n(m->inst, &d, flags, v, msg);
+  int st;
+  if (m->type->eval_n_ex && (force || code || borders)) {
+    sc_bordern_list *l = NULL;
+    if (borders) {
+      size_t cap = borders->cap ? borders->cap : 1;
+      if (m->blist && m->blist->cap < cap) {
+        sc_bordern_list_free(m->blist);
+        m->blist = NULL;
+      }
+      if (!m->blist && (st = sc_bordern_list_alloc(m, cap, &m->blist, msg)))
+        return st;
+      l = m->blist;
+      l->n = 0;
+    }
+    st = m->type->eval_n_ex(m->inst, &d, flags, force, code, l, v, msg);
+    if (!st && l) borders_from_n(l, d, borders);
+  } else {
+    st = m->type->eval_n(m->inst, &d, flags, v, msg);
+  }
   if (st) return st;
   out->f = v->f[0];
   out->nphases = v->nphases;
@@ -487,7 +498,7 @@ int sc_map_eval_ex(sc_map *m, double d, unsigned flags,
   m->nevals++;
   int st;
   if (!m->type->eval)
-    st = eval_one_component(m, d, flags, out, msg);
+    st = eval_one_component(m, d, flags, force, code, borders, out, msg);
   else if (m->type->eval_ex && (force || code || borders))
     st = m->type->eval_ex(m->inst, d, flags, force, code, borders, out, msg);
   else

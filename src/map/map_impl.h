@@ -23,6 +23,9 @@ struct sc_map {
    * the chain rule, sized at allocation so evaluation never allocates */
   sc_mapn_value *step;    /* f and its derivatives at one point */
   double *scratch;        /* the chain rule's intermediate products */
+  /* the borders of a one-component state read through eval_n_ex (the
+   * chain of two blocks; map.c), taken at the first such evaluation */
+  sc_bordern_list *blist;
 };
 
 /* Take / release the n-dimensional workspace of @p m (its type set);

@@ -83,8 +83,10 @@ int sc_mapn_work_alloc(sc_map *m) {
 void sc_mapn_work_free(sc_map *m) {
   free(m->step);
   free(m->scratch);
+  sc_bordern_list_free(m->blist);
   m->step = NULL;
   m->scratch = NULL;
+  m->blist = NULL;
 }
 
 /* Storage check: the arrays @p flags needs are there, and the sizes are
