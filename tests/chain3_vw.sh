@@ -35,6 +35,17 @@ check "chain3-vw-sweep: d1 at gamma 0.2 is the orbit's (1e-8)" \
   awk -F, 'function abs(x) { return x < 0 ? -x : x }
     NR > 1 && abs($1 - 0.2) < 1e-9 { n++; if (abs($2 - 0.1355455871) > 1e-8) bad++ }
     END { exit !(n == 100 && bad == 0) }' "$TMP/sweep/sweep.csv"
+# The summary says what runs: velocity weakening is integrated whatever
+# flows reads (its default, exact), with the model's precision.
+check "chain3-vw-sweep: the summary says the flows are integrated (2.0e-09)" \
+  grep -q "^  (the flows are integrated numerically here: f to about 2.0e-09" \
+  "$TMP/sweep/summary.txt"
+run_within 60 run "$SRC/examples/chain3-vw-sweep.ini" --out "$TMP/coul" \
+  --quiet --set output.plot=no --set model.friction=coulomb \
+  --set task.steps=3 --set task.iterations=20 --set task.keep=5
+expect_rc "chain3-vw-sweep with Coulomb friction" 0
+check "chain3-vw-sweep with Coulomb friction: exact flows, no such line" \
+  sh -c '! grep -q "integrated numerically" "$1"' _ "$TMP/coul/summary.txt"
 
 echo "$NPASS passed, $NFAIL failed"
 [ "$NFAIL" -eq 0 ]

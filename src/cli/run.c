@@ -334,6 +334,11 @@ int sc_cli_summary_begin(sc_cli_run *r, sc_file **out) {
     fprintf(f, "  %-16s = %-24s ; %s\n", t->data[i].name, v[0] ? v : "-",
             strcmp(where, sc_scene_name(s)) ? where : "default");
   }
+  /* what runs, where the options alone do not say it: velocity weakening
+   * is integrated numerically whatever flows reads */
+  if (sc_map_precision(m) > 0)
+    fprintf(f, "  (the flows are integrated numerically here: f to about "
+               "%.1e, the model's precision)\n", sc_map_precision(m));
   const sc_task_type *tt = sc_scene_task(s);
   section_settings(f, s, "task", "kind", tt->keys, tt->nkeys);
   size_t n;
