@@ -4,6 +4,7 @@
  * blocks 2..5's are the parameters beta2..beta5, which take the data's
  * values unless set explicitly (models.h, data_params); blocks 6..N's
  * come from the data alone. */
+#define _POSIX_C_SOURCE 200809L /* strtok_r */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
