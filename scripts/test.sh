@@ -44,7 +44,7 @@ fi
 echo "== fuzzing the scene parser (libFuzzer, 20 s) =="
 if command -v clang >/dev/null 2>&1; then
   CC=clang cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-    -DSLIPCONT_FUZZ=ON -DSLIPCONT_TESTS=OFF >/dev/null
+    -DSLIPCONT_FUZZ=ON -DSLIPCONT_TESTS=OFF -DSLIPCONT_WERROR=ON >/dev/null
   cmake --build build-fuzz -j"$jobs" --target fuzz_scene >/dev/null
   rm -rf build-fuzz/new && mkdir -p build-fuzz/new
   build-fuzz/fuzz_scene -max_total_time=20 -timeout=5 -rss_limit_mb=2048 \
