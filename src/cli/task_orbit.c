@@ -75,13 +75,15 @@ typedef struct {
   FILE *f;
   long rows;
   double y1lo, y1hi, y2lo, y2hi;
-  int blocks; /* trajectory_n: the number of blocks N (2 N values) */
+  int blocks; /* the number of blocks N (2 N values a sample) */
 } traj_ctx;
 
+/* A sample of the motion: tau, N positions, N velocities, the number of
+ * blocks slipping; the extent of (Y1, Y2) for the phase plot. */
 static int on_sample(void *ctx, double tau, const double *x, int mode) {
   traj_ctx *c = ctx;
   sc_csv_double(c->f, tau);
-  for (int i = 0; i < 4; i++) {
+  for (int i = 0; i < 2 * c->blocks; i++) {
     fputc(',', c->f);
     sc_csv_double(c->f, x[i]);
   }
@@ -90,21 +92,6 @@ static int on_sample(void *ctx, double tau, const double *x, int mode) {
   c->y1hi = fmax(c->y1hi, x[0]);
   c->y2lo = fmin(c->y2lo, x[1]);
   c->y2hi = fmax(c->y2hi, x[1]);
-  c->rows++;
-  return ferror(c->f) || sc_cli_interrupted() || c->rows > TRAJ_MAX_ROWS ? 1
-                                                                         : 0;
-}
-
-/* A sample of a model of N blocks: tau, N positions, N velocities, the
- * number of blocks slipping. */
-static int on_sample_n(void *ctx, double tau, const double *x, int mode) {
-  traj_ctx *c = ctx;
-  sc_csv_double(c->f, tau);
-  for (int i = 0; i < 2 * c->blocks; i++) {
-    fputc(',', c->f);
-    sc_csv_double(c->f, x[i]);
-  }
-  fprintf(c->f, ",%d\n", mode);
   c->rows++;
   return ferror(c->f) || sc_cli_interrupted() || c->rows > TRAJ_MAX_ROWS ? 1
                                                                          : 0;
@@ -232,40 +219,17 @@ static int orbit_iterate(sc_cli_run *r, orbit_job *j) {
 }
 
 /* The continuous motion over the last trajectory-iterates iterates into
- * trajectory.csv. */
+ * trajectory.csv: Y and U of each of the N blocks (bk2 through
+ * sc_map_trajectory() from d, N = 2; a model of N = n + 1 blocks, the
+ * chain, through sc_map_trajectory_n() from its state). */
 static int orbit_trajectory(sc_cli_run *r, orbit_job *j) {
   const sc_scene *s = r->scene;
   long mt = sc_scene_int(s, "trajectory-iterates");
   if (mt == 0) mt = j->n;
+  int scalar = sc_map_type(r->map)->trajectory != NULL;
   traj_ctx *c = &j->traj;
-  *c = (traj_ctx){NULL, 0, HUGE_VAL, -HUGE_VAL, HUGE_VAL, -HUGE_VAL, 2};
-  sc_file *tr = NULL;
-  int st = sc_cli_open(r, "trajectory.csv", &tr);
-  if (st) return st;
-  c->f = sc_file_stream(tr);
-  fputs("tau,y1,y2,u1,u2,mode\n", c->f);
-  double from = j->d[j->n - mt];
-  sc_msg em;
-  st = sc_map_trajectory(r->map, from, (int)mt, sc_scene_real(s, "dtau"),
-                         on_sample, c, &em);
-  if (!st) return sc_cli_commit(r, "trajectory.csv", tr);
-  if (sc_cli_interrupted()) return sc_cli_stop(r);
-  if (c->rows > TRAJ_MAX_ROWS)
-    return sc_fail(r->msg, SC_EINVAL,
-                   "trajectory longer than %ld rows (long stick phases: V "
-                   "is small): raise dtau or lower trajectory-iterates",
-                   TRAJ_MAX_ROWS);
-  return sc_fail(r->msg, st, "trajectory from d = %.17g: %s", from, em.text);
-}
-
-/* The blocks' motion of a model of N = n + 1 blocks (the chain) over the
- * last trajectory-iterates iterates into trajectory.csv. */
-static int orbit_trajectory_n(sc_cli_run *r, orbit_job *j) {
-  const sc_scene *s = r->scene;
-  long mt = sc_scene_int(s, "trajectory-iterates");
-  if (mt == 0) mt = j->n;
-  traj_ctx *c = &j->traj;
-  *c = (traj_ctx){NULL, 0, 0, 0, 0, 0, (int)j->dim + 1};
+  *c = (traj_ctx){NULL, 0, HUGE_VAL, -HUGE_VAL, HUGE_VAL, -HUGE_VAL,
+                  scalar ? 2 : (int)j->dim + 1};
   sc_file *tr = NULL;
   int st = sc_cli_open(r, "trajectory.csv", &tr);
   if (st) return st;
@@ -275,16 +239,23 @@ static int orbit_trajectory_n(sc_cli_run *r, orbit_job *j) {
     for (int i = 1; i <= c->blocks; i++) fprintf(c->f, ",%c%d", "yu"[k], i);
   fputs(",mode\n", c->f);
   sc_msg em;
-  st = sc_map_trajectory_n(r->map, j->d + (size_t)(j->n - mt) * j->dim,
-                           (int)mt, sc_scene_real(s, "dtau"), on_sample_n, c,
-                           &em);
+  double dtau = sc_scene_real(s, "dtau");
+  const double *from = j->d + (size_t)(j->n - mt) * j->dim;
+  st = scalar ? sc_map_trajectory(r->map, *from, (int)mt, dtau, on_sample, c,
+                                  &em)
+              : sc_map_trajectory_n(r->map, from, (int)mt, dtau, on_sample, c,
+                                    &em);
   if (!st) return sc_cli_commit(r, "trajectory.csv", tr);
   if (sc_cli_interrupted()) return sc_cli_stop(r);
   if (c->rows > TRAJ_MAX_ROWS)
     return sc_fail(r->msg, SC_EINVAL,
-                   "trajectory longer than %ld rows: raise dtau or lower "
+                   "trajectory longer than %ld rows%s: raise dtau or lower "
                    "trajectory-iterates",
-                   TRAJ_MAX_ROWS);
+                   TRAJ_MAX_ROWS,
+                   scalar ? " (long stick phases: V is small)" : "");
+  if (scalar)
+    return sc_fail(r->msg, st, "trajectory from d = %.17g: %s", *from,
+                   em.text);
   return sc_fail(r->msg, st, "trajectory from iterate %ld: %s", j->n - mt,
                  em.text);
 }
@@ -294,13 +265,12 @@ static int orbit_compute(sc_cli_run *r, void *job) {
   if (j->dim > 1) {
     int st = orbit_iterate_n(r, j);
     if (!st && !j->fail && sc_scene_flag(r->scene, "trajectory"))
-      st = orbit_trajectory_n(r, j);
+      st = orbit_trajectory(r, j);
     return st;
   }
   int st = orbit_iterate(r, j);
   if (!st && !j->fail && sc_scene_flag(r->scene, "trajectory"))
-    st = sc_map_type(r->map)->trajectory ? orbit_trajectory(r, j)
-                                         : orbit_trajectory_n(r, j);
+    st = orbit_trajectory(r, j);
   return st;
 }
 
