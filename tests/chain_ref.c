@@ -2,6 +2,9 @@
 #define _POSIX_C_SOURCE 200809L
 #include "chain_ref.h"
 
+#include "slipcont/map.h"
+#include "test_util.h"
+
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_odeiv2.h>
 #include <math.h>
@@ -130,3 +133,26 @@ int chain_ref_map(chain_ref *s, const double *d, double *f, char *itin) {
   return 0;
 }
 
+
+sc_map *chain_ref_new(int N, const char *topology, const char *driver) {
+  sc_map *m = NULL;
+  sc_msg msg;
+  char nb[24];
+  snprintf(nb, sizeof nb, "%d", N);
+  if (sc_map_alloc("chain", NULL, &m, &msg) ||
+      sc_map_set_option(m, "blocks", nb, &msg) ||
+      sc_map_set_option(m, "topology", topology, &msg) ||
+      sc_map_set_option(m, "driver", driver, &msg)) {
+    tu_true(0, "chain_ref_new(%d, %s, %s): %s", N, topology, driver,
+            msg.text);
+    sc_map_free(m);
+    return NULL;
+  }
+  return m;
+}
+
+void chain_ref_set(sc_map *m, const char *name, double x) {
+  sc_msg msg;
+  if (sc_map_set_param_by_name(m, name, x, &msg))
+    tu_true(0, "set %s = %g: %s", name, x, msg.text);
+}

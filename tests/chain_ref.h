@@ -32,4 +32,11 @@ typedef struct {
  * phases). */
 int chain_ref_map(chain_ref *s, const double *d, double *f, char *itin);
 
+/* The chain's tests' own set-up of the model: a chain of N blocks with the
+ * given topology and driver (NULL, and a failed check, where refused);
+ * a parameter set by name (a failed check where refused). */
+struct sc_map;
+struct sc_map *chain_ref_new(int N, const char *topology, const char *driver);
+void chain_ref_set(struct sc_map *m, const char *name, double x);
+
 #endif

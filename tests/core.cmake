@@ -34,15 +34,18 @@ set_tests_properties(search_replay_chart search_replay_fig56 PROPERTIES
 sc_add_test(test_vw_edges)
 # Branch starts with velocity weakening: mirror images alike.
 sc_add_test(test_vw_starts)
-# An integration of the chain of its own, for test_chain and test_chain_vw.
+# An integration of the chain of its own and the model's set-up, for the
+# chain's tests.
 add_library(sc_chain_ref STATIC chain_ref.c)
 target_compile_options(sc_chain_ref PRIVATE ${SC_WARNINGS})
-target_link_libraries(sc_chain_ref PRIVATE GSL::gsl m)
+target_include_directories(sc_chain_ref PRIVATE ${PROJECT_SOURCE_DIR}/include)
+target_link_libraries(sc_chain_ref PRIVATE sc_test_util slipcont_static GSL::gsl m)
 sc_add_test(test_chain)
 target_link_libraries(test_chain PRIVATE sc_chain_ref)
 # The chain's borders: gradients against differences, zeros against the
 # itineraries on both sides, two blocks against bk2's (a few seconds).
 sc_add_test(test_chain_border)
+target_link_libraries(test_chain_border PRIVATE sc_chain_ref)
 # The chain's numerical flows: velocity weakening against bk2 and an
 # integration of its own, Coulomb through the integrator (a few seconds).
 sc_add_test(test_chain_vw)
@@ -51,6 +54,7 @@ target_link_libraries(test_chain_vw PRIVATE sc_chain_ref)
 sc_add_test(test_chain_data)
 # The chain's second and third derivatives against differences and bk2.
 sc_add_test(test_chain_jet)
+target_link_libraries(test_chain_jet PRIVATE sc_chain_ref)
 sc_add_test(test_guard_long)
 # The event catalogue: two blocks against bk2, the energy balance, seeds,
 # the example of 100 blocks, the refusals (about 3 s of processor time;

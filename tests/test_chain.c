@@ -16,27 +16,7 @@
 
 #define MAXN 5
 
-static sc_map *chain_new(int N, const char *topology, const char *driver) {
-  sc_map *m = NULL;
-  sc_msg msg;
-  char nb[24];
-  snprintf(nb, sizeof nb, "%d", N);
-  if (sc_map_alloc("chain", NULL, &m, &msg) ||
-      sc_map_set_option(m, "blocks", nb, &msg) ||
-      sc_map_set_option(m, "topology", topology, &msg) ||
-      sc_map_set_option(m, "driver", driver, &msg)) {
-    tu_true(0, "chain_new(%d, %s, %s): %s", N, topology, driver, msg.text);
-    sc_map_free(m);
-    return NULL;
-  }
-  return m;
-}
 
-static void set(sc_map *m, const char *name, double x) {
-  sc_msg msg;
-  if (sc_map_set_param_by_name(m, name, x, &msg))
-    tu_true(0, "set %s = %g: %s", name, x, msg.text);
-}
 
 /* --- two blocks are bk2 ---------------------------------------------- */
 
@@ -49,7 +29,7 @@ static const double BK2_F_TOL = 1e-13;
 static const double BK2_D_TOL = 1e-9;
 
 static void check_bk2(const char *driver, int npoints) {
-  sc_map *b = NULL, *c = chain_new(2, "open", driver);
+  sc_map *b = NULL, *c = chain_ref_new(2, "open", driver);
   sc_msg msg, m2;
   sc_map_alloc("bk2", NULL, &b, &msg);
   sc_map_set_option(b, "driver", driver, &msg);
@@ -70,8 +50,8 @@ static void check_bk2(const char *driver, int npoints) {
   for (int k = 0; k < npoints; k++) {
     double p[4] = {tu_uni(0.5, 5), tu_uni(0.5, 3), tu_uni(1.1, 2.1), tu_uni(0.005, 0.1)};
     for (int q = 0; q < 4; q++) {
-      set(b, bn[q], p[q]);
-      set(c, cn[q], p[q]);
+      chain_ref_set(b, bn[q], p[q]);
+      chain_ref_set(c, cn[q], p[q]);
     }
     double d = tu_uni(-1, 1);
     sc_map_value bv;
@@ -111,14 +91,14 @@ static void check_bk2(const char *driver, int npoints) {
  * positions placed from block 2, as bk2 places them).  beta = 1, d = 0:
  * the synchronous slip, f = 0 exactly. */
 static void check_bk2_ties(const char *driver) {
-  sc_map *b = NULL, *c = chain_new(2, "open", driver);
+  sc_map *b = NULL, *c = chain_ref_new(2, "open", driver);
   sc_msg msg;
   sc_map_alloc("bk2", NULL, &b, &msg);
   sc_map_set_option(b, "driver", driver, &msg);
   const double betas[] = {1, 1.7, 0.6, 2.385};
   for (int k = 0; k < 4; k++) {
-    set(b, "beta", betas[k]);
-    set(c, "beta2", betas[k]);
+    chain_ref_set(b, "beta", betas[k]);
+    chain_ref_set(c, "beta2", betas[k]);
     double ds = (betas[k] - 1) / (1 + 2 * 3.0); /* alpha = 3, the default */
     sc_map_value v, w;
     unsigned fl = SC_EVAL_DERIV | SC_EVAL_ITINERARY;
@@ -146,7 +126,7 @@ static const double REF_TOL = 1e-9;
 
 static void check_integration(int N, int ring, int frozen, int npoints) {
   const char *topo = ring ? "ring" : "open", *drv = frozen ? "frozen" : "moving";
-  sc_map *m = chain_new(N, topo, drv);
+  sc_map *m = chain_ref_new(N, topo, drv);
   sc_mapn_value *v;
   sc_msg msg;
   sc_mapn_value_alloc(m, SC_EVAL_ITINERARY, &v, &msg);
@@ -159,14 +139,14 @@ static void check_integration(int N, int ring, int frozen, int npoints) {
     s.phi = tu_uni(1.1, 2);
     double V = tu_uni(0.005, 0.1);
     s.W = frozen ? 0 : V;
-    set(m, "alpha", s.alpha);
-    set(m, "phi", s.phi);
-    set(m, "v", V);
+    chain_ref_set(m, "alpha", s.alpha);
+    chain_ref_set(m, "phi", s.phi);
+    chain_ref_set(m, "v", V);
     for (int i = 1; i < N; i++) {
       char nm[24];
       snprintf(nm, sizeof nm, "beta%d", i + 1);
       s.T[i] = tu_uni(0.6, 2);
-      set(m, nm, s.T[i]);
+      chain_ref_set(m, nm, s.T[i]);
     }
     double d[MAXN], f[MAXN];
     char itin[512];
@@ -221,7 +201,7 @@ static void mirror(int N, const double *d, double *r) {
 }
 
 static void check_symmetry(int N, int ring, const char *driver, int npoints) {
-  sc_map *m = chain_new(N, ring ? "ring" : "open", driver);
+  sc_map *m = chain_ref_new(N, ring ? "ring" : "open", driver);
   sc_mapn_value *a, *b;
   sc_msg msg;
   sc_mapn_value_alloc(m, SC_EVAL_VALUE, &a, &msg);
@@ -231,15 +211,15 @@ static void check_symmetry(int N, int ring, const char *driver, int npoints) {
   double emax = 0;
   int ndone = 0;
   for (int k = 0; k < npoints; k++) {
-    set(m, "alpha", tu_uni(0.5, 4));
-    set(m, "v", tu_uni(0.005, 0.1));
+    chain_ref_set(m, "alpha", tu_uni(0.5, 4));
+    chain_ref_set(m, "v", tu_uni(0.005, 0.1));
     /* ring: equal thresholds; open: T_i = T_(N+1-i) */
     double beta[MAXN] = {1};
     for (int i = 1; i < N; i++) {
       char nm[24];
       snprintf(nm, sizeof nm, "beta%d", i + 1);
       beta[i] = ring ? 1 : i > N - 1 - i ? beta[N - 1 - i] : tu_uni(0.6, 2);
-      set(m, nm, beta[i]);
+      chain_ref_set(m, nm, beta[i]);
     }
     double d[MAXN], sd[MAXN], sf[MAXN];
     for (int i = 0; i + 1 < N; i++) d[i] = tu_uni(-0.5, 0.5);
@@ -285,13 +265,13 @@ static int itin_mirrored(const char *it, int N) {
 static void check_symmetric_states(void) {
   const char *drv[2] = {"moving", "frozen"};
   for (int k = 0; k < 2; k++) {
-    sc_map *m = chain_new(5, "open", drv[k]);
+    sc_map *m = chain_ref_new(5, "open", drv[k]);
     sc_mapn_value *v;
     sc_msg msg;
     sc_mapn_value_alloc(m, SC_EVAL_ITINERARY, &v, &msg);
-    set(m, "beta2", 1.4);
-    set(m, "beta3", 1.9);
-    set(m, "beta4", 1.4);
+    chain_ref_set(m, "beta2", 1.4);
+    chain_ref_set(m, "beta3", 1.9);
+    chain_ref_set(m, "beta4", 1.4);
     const double ds[2][4] = {{0.05, 0.02, -0.02, -0.05},
                              {0.05, -0.02, 0.02, -0.05}};
     for (int j = 0; j < 2; j++) {
@@ -308,7 +288,7 @@ static void check_symmetric_states(void) {
     }
     sc_mapn_value_free(v);
     sc_map_free(m);
-    m = chain_new(4 + k, "ring", drv[k]);
+    m = chain_ref_new(4 + k, "ring", drv[k]);
     sc_mapn_value_alloc(m, SC_EVAL_ITINERARY, &v, &msg);
     double z[4] = {0, 0, 0, 0};
     tu_true(sc_map_eval_n(m, z, SC_EVAL_ITINERARY, v, &msg) == SC_OK &&
@@ -333,7 +313,7 @@ static const double FD_H = 1e-6;
 static const double FD_TOL = 1e-6;
 
 static void check_derivatives(int N, int ring, const char *driver) {
-  sc_map *m = chain_new(N, ring ? "ring" : "open", driver);
+  sc_map *m = chain_ref_new(N, ring ? "ring" : "open", driver);
   size_t n = (size_t)N - 1, np = sc_map_nparam(m);
   sc_mapn_value *v, *a, *b;
   sc_msg msg;
@@ -342,13 +322,13 @@ static void check_derivatives(int N, int ring, const char *driver) {
   sc_mapn_value_alloc(m, SC_EVAL_ITINERARY, &b, &msg);
   tu_seed(31 + N + ring);
   double p0[8];
-  set(m, "alpha", 2.385);
-  set(m, "phi", 1.3);
-  set(m, "v", 0.037);
+  chain_ref_set(m, "alpha", 2.385);
+  chain_ref_set(m, "phi", 1.3);
+  chain_ref_set(m, "v", 0.037);
   for (int i = 1; i < N; i++) {
     char nm[24];
     snprintf(nm, sizeof nm, "beta%d", i + 1);
-    set(m, nm, tu_uni(0.8, 1.6));
+    chain_ref_set(m, nm, tu_uni(0.8, 1.6));
   }
   for (size_t q = 0; q < np; q++) p0[q] = sc_map_get_param(m, q);
   double emax = 0;
@@ -365,10 +345,10 @@ static void check_derivatives(int N, int ring, const char *driver) {
         sc_mapn_value *w = sgn < 0 ? b : a;
         memcpy(x, d, n * sizeof *d);
         if (c < n) x[c] += sgn * FD_H;
-        else set(m, sc_model_chain.params[c - n].name,
+        else chain_ref_set(m, sc_model_chain.params[c - n].name,
                  p0[c - n] + sgn * FD_H);
         int st = sc_map_eval_n(m, x, SC_EVAL_ITINERARY, w, &msg);
-        if (c >= n) set(m, sc_model_chain.params[c - n].name, p0[c - n]);
+        if (c >= n) chain_ref_set(m, sc_model_chain.params[c - n].name, p0[c - n]);
         /* a difference across a border is no test of the derivative */
         if (st || strcmp(w->itinerary, v->itinerary)) smooth = 0;
       }
@@ -397,7 +377,7 @@ static void check_derivatives(int N, int ring, const char *driver) {
 /* --- the model's table and its refusals ------------------------------- */
 
 static void check_interface(void) {
-  sc_map *m = chain_new(3, "open", "moving");
+  sc_map *m = chain_ref_new(3, "open", "moving");
   sc_msg msg;
   tu_int("blocks = 3: dimension", (long)sc_map_dim(m), 2);
   tu_true(strcmp(sc_map_get_option(m, "blocks"), "3") == 0,

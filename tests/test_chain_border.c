@@ -11,32 +11,13 @@
 #include <string.h>
 
 #include "slipcont/map.h"
+#include "chain_ref.h"
 #include "test_util.h"
 
 #define MAXN 4
 #define NBORD 64
 
-static sc_map *chain_new(int N, const char *topology, const char *driver) {
-  sc_map *m = NULL;
-  sc_msg msg;
-  char nb[24];
-  snprintf(nb, sizeof nb, "%d", N);
-  if (sc_map_alloc("chain", NULL, &m, &msg) ||
-      sc_map_set_option(m, "blocks", nb, &msg) ||
-      sc_map_set_option(m, "topology", topology, &msg) ||
-      sc_map_set_option(m, "driver", driver, &msg)) {
-    tu_true(0, "chain_new(%d, %s, %s): %s", N, topology, driver, msg.text);
-    sc_map_free(m);
-    return NULL;
-  }
-  return m;
-}
 
-static void set(sc_map *m, const char *name, double x) {
-  sc_msg msg;
-  if (sc_map_set_param_by_name(m, name, x, &msg))
-    tu_true(0, "set %s = %g: %s", name, x, msg.text);
-}
 
 /* One evaluation and its borders. */
 typedef struct {
@@ -77,13 +58,13 @@ static const sc_bordern *border_at(probe *p, const double *x,
 /* A start on the attractor: three natural iterates from a random d. */
 static int draw_point(probe *p, int N, double *x) {
   sc_msg msg;
-  set(p->m, "alpha", tu_uni(1.5, 4));
-  set(p->m, "phi", tu_uni(1.1, 2));
-  set(p->m, "v", tu_uni(0.01, 0.1));
+  chain_ref_set(p->m, "alpha", tu_uni(1.5, 4));
+  chain_ref_set(p->m, "phi", tu_uni(1.1, 2));
+  chain_ref_set(p->m, "v", tu_uni(0.01, 0.1));
   for (int i = 2; i <= N && i <= 5; i++) {
     char nm[8];
     snprintf(nm, sizeof nm, "beta%d", i);
-    set(p->m, nm, tu_uni(0.7, 3));
+    chain_ref_set(p->m, nm, tu_uni(0.7, 3));
   }
   for (size_t i = 0; i < p->n; i++) x[i] = tu_uni(-0.3, 0.3);
   if (sc_map_iterate_n(p->m, x, 3, SC_EVAL_VALUE, p->v, &msg)) return 0;
@@ -142,7 +123,7 @@ static int fd(probe *p, const double *x, const sc_itin_code *code,
 
 static void check_gradients(int N, const char *topo, const char *driver,
                             int npoints, grad_stats *S) {
-  sc_map *m = chain_new(N, topo, driver);
+  sc_map *m = chain_ref_new(N, topo, driver);
   probe p;
   if (!m || probe_init(&p, m)) return;
   tu_seed((unsigned long long)(N * 100 + (topo[0] == 'r') * 10 +
@@ -231,7 +212,7 @@ static const double ZERO_STEP = 1e-9;
 
 static void check_zeros(int N, const char *topo, const char *driver,
                         int npoints, zero_stats *S) {
-  sc_map *m = chain_new(N, topo, driver);
+  sc_map *m = chain_ref_new(N, topo, driver);
   probe p;
   if (!m || probe_init(&p, m)) return;
   tu_seed((unsigned long long)(7 + N * 100 + (topo[0] == 'r') * 10 +
@@ -357,7 +338,7 @@ static int bk2_zero_at(sc_map *mb, double d, int kind, double z, double tol) {
 static const double BK2_ZERO_TOL = 1e-12;
 
 static void check_bk2(const char *driver, int npoints, int *matched) {
-  sc_map *mc = chain_new(2, "open", driver), *mb = NULL;
+  sc_map *mc = chain_ref_new(2, "open", driver), *mb = NULL;
   sc_msg msg;
   probe p;
   if (!mc || sc_map_alloc("bk2", NULL, &mb, &msg) ||
@@ -369,10 +350,10 @@ static void check_bk2(const char *driver, int npoints, int *matched) {
   for (int it = 0; it < npoints; it++) {
     double al = tu_uni(1.5, 4), be = tu_uni(0.8, 3), ph = tu_uni(1.1, 2),
            V = tu_uni(0.01, 0.1);
-    set(mc, "alpha", al), set(mb, "alpha", al);
-    set(mc, "beta2", be), set(mb, "beta", be);
-    set(mc, "phi", ph), set(mb, "phi", ph);
-    set(mc, "v", V), set(mb, "v", V);
+    chain_ref_set(mc, "alpha", al), chain_ref_set(mb, "alpha", al);
+    chain_ref_set(mc, "beta2", be), chain_ref_set(mb, "beta", be);
+    chain_ref_set(mc, "phi", ph), chain_ref_set(mb, "phi", ph);
+    chain_ref_set(mc, "v", V), chain_ref_set(mb, "v", V);
     double x = tu_uni(-0.3, 0.3);
     if (sc_map_iterate_n(mc, &x, 3, SC_EVAL_VALUE, p.v, &msg)) continue;
     x = p.v->f[0];

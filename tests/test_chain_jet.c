@@ -9,32 +9,13 @@
 #include <string.h>
 
 #include "slipcont/map.h"
+#include "chain_ref.h"
 #include "test_util.h"
 
 #define MAXN 3 /* state components: four blocks */
 #define NP 8   /* the chain's parameters */
 
-static sc_map *chain_new(int N, const char *topology, const char *driver) {
-  sc_map *m = NULL;
-  sc_msg msg;
-  char nb[24];
-  snprintf(nb, sizeof nb, "%d", N);
-  if (sc_map_alloc("chain", NULL, &m, &msg) ||
-      sc_map_set_option(m, "blocks", nb, &msg) ||
-      sc_map_set_option(m, "topology", topology, &msg) ||
-      sc_map_set_option(m, "driver", driver, &msg)) {
-    tu_true(0, "chain_new(%d, %s, %s): %s", N, topology, driver, msg.text);
-    sc_map_free(m);
-    return NULL;
-  }
-  return m;
-}
 
-static void set(sc_map *m, const char *name, double x) {
-  sc_msg msg;
-  if (sc_map_set_param_by_name(m, name, x, &msg))
-    tu_true(0, "set %s = %g: %s", name, x, msg.text);
-}
 
 /* --- against differences ----------------------------------------------- */
 
@@ -68,12 +49,12 @@ static int pair(fd_ctx *F, const double *x, size_t c) {
     memcpy(y, x, F->n * sizeof *x);
     const char *name = c >= F->n ? sc_model_chain.params[c - F->n].name : NULL;
     if (c < F->n) y[c] += h;
-    else set(F->m, name, F->p0[c - F->n] + h);
+    else chain_ref_set(F->m, name, F->p0[c - F->n] + h);
     /* T from differences of H in the state; Jp from J's in p */
     unsigned fl = (c < F->n ? SC_EVAL_DERIV2 : SC_EVAL_DERIV) |
                   SC_EVAL_ITINERARY;
     int st = sc_map_eval_n(F->m, y, fl, F->w[k], &msg);
-    if (name) set(F->m, name, F->p0[c - F->n]);
+    if (name) chain_ref_set(F->m, name, F->p0[c - F->n]);
     if (st || strcmp(F->w[k]->itinerary, F->v->itinerary)) return 0;
   }
   return 1;
@@ -134,20 +115,20 @@ static double asymmetry(const sc_mapn_value *v) {
 }
 
 static void check_differences(int N, int ring, const char *driver) {
-  fd_ctx F = {.m = chain_new(N, ring ? "ring" : "open", driver)};
+  fd_ctx F = {.m = chain_ref_new(N, ring ? "ring" : "open", driver)};
   sc_msg msg;
   unsigned fl = SC_EVAL_DERIV2 | SC_EVAL_ITINERARY;
   F.n = (size_t)N - 1, F.np = sc_map_nparam(F.m);
   sc_mapn_value_alloc(F.m, fl, &F.v, &msg);
   for (int k = 0; k < 4; k++) sc_mapn_value_alloc(F.m, fl, &F.w[k], &msg);
   tu_seed(77 + 2 * N + ring);
-  set(F.m, "alpha", 2.385);
-  set(F.m, "phi", 1.3);
-  set(F.m, "v", 0.037);
+  chain_ref_set(F.m, "alpha", 2.385);
+  chain_ref_set(F.m, "phi", 1.3);
+  chain_ref_set(F.m, "v", 0.037);
   for (int i = 1; i < N; i++) {
     char nm[24];
     snprintf(nm, sizeof nm, "beta%d", i + 1);
-    set(F.m, nm, tu_uni(0.9, 1.3));
+    chain_ref_set(F.m, nm, tu_uni(0.9, 1.3));
   }
   for (size_t q = 0; q < F.np; q++) F.p0[q] = sc_map_get_param(F.m, q);
   double emax = 0, smax = 0, asym = 0;
@@ -195,7 +176,7 @@ static void check_differences(int N, int ring, const char *driver) {
 static const double BK2_TOL = 1e-9;
 
 static void check_bk2(const char *driver, int npoints) {
-  sc_map *b = NULL, *c = chain_new(2, "open", driver);
+  sc_map *b = NULL, *c = chain_ref_new(2, "open", driver);
   sc_msg msg, m2;
   sc_map_alloc("bk2", NULL, &b, &msg);
   sc_map_set_option(b, "driver", driver, &msg);
@@ -216,8 +197,8 @@ static void check_bk2(const char *driver, int npoints) {
   for (int k = 0; k < npoints; k++) {
     double p[4] = {tu_uni(0.5, 5), tu_uni(0.5, 3), tu_uni(1.1, 2.1), tu_uni(0.005, 0.1)};
     for (int q = 0; q < 4; q++) {
-      set(b, bn[q], p[q]);
-      set(c, cn[q], p[q]);
+      chain_ref_set(b, bn[q], p[q]);
+      chain_ref_set(c, cn[q], p[q]);
     }
     double d = tu_uni(-1, 1);
     int it = 1 + k % 2; /* one iterate, and two by the chain rule */

@@ -45,11 +45,6 @@ static sc_map *chain_new(int N, const char *topology, const char *friction,
   return m;
 }
 
-static void set(sc_map *m, const char *name, double x) {
-  sc_msg msg;
-  if (sc_map_set_param_by_name(m, name, x, &msg))
-    tu_true(0, "set %s = %g: %s", name, x, msg.text);
-}
 
 /* --- two blocks are bk2 ---------------------------------------------- */
 
@@ -86,8 +81,8 @@ static void check_bk2(const char *friction, const char *driver, int npoints,
     double p[5] = {tu_uni(0.5, 5), tu_uni(0.5, 3), tu_uni(0.01, 0.1), tu_uni(0.2, 3),
                    tu_uni(1.1, 2.1)};
     for (int q = 0; q < 5; q++) {
-      set(b, bn[q], p[q]);
-      set(c, cn[q], p[q]);
+      chain_ref_set(b, bn[q], p[q]);
+      chain_ref_set(c, cn[q], p[q]);
     }
     double ds = (p[1] - 1) / (1 + 2 * p[0]);
     double d = near_dstar ? ds + tu_uni(-1, 1) * pow(10, -tu_uni(6, 12))
@@ -155,15 +150,15 @@ static void check_exact(int N, int ring, const char *driver, int npoints) {
     double p[3] = {tu_uni(0.5, 4), tu_uni(1.1, 2), tu_uni(0.005, 0.1)};
     const char *pn[3] = {"alpha", "phi", "v"};
     for (int q = 0; q < 3; q++) {
-      set(e, pn[q], p[q]);
-      set(m, pn[q], p[q]);
+      chain_ref_set(e, pn[q], p[q]);
+      chain_ref_set(m, pn[q], p[q]);
     }
     for (int i = 1; i < N; i++) {
       char nm[24];
       snprintf(nm, sizeof nm, "beta%d", i + 1);
       double t = tu_uni(0.6, 2);
-      set(e, nm, t);
-      set(m, nm, t);
+      chain_ref_set(e, nm, t);
+      chain_ref_set(m, nm, t);
     }
     double d[MAXN];
     for (size_t i = 0; i < n; i++) d[i] = tu_uni(-0.5, 0.5);
@@ -221,14 +216,14 @@ static void check_integration(int N, int ring, int npoints) {
     s.alpha = tu_uni(0.5, 4);
     s.gamma = tu_uni(0.2, 3);
     s.W = tu_uni(0.005, 0.1);
-    set(m, "alpha", s.alpha);
-    set(m, "gamma", s.gamma);
-    set(m, "v", s.W);
+    chain_ref_set(m, "alpha", s.alpha);
+    chain_ref_set(m, "gamma", s.gamma);
+    chain_ref_set(m, "v", s.W);
     for (int i = 1; i < N; i++) {
       char nm[24];
       snprintf(nm, sizeof nm, "beta%d", i + 1);
       s.T[i] = tu_uni(0.6, 2);
-      set(m, nm, s.T[i]);
+      chain_ref_set(m, nm, s.T[i]);
     }
     double d[MAXN], f[MAXN];
     char itin[512];
@@ -290,11 +285,11 @@ static void check_near_ties(int npoints) {
     s.gamma = tu_uni(0.2, 3);
     s.W = tu_uni(0.005, 0.1);
     s.T[1] = tu_uni(1.5, 2), s.T[2] = tu_uni(0.8, 1.4);
-    set(m, "alpha", s.alpha);
-    set(m, "gamma", s.gamma);
-    set(m, "v", s.W);
-    set(m, "beta2", s.T[1]);
-    set(m, "beta3", s.T[2]);
+    chain_ref_set(m, "alpha", s.alpha);
+    chain_ref_set(m, "gamma", s.gamma);
+    chain_ref_set(m, "v", s.W);
+    chain_ref_set(m, "beta2", s.T[1]);
+    chain_ref_set(m, "beta3", s.T[2]);
     double d[2], f[2], a = s.alpha;
     char itin[512];
     d[0] = tu_uni(-0.1, 0.1);
@@ -358,13 +353,13 @@ static void check_derivatives(int N, int ring) {
   sc_mapn_value_alloc(m, SC_EVAL_ITINERARY, &b, &msg);
   tu_seed(31 + (unsigned)N + (unsigned)ring);
   double p0[8];
-  set(m, "alpha", 2.385);
-  set(m, "gamma", 1.37);
-  set(m, "v", 0.037);
+  chain_ref_set(m, "alpha", 2.385);
+  chain_ref_set(m, "gamma", 1.37);
+  chain_ref_set(m, "v", 0.037);
   for (int i = 1; i < N; i++) {
     char nm[24];
     snprintf(nm, sizeof nm, "beta%d", i + 1);
-    set(m, nm, tu_uni(0.8, 1.6));
+    chain_ref_set(m, nm, tu_uni(0.8, 1.6));
   }
   for (size_t q = 0; q < np; q++) p0[q] = sc_map_get_param(m, q);
   double emax = 0, gmax = 0;
@@ -455,18 +450,18 @@ static void check_coulomb_limit(int ring) {
   const double gam[3] = {0, 1e-4, 1e-5};
   sc_map *all[4];
   all[0] = chain_new(3, topo, "coulomb", "exact", "precise");
-  set(all[0], "phi", 1 + 1e-8);
+  chain_ref_set(all[0], "phi", 1 + 1e-8);
   for (int k = 1; k < 4; k++) {
     all[k] = chain_new(3, topo, "velocity-weakening", "numerical", "precise");
-    set(all[k], "gamma", gam[k - 1]);
+    chain_ref_set(all[k], "gamma", gam[k - 1]);
   }
   sc_mapn_value *v[4];
   sc_msg msg;
   for (int k = 0; k < 4; k++) {
-    set(all[k], "alpha", 2.9);
-    set(all[k], "v", 0.025);
-    set(all[k], "beta2", 1.3);
-    set(all[k], "beta3", 1.7);
+    chain_ref_set(all[k], "alpha", 2.9);
+    chain_ref_set(all[k], "v", 0.025);
+    chain_ref_set(all[k], "beta2", 1.3);
+    chain_ref_set(all[k], "beta3", 1.7);
     sc_mapn_value_alloc(all[k], SC_EVAL_ITINERARY, &v[k], &msg);
   }
   double e[3] = {0, 0, 0};
@@ -546,10 +541,10 @@ static void check_example_flip(void) {
   sc_mapn_value *v;
   sc_msg msg;
   sc_mapn_value_alloc(m, SC_EVAL_DERIV | SC_EVAL_ITINERARY, &v, &msg);
-  set(m, "alpha", 3.5);
-  set(m, "beta3", 3);
-  set(m, "v", 0.025);
-  set(m, "gamma", 0.2);
+  chain_ref_set(m, "alpha", 3.5);
+  chain_ref_set(m, "beta3", 3);
+  chain_ref_set(m, "v", 0.025);
+  chain_ref_set(m, "gamma", 0.2);
   double d[2] = {0.1, 0.2}, J[4], res = 0;
   for (int k = 0; k < 600; k++) {
     sc_map_eval_n(m, d, 0, v, &msg);
@@ -567,14 +562,14 @@ static void check_example_flip(void) {
   /* secant on h(gamma) = det(J + I) */
   double g[2] = {0.21, 0.22}, h[2];
   for (int k = 0; k < 2; k++) {
-    set(m, "gamma", g[k]);
+    chain_ref_set(m, "gamma", g[k]);
     res = fmax(res, fixed_point(m, v, d, J));
     h[k] = (J[0] + 1) * (J[3] + 1) - J[1] * J[2];
   }
   for (int it = 0; it < 30 && fabs(g[1] - g[0]) > 1e-12; it++) {
     double gn = g[1] - h[1] * (g[1] - g[0]) / (h[1] - h[0]);
     g[0] = g[1], h[0] = h[1], g[1] = gn;
-    set(m, "gamma", gn);
+    chain_ref_set(m, "gamma", gn);
     res = fmax(res, fixed_point(m, v, d, J));
     h[1] = (J[0] + 1) * (J[3] + 1) - J[1] * J[2];
   }
